@@ -1,0 +1,80 @@
+/* cli.h — shared pieces of the shlab command-line tool (not installed).
+ *
+ * Contract of every command (CONVENTIONS.md "Output"):
+ *  - the result is built completely as a JSON value, then rendered once as
+ *    table, csv or json on stdout (so a failure never prints half a result);
+ *  - bad usage or input: one line "shlab: error: ..." on stderr, exit 2;
+ *  - a failed check or verification: exit 1; success: exit 0.
+ */
+#ifndef SHLAB_CLI_H
+#define SHLAB_CLI_H
+
+#include <jansson.h>
+#include <stdio.h>
+
+#include "../shlab.h"
+
+#define CLI_EXIT_OK 0
+#define CLI_EXIT_CHECK 1
+#define CLI_EXIT_USAGE 2
+
+typedef enum { CLI_TABLE = 0, CLI_CSV, CLI_JSON } cli_format;
+
+typedef struct {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+    const char *help; /* full --help text */
+} cli_command;
+
+/* Print "shlab: error: <msg>" on stderr; returns CLI_EXIT_USAGE. */
+int cli_fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Fail with the library's last error for status st. */
+int cli_fail_status(int st);
+/* Error for an unknown/malformed option as reported by getopt_long. */
+int cli_fail_getopt(const char *cmd, char **argv, int optind_before, int optopt_val);
+
+/* Strict parsers: the whole string must be consumed; NaN/Inf refused.
+ * Return 0 on success, else print the error and return CLI_EXIT_USAGE. */
+int cli_int(const char *opt, const char *s, int *out);
+int cli_long(const char *opt, const char *s, long *out);
+int cli_double(const char *opt, const char *s, double *out);
+/* Comma/space separated list; *out is malloc'd (caller frees). */
+int cli_doubles(const char *opt, const char *s, double **out, int *n);
+int cli_vec3(const char *opt, const char *s, double v[3]);
+int cli_format_parse(const char *s, cli_format *out);
+int cli_convention(const char *s, sh_convention *out);
+int cli_order(const char *opt, const char *s, int *out);
+
+/* Read a coefficient file: JSON with "coeffs" (array) or "channels"
+ * ({name: array}), or plain text numbers.  Returns nchan vectors of length
+ * *len concatenated in *out (malloc'd), channel names in names (may be NULL). */
+int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
+                         char names[SH_IMAGE_MAX_CHANNELS][8]);
+
+/* JSON builders. */
+json_t *cli_json_array(const double *v, size_t n);
+json_t *cli_json_matrix(const double *M, size_t rows, size_t cols);
+/* Set root[key] = val (stealing val).  If root or val is NULL (allocation
+ * failed, or a NaN was refused by json_real), frees both and returns NULL,
+ * which cli_emit() reports as an error: a result is complete or not printed. */
+json_t *cli_put(json_t *root, const char *key, json_t *val);
+/* Non-zero if any number in the tree is not finite (jansson refuses NaN:
+ * json_real returns NULL, so builders report failure via NULL as well). */
+int cli_json_bad(const json_t *v);
+
+/* Render `root` in `fmt` on stdout and release it. Returns an exit code. */
+int cli_emit(json_t *root, cli_format fmt);
+
+/* Print help text to stdout; returns 0. */
+int cli_help(const cli_command *cmd);
+const cli_command *cli_find(const char *name);
+extern const cli_command cli_commands[];
+extern const int cli_ncommands;
+
+/* Common long options shared by commands (use in option tables). */
+#define CLI_OPT_HELP 'h'
+#define CLI_COMMON_LONGOPTS \
+    {"help", no_argument, 0, 'h'}, {"format", required_argument, 0, 0x101}
+
+#endif

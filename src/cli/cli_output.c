@@ -1,0 +1,266 @@
+/* cli_output.c — one result value, three renderings (table, csv, json).
+ *
+ * Commands build a complete jansson object; it is checked for non-finite
+ * numbers (never printed as a result), rendered into memory and written to
+ * stdout in one go.  JSON reals are printed with 17 significant digits
+ * (exact round trip).  Table and CSV layouts are derived from the shape:
+ *   scalars                       → context ("key: value" / leading columns)
+ *   array of numbers              → one column (with i,l,m when SH-indexed)
+ *   array of arrays (a matrix)    → one row per row
+ *   array of objects (rows)       → one row per object, header from keys
+ *   object of arrays (channels)   → one column per channel, with i,l,m
+ */
+#define _GNU_SOURCE
+#include "cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+json_t *cli_json_array(const double *v, size_t n)
+{
+    json_t *a = json_array();
+    if (!a) return NULL;
+    for (size_t i = 0; i < n; i++) {
+        json_t *x = json_real(v[i]); /* NULL for NaN/Inf */
+        if (!x || json_array_append_new(a, x)) { json_decref(a); return NULL; }
+    }
+    return a;
+}
+
+json_t *cli_json_matrix(const double *M, size_t rows, size_t cols)
+{
+    json_t *a = json_array();
+    if (!a) return NULL;
+    for (size_t r = 0; r < rows; r++) {
+        json_t *row = cli_json_array(M + r * cols, cols);
+        if (!row || json_array_append_new(a, row)) { json_decref(a); return NULL; }
+    }
+    return a;
+}
+
+json_t *cli_put(json_t *root, const char *key, json_t *val)
+{
+    if (!root || !val || json_object_set_new(root, key, val)) {
+        if (root) json_decref(root);
+        else if (val) json_decref(val);
+        return NULL;
+    }
+    return root;
+}
+
+int cli_json_bad(const json_t *v)
+{
+    if (!v) return 1;
+    if (json_is_real(v)) return !isfinite(json_real_value(v));
+    if (json_is_array(v)) {
+        size_t i;
+        json_t *x;
+        json_array_foreach(v, i, x) if (cli_json_bad(x)) return 1;
+    } else if (json_is_object(v)) {
+        const char *k;
+        json_t *x;
+        json_object_foreach((json_t *)v, k, x) if (cli_json_bad(x)) return 1;
+    }
+    return 0;
+}
+
+/* ---- text rendering ---------------------------------------------------- */
+
+static int is_scalar(const json_t *v) { return !json_is_array(v) && !json_is_object(v); }
+
+static void put_scalar(FILE *o, const json_t *v, int table)
+{
+    if (json_is_real(v)) fprintf(o, table ? "%.10g" : "%.17g", json_real_value(v));
+    else if (json_is_integer(v)) fprintf(o, "%lld", (long long)json_integer_value(v));
+    else if (json_is_string(v)) fputs(json_string_value(v), o);
+    else if (json_is_true(v)) fputs("true", o);
+    else if (json_is_false(v)) fputs("false", o);
+    else if (json_is_null(v)) fputs("", o);
+    else {
+        char *s = json_dumps(v, JSON_COMPACT | JSON_REAL_PRECISION(17) | JSON_ENCODE_ANY);
+        if (s) { fputs(s, o); free(s); }
+    }
+}
+
+static int is_square(size_t n)
+{
+    size_t r = (size_t)llround(sqrt((double)n));
+    return r * r == n;
+}
+
+/* Column headers and cell access for one tabular member. */
+typedef struct {
+    const char *key;
+    const json_t *v;
+    int kind; /* 1 vector, 2 matrix, 3 rows, 4 channels */
+    size_t nrows;
+    int sh;   /* rows are SH-indexed (print i,l,m) */
+} table_t;
+
+static int classify(const char *key, const json_t *v, table_t *t)
+{
+    t->key = key;
+    t->v = v;
+    t->sh = 0;
+    if (json_is_array(v)) {
+        t->nrows = json_array_size(v);
+        const json_t *first = json_array_get(v, 0);
+        if (!first || is_scalar(first)) {
+            t->kind = 1;
+            t->sh = (!strcmp(key, "values") || !strcmp(key, "coeffs")) && is_square(t->nrows);
+        } else if (json_is_array(first)) t->kind = 2;
+        else t->kind = 3;
+        return 1;
+    }
+    if (json_is_object(v)) {
+        const char *k;
+        json_t *x;
+        size_t n = (size_t)-1;
+        json_object_foreach((json_t *)v, k, x) {
+            if (!json_is_array(x)) return 0;
+            if (n == (size_t)-1) n = json_array_size(x);
+            else if (json_array_size(x) != n) return 0;
+        }
+        if (n == (size_t)-1) return 0;
+        t->kind = 4;
+        t->nrows = n;
+        t->sh = is_square(n);
+        return 1;
+    }
+    return 0;
+}
+
+static void put_header(FILE *o, const table_t *t, const char *sep)
+{
+    int first = 1;
+#define H(s) do { if (!first) fputs(sep, o); fputs(s, o); first = 0; } while (0)
+    if (t->sh) { H("i"); H("l"); H("m"); }
+    switch (t->kind) {
+    case 1: H(t->key); break;
+    case 2: {
+        H("row");
+        size_t nc = json_array_size(json_array_get(t->v, 0));
+        for (size_t c = 0; c < nc; c++) { char b[32]; snprintf(b, sizeof b, "c%zu", c); H(b); }
+        break;
+    }
+    case 3: {
+        const char *k;
+        json_t *x;
+        json_object_foreach(json_array_get(t->v, 0), k, x) H(k);
+        break;
+    }
+    case 4: {
+        const char *k;
+        json_t *x;
+        json_object_foreach((json_t *)t->v, k, x) H(k);
+        break;
+    }
+    }
+#undef H
+}
+
+static void put_row(FILE *o, const table_t *t, size_t r, const char *sep, int table)
+{
+    int first = 1;
+#define S() do { if (!first) fputs(sep, o); first = 0; } while (0)
+    if (t->sh) {
+        int l, m;
+        sh_index_lm((int)r, &l, &m);
+        S(); fprintf(o, "%zu", r);
+        S(); fprintf(o, "%d", l);
+        S(); fprintf(o, "%d", m);
+    }
+    switch (t->kind) {
+    case 1: S(); put_scalar(o, json_array_get(t->v, r), table); break;
+    case 2: {
+        const json_t *row = json_array_get(t->v, r);
+        S(); fprintf(o, "%zu", r);
+        size_t i;
+        json_t *x;
+        json_array_foreach(row, i, x) { S(); put_scalar(o, x, table); }
+        break;
+    }
+    case 3: {
+        const char *k;
+        json_t *x;
+        json_object_foreach(json_array_get(t->v, r), k, x) { S(); put_scalar(o, x, table); }
+        break;
+    }
+    case 4: {
+        const char *k;
+        json_t *x;
+        json_object_foreach((json_t *)t->v, k, x) { S(); put_scalar(o, json_array_get(x, r), table); }
+        break;
+    }
+    }
+#undef S
+}
+
+static void render_text(FILE *o, json_t *root, cli_format fmt)
+{
+    const char *k;
+    json_t *v;
+    table_t tabs[16];
+    int nt = 0;
+    json_object_foreach(root, k, v) {
+        if (!is_scalar(v) && nt < 16 && classify(k, v, &tabs[nt])) nt++;
+    }
+    if (fmt == CLI_TABLE) {
+        json_object_foreach(root, k, v) {
+            if (is_scalar(v)) { fprintf(o, "%s: ", k); put_scalar(o, v, 1); fputc('\n', o); }
+        }
+        for (int t = 0; t < nt; t++) {
+            fprintf(o, "\n%s:\n", tabs[t].key);
+            put_header(o, &tabs[t], "\t");
+            fputc('\n', o);
+            for (size_t r = 0; r < tabs[t].nrows; r++) { put_row(o, &tabs[t], r, "\t", 1); fputc('\n', o); }
+        }
+        return;
+    }
+    /* CSV: scalars become leading columns repeated on every row */
+    for (int t = 0; t < (nt ? nt : 1); t++) {
+        if (t) fputc('\n', o);
+        int first = 1;
+        json_object_foreach(root, k, v) if (is_scalar(v)) { fprintf(o, first ? "%s" : ",%s", k); first = 0; }
+        if (nt) { if (!first) fputc(',', o); put_header(o, &tabs[t], ","); }
+        fputc('\n', o);
+        size_t nrows = nt ? tabs[t].nrows : 1;
+        for (size_t r = 0; r < nrows; r++) {
+            first = 1;
+            json_object_foreach(root, k, v) if (is_scalar(v)) {
+                if (!first) fputc(',', o);
+                put_scalar(o, v, 0);
+                first = 0;
+            }
+            if (nt) { if (!first) fputc(',', o); put_row(o, &tabs[t], r, ",", 0); }
+            fputc('\n', o);
+        }
+    }
+}
+
+int cli_emit(json_t *root, cli_format fmt)
+{
+    if (!root) return cli_fail("out of memory or a non-finite value while building the result");
+    if (cli_json_bad(root)) {
+        json_decref(root);
+        return cli_fail("the result contains a non-finite value; nothing printed");
+    }
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&buf, &len);
+    if (!m) { json_decref(root); return cli_fail("out of memory"); }
+    if (fmt == CLI_JSON) {
+        char *s = json_dumps(root, JSON_COMPACT | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17));
+        if (s) { fputs(s, m); fputc('\n', m); free(s); }
+    } else {
+        render_text(m, root, fmt);
+    }
+    fclose(m);
+    json_decref(root);
+    if (!buf || len == 0) { free(buf); return cli_fail("could not render the result"); }
+    size_t w = fwrite(buf, 1, len, stdout);
+    free(buf);
+    if (w != len || fflush(stdout) != 0) return cli_fail("cannot write to standard output");
+    return CLI_EXIT_OK;
+}

@@ -1,0 +1,70 @@
+/* main.c — the shlab command-line tool: dispatch to one command per file. */
+#include "cli.h"
+
+#include <string.h>
+
+extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
+
+static const cli_command *const table[] = {
+    &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
+};
+
+const cli_command *cli_find(const char *name)
+{
+    for (size_t i = 0; i < sizeof table / sizeof *table; i++)
+        if (!strcmp(table[i]->name, name)) return table[i];
+    return NULL;
+}
+
+int cli_help(const cli_command *cmd)
+{
+    fputs(cmd->help, stdout);
+    return CLI_EXIT_OK;
+}
+
+static void usage(FILE *o)
+{
+    fprintf(o,
+            "shlab %s — numerical verification workbench for real spherical harmonics\n"
+            "\n"
+            "Usage: shlab COMMAND [OPTIONS]\n"
+            "       shlab COMMAND --help     (options of one command)\n"
+            "       shlab --version\n"
+            "\n"
+            "Commands:\n",
+            SHLAB_VERSION);
+    for (size_t i = 0; i < sizeof table / sizeof *table; i++)
+        fprintf(o, "  %-12s %s\n", table[i]->name, table[i]->summary);
+    fprintf(o,
+            "\n"
+            "Conventions: real SH with the Condon-Shortley phase ('cs', default) or without\n"
+            "('nocs'); flat index i = l(l+1)+m; order n = bands 0..n-1 (n² coefficients);\n"
+            "direction (sinθcosφ, sinθsinφ, cosθ); angles in radians unless --degrees.\n"
+            "Every command takes --format table|csv|json (default table).\n"
+            "Exit status: 0 success, 1 a check failed, 2 bad usage or input.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return cli_fail("no command given (try 'shlab --help')");
+    }
+    const char *c = argv[1];
+    if (!strcmp(c, "--help") || !strcmp(c, "-h") || !strcmp(c, "help")) {
+        if (argc > 2 && strcmp(c, "help") == 0) {
+            const cli_command *cmd = cli_find(argv[2]);
+            if (!cmd) return cli_fail("unknown command '%s' (try 'shlab --help')", argv[2]);
+            return cli_help(cmd);
+        }
+        usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    if (!strcmp(c, "--version")) {
+        printf("shlab %s\n", SHLAB_VERSION);
+        return CLI_EXIT_OK;
+    }
+    const cli_command *cmd = cli_find(c);
+    if (!cmd) return cli_fail("unknown command '%s' (try 'shlab --help')", c);
+    return cmd->run(argc - 1, argv + 1);
+}

@@ -1,0 +1,213 @@
+/* shlab.h — the one public header of libshlab.
+ *
+ * shlab is a numerical verification and analysis workbench for real spherical
+ * harmonics (SH).  Conventions (basis, phase, index, rotation direction, image
+ * layouts) are pinned in CONVENTIONS.md and summarised in README.md:
+ *   - direction s = (sinθ cosφ, sinθ sinφ, cosθ), z up;
+ *   - real SH y_l^m, default convention SH_CS (Condon-Shortley phase inside P,
+ *     as Green's P()/SH() code), alternative SH_NOCS (odd m negated);
+ *   - flat index i = l(l+1)+m; "order n" = bands 0..n-1 = n² coefficients.
+ *
+ * Error handling follows GSL's style: every routine that can fail returns an
+ * int status (SH_OK = 0); a one-line human-readable reason is kept in a
+ * thread-local buffer (sh_last_error()).  No routine calls exit().
+ * Numerical kernels never allocate; routines that need scratch space say so.
+ */
+#ifndef SHLAB_H
+#define SHLAB_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SHLAB_VERSION "0.1.0"
+
+/* Largest supported order (bands 0..SHLAB_MAX_ORDER-1).  The normalised
+ * Legendre recurrence is tested against GSL up to l = 2000 and beyond. */
+#define SHLAB_MAX_ORDER 2049
+
+/* ---------------------------------------------------------------- status */
+enum {
+    SH_OK = 0,
+    SH_EINVAL = 1,  /* bad argument (order out of range, NaN, zero vector, ...) */
+    SH_ENOMEM = 2,  /* allocation failed */
+    SH_EIO = 3,     /* file could not be opened / read / written */
+    SH_EFORMAT = 4, /* file is corrupt, truncated or has no usable channels */
+    SH_ENOTSUP = 5, /* valid request that this routine does not implement */
+    SH_ENUM = 6     /* a numerical result was not finite / did not converge */
+};
+
+/* Record a formatted reason for a failure; returns status unchanged so that
+ * code can write `return sh_error(SH_EINVAL, "order %d < 1", n);`. */
+int sh_error(int status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* The reason recorded by the last failing call on this thread ("" if none). */
+const char *sh_last_error(void);
+/* A generic name for a status code. */
+const char *sh_strerror(int status);
+
+/* ------------------------------------------------------------ conventions */
+typedef enum { SH_CS = 0, SH_NOCS = 1 } sh_convention;
+
+/* Coefficient normalisations accepted by sh_convert():
+ *   SH_NORM_CS       orthonormal, Condon-Shortley phase (the default basis)
+ *   SH_NORM_NOCS     orthonormal, no phase (odd m negated relative to CS)
+ *   SH_NORM_4PI      4π-normalised (∫y² dΩ = 4π), no phase (SHTOOLS default)
+ *   SH_NORM_SCHMIDT  Schmidt semi-normalised (∫y² dΩ = 4π/(2l+1)), no phase */
+typedef enum { SH_NORM_CS = 0, SH_NORM_NOCS, SH_NORM_4PI, SH_NORM_SCHMIDT } sh_norm;
+
+const char *sh_convention_name(sh_convention c);
+int sh_convention_parse(const char *s, sh_convention *out);
+const char *sh_norm_name(sh_norm n);
+int sh_norm_parse(const char *s, sh_norm *out);
+
+/* ------------------------------------------------------------------ index */
+static inline int sh_index(int l, int m) { return l * (l + 1) + m; }
+static inline int sh_ncoeff(int order) { return order * order; }
+/* Inverse of sh_index: band l and order m of flat index i >= 0. */
+void sh_index_lm(int i, int *l, int *m);
+/* SH_OK if 1 <= order <= SHLAB_MAX_ORDER, else SH_EINVAL with a reason. */
+int sh_check_order(int order);
+
+/* --------------------------------------------------------------- Legendre
+ * Normalised associated Legendre functions  Q_l^m(x) = K_l^m P_l^m(x)
+ * (P with the Condon-Shortley phase, K as in CONVENTIONS.md), for
+ * 0 <= m <= l <= lmax, so that y_l^0 = Q_l^0 and y_l^{±m} = √2 Q_l^m trig(mφ).
+ * Holmes & Featherstone (2002) recurrence with an extended exponent for the
+ * sectoral seed, so that values are correct (not flushed to zero) until the
+ * true value itself is below the double range; tested against GSL
+ * gsl_sf_legendre_array_e(GSL_SF_LEGENDRE_SPHARM, csphase = -1). */
+size_t sh_legendre_n(int lmax);                       /* (lmax+1)(lmax+2)/2 */
+static inline size_t sh_legendre_idx(int l, int m) { return (size_t)l * (l + 1) / 2 + m; }
+int sh_legendre_array(int lmax, double x, double *out);  /* out[sh_legendre_idx(l,m)] */
+
+/* ------------------------------------------------------------------ basis
+ * Evaluate all n² real SH at a point.  `y` has sh_ncoeff(order) entries.
+ * sh_eval_dir normalises dir; a zero, NaN or infinite vector is SH_EINVAL. */
+int sh_eval(int order, sh_convention conv, double theta, double phi, double *y);
+int sh_eval_dir(int order, sh_convention conv, const double dir[3], double *y);
+/* Direction <-> spherical angles (θ in [0,π], φ in [0,2π)). */
+void sh_dir_from_angles(double theta, double phi, double dir[3]);
+int sh_angles_from_dir(const double dir[3], double *theta, double *phi);
+
+/* Convert a coefficient vector of `order` between normalisations, in place.
+ * Coefficients transform inversely to the basis functions they multiply. */
+int sh_convert(int order, sh_norm from, sh_norm to, double *coeffs);
+/* Switch a coefficient vector between SH_CS and SH_NOCS in place. */
+void sh_convention_switch(int order, double *coeffs);
+
+/* ------------------------------------------------------------- projection */
+/* A scalar spherical function.  Both forms of the point are given so that a
+ * function defined in angles (Green's example light) and one defined on
+ * vectors are evaluated without a round trip. */
+typedef double (*sh_sphere_fn)(const double dir[3], double theta, double phi, void *ctx);
+
+typedef enum {
+    SH_RULE_QUAD = 0, /* Gauss-Legendre in cosθ (GSL) × uniform φ: exact product rule */
+    SH_RULE_MC,       /* Green's stratified (jittered) Monte Carlo */
+    SH_RULE_RANDOM,   /* plain uniform Monte Carlo (for comparison) */
+    SH_RULE_QMC       /* Sobol quasi-Monte Carlo (GSL qrng), Cranley-Patterson shifted by seed */
+} sh_rule;
+const char *sh_rule_name(sh_rule r);
+int sh_rule_parse(const char *s, sh_rule *out);
+
+/* Project f onto the first `order` bands.  `samples` is: for QUAD the number
+ * of θ nodes (2·samples φ nodes); for MC the total count (rounded to a
+ * square sqrt_n² as Green's sqrt_n_samples); for RANDOM/QMC the count.
+ * samples <= 0 picks the rule's default.  Reproducible for a given seed. */
+int sh_project(int order, sh_convention conv, sh_sphere_fn f, void *ctx, sh_rule rule,
+               long samples, unsigned long seed, double *coeffs);
+/* Default sample counts per rule. */
+long sh_rule_default_samples(sh_rule r);
+
+/* --------------------------------------------------------- analytic lights */
+typedef enum {
+    SH_LIGHT_GREEN = 0,   /* Green (2003) Figure 7 two-lobe example light */
+    SH_LIGHT_CAP,         /* 1 inside a cap of half-angle t about +z */
+    SH_LIGHT_CIE_OVERCAST,
+    SH_LIGHT_CIE_CLEAR,   /* sun at (theta, phi) */
+    SH_LIGHT_CIE_PARTLY,  /* sun at (theta, phi) */
+    SH_LIGHT_CONST,       /* constant value */
+    SH_LIGHT_LOBE         /* max(0, cosθ)^e */
+} sh_light_kind;
+
+typedef struct {
+    sh_light_kind kind;
+    double p[2];          /* cap: p[0] = t; const: p[0] = V; lobe: p[0] = e;
+                             cie-clear/partly: p = sun (θ, φ) */
+} sh_light;
+
+/* Parse SPEC (green, cap:T, cie-overcast, cie-clear:TH,PH, cie-partly:TH,PH,
+ * const:V, lobe:E); angles in degrees when `degrees` is non-zero. */
+int sh_light_parse(const char *spec, int degrees, sh_light *out);
+double sh_light_eval(const sh_light *L, const double dir[3], double theta, double phi);
+/* sh_sphere_fn adaptor: ctx is a const sh_light *. */
+double sh_light_fn(const double dir[3], double theta, double phi, void *ctx);
+/* Non-zero if the light has a closed-form projection (cap, const, lobe). */
+int sh_light_has_closed_form(const sh_light *L);
+/* Closed-form coefficients; SH_ENOTSUP for lights without one. */
+int sh_light_closed_form(const sh_light *L, int order, sh_convention conv, double *coeffs);
+/* Zonal closed forms, band by band (z_l = coefficient of y_l^0). */
+int sh_cap_zonal(double t, int order, double *z);
+int sh_lobe_zonal(double e, int order, double *z);
+
+/* ------------------------------------------------------- triple products */
+/* Real Gaunt coefficient G = ∫ y_i y_j y_k dΩ (flat indices, given convention),
+ * via complex Gaunt coefficients from Wigner 3j symbols. */
+double sh_gaunt_real(sh_convention conv, int i, int j, int k);
+/* Green eq. 8: M_ij = ∫ b y_i y_j for a light given by its coefficients b of
+ * order border (bands >= 2·order-1 of b cannot contribute).  M is n²×n²,
+ * row-major. */
+int sh_triple_matrix(int order, sh_convention conv, const double *b, int border, double *M);
+
+/* ----------------------------------------------------------------- images
+ * Planar float image: data[c*width*height + y*width + x]. */
+#define SH_IMAGE_MAX_CHANNELS 4
+typedef struct {
+    int width, height, nchan;
+    char names[SH_IMAGE_MAX_CHANNELS][8]; /* "R","G","B","A" or "Y" */
+    float *data;
+} sh_image;
+
+void sh_image_free(sh_image *img);
+/* Read an OpenEXR file (scanline or tiled; half, float or uint channels; any
+ * compression).  Channels R,G,B (or a single Y) are read by name; missing
+ * file, corrupt file or no usable channel is an error.  OpenEXRCore is used
+ * first; DWAA/DWAB data (not decodable by OpenEXRCore 3.1) falls back to the
+ * ImfCRgbaFile C interface.  *used_fallback (may be NULL) reports which. */
+int sh_exr_read(const char *path, sh_image *img, int *used_fallback);
+/* Write a float EXR with OpenEXRCore; written to a temporary name and renamed,
+ * so that a failure never leaves a partial file. */
+int sh_exr_write(const char *path, const sh_image *img);
+
+typedef enum { SH_LAYOUT_LATLONG = 0, SH_LAYOUT_PROBE } sh_layout;
+int sh_layout_parse(const char *s, sh_layout *out);
+/* Exact solid angle of every pixel (w*h weights, row-major). */
+int sh_pixel_solid_angles(sh_layout layout, int width, int height, double *w);
+/* Project each channel of an environment image: coeffs[c*n² + i]. */
+int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_convention conv,
+                     double *coeffs);
+
+/* Windowing against ringing: coefficient of band l scaled by sh_window_factor. */
+typedef enum { SH_WINDOW_NONE = 0, SH_WINDOW_GAUSS, SH_WINDOW_HANN, SH_WINDOW_LANCZOS } sh_window_kind;
+typedef struct { sh_window_kind kind; double param; } sh_window;
+int sh_window_parse(const char *s, sh_window *out); /* "gauss:S", "hann:W", "lanczos:W", "none" */
+double sh_window_factor(const sh_window *w, int l, int order);
+/* Reconstruct nchan coefficient vectors to a width × width/2 lat-long image. */
+int sh_reconstruct_latlong(int order, sh_convention conv, const double *coeffs, int nchan,
+                           const sh_window *win, int width, sh_image *out);
+/* Ringing of a reconstruction of one channel, on a lat-long grid of width w:
+ * the most negative value (0 if none) and the fraction of ∫f² in f < 0. */
+int sh_ringing(int order, sh_convention conv, const double *coeffs, const sh_window *win,
+               int width, double *most_negative, double *negative_energy_fraction);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SHLAB_H */
