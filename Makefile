@@ -12,11 +12,11 @@ SANITIZE ?= 0
 CC       ?= cc
 
 ifeq ($(SANITIZE),1)
-BUILD    := build/san
+BUILD    ?= build/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 OPT      := -O1 -g
 else
-BUILD    := build
+BUILD    ?= build
 SANFLAGS :=
 OPT      := -O2 -g
 endif

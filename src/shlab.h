@@ -207,6 +207,15 @@ int sh_reconstruct_latlong(int order, sh_convention conv, const double *coeffs, 
 int sh_ringing(int order, sh_convention conv, const double *coeffs, const sh_window *win,
                int width, double *most_negative, double *negative_energy_fraction);
 
+/* --------------------------------------------- more declarations by module
+ * (each module appends its extra public declarations in its own section) */
+/* [section: projection and lights] */
+/* [end section: projection and lights] */
+/* [section: images] */
+/* [end section: images] */
+/* [section: triple] */
+/* [end section: triple] */
+
 #ifdef __cplusplus
 }
 #endif
