@@ -46,10 +46,7 @@ static void usage(FILE *o)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        usage(stderr);
-        return cli_fail("no command given (try 'shlab --help')");
-    }
+    if (argc < 2) return cli_fail("no command given (try 'shlab --help')");
     const char *c = argv[1];
     if (!strcmp(c, "--help") || !strcmp(c, "-h") || !strcmp(c, "help")) {
         if (argc > 2 && strcmp(c, "help") == 0) {
