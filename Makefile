@@ -38,7 +38,7 @@ CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
-.PHONY: all deps check report probes install clean man
+.PHONY: all deps deps-quiet check report experiments probes install clean man
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -75,8 +75,20 @@ check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
 
 # ---- experiments and report ----------------------------------------------
-report: all
-	@SHLAB=$(BUILD)/shlab REV=$(REV) experiments/run_all.sh
+# One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>
+# → reports/<name>/*.dat → experiments/<name>/*.gp → reports/<name>/*.png
+EXPERIMENTS := green_vector projection_convergence orthonormality cap_closed_form \
+               probe_bands ringing
+EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
+
+$(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Isrc -Iexperiments/common -o $@ $(filter %.c,$^) $(BUILD)/libshlab.a $(LDLIBS)
+
+experiments: $(EXP_BIN)
+
+report: all $(EXP_BIN)
+	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$(REV) experiments/run_all.sh $(EXPERIMENTS)
 
 probes:
 	@tools/probes.sh data/probes

@@ -1,0 +1,117 @@
+/* exp.c — see exp.h. */
+#define _GNU_SOURCE
+#include "exp.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const char *outdir = ".";
+static char command[2048];
+static const char *revision = "unknown";
+
+void exp_init(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
+        exit(2);
+    }
+    outdir = argv[1];
+    mkdir(outdir, 0777);
+    const char *r = getenv("REV");
+    if (r && *r) revision = r;
+    size_t n = 0;
+    for (int i = 0; i < argc && n < sizeof command - 1; i++) {
+        const char *a = i == 0 ? (strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0]) : argv[i];
+        n += snprintf(command + n, sizeof command - n, "%s%s", i ? " " : "", a);
+    }
+    /* fresh fragments for this run */
+    char p[4096];
+    snprintf(p, sizeof p, "%s/index.md", outdir);
+    remove(p);
+    snprintf(p, sizeof p, "%s/claims.tsv", outdir);
+    remove(p);
+}
+
+const char *exp_outdir(void) { return outdir; }
+
+FILE *exp_data(const char *name, const char *title, const char *columns)
+{
+    char p[4096];
+    snprintf(p, sizeof p, "%s/%s", outdir, name);
+    FILE *f = fopen(p, "w");
+    if (!f) {
+        fprintf(stderr, "experiment: cannot write %s: %s\n", p, strerror(errno));
+        exit(1);
+    }
+    fprintf(f, "# %s\n# shlab revision: %s\n# command: %s\n# columns: %s\n", title, revision, command,
+            columns);
+    return f;
+}
+
+static void append(const char *file, const char *text)
+{
+    char p[4096];
+    snprintf(p, sizeof p, "%s/%s", outdir, file);
+    FILE *f = fopen(p, "a");
+    if (!f) {
+        fprintf(stderr, "experiment: cannot write %s\n", p);
+        exit(1);
+    }
+    fputs(text, f);
+    fclose(f);
+}
+
+void exp_index(const char *fmt, ...)
+{
+    char *s = NULL;
+    va_list ap;
+    va_start(ap, fmt);
+    if (vasprintf(&s, fmt, ap) < 0) s = NULL;
+    va_end(ap);
+    if (!s) exit(1);
+    append("index.md", s);
+    append("index.md", "\n\n");
+    free(s);
+}
+
+static void clean(char *dst, size_t n, const char *s)
+{
+    size_t k = 0;
+    for (; s && *s && k + 1 < n; s++) dst[k++] = (*s == '\t' || *s == '\n') ? ' ' : *s;
+    dst[k] = '\0';
+}
+
+void exp_claim(const char *id, const char *source, const char *statement, const char *printed,
+               const char *measured, const char *tolerance, const char *verdict,
+               const char *evidence)
+{
+    const char *f[8] = {id, source, statement, printed, measured, tolerance, verdict, evidence};
+    char line[8192] = "", cell[2048];
+    for (int i = 0; i < 8; i++) {
+        clean(cell, sizeof cell, f[i]);
+        strncat(line, cell, sizeof line - strlen(line) - 2);
+        strncat(line, i < 7 ? "\t" : "\n", sizeof line - strlen(line) - 1);
+    }
+    append("claims.tsv", line);
+}
+
+void exp_progress(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("  ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+void exp_check(int st, const char *what)
+{
+    if (st != SH_OK) {
+        fprintf(stderr, "experiment: %s failed: %s\n", what, sh_last_error());
+        exit(1);
+    }
+}
