@@ -77,7 +77,7 @@ check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 # ---- experiments and report ----------------------------------------------
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>
 # → reports/<name>/*.dat → experiments/<name>/*.gp → reports/<name>/*.png
-EXPERIMENTS := green_vector projection_convergence orthonormality cap_closed_form \
+EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 

@@ -41,7 +41,7 @@ done
         echo "## $name"
         echo
         # figure paths in fragments are relative to reports/<name>/
-        sed -e "s|](\([^/)][^):]*\.png\))|](${name}/\1)|g" -e "s|](\([^/)][^):]*\.\(dat\|tsv\|exr\|md\))|](${name}/\1)|g" "reports/$name/index.md"
+        sed -E "s#\]\(([^/):]+\.(png|dat|tsv|exr|md))\)#](${name}/\1)#g" "reports/$name/index.md"
     done
 } > reports/index.md.tmp && mv reports/index.md.tmp reports/index.md
 

@@ -4,7 +4,7 @@
  *   <name> OUTDIR
  * It writes its data files into OUTDIR (reports/<name>/), each with a header
  * naming the columns, the shlab revision and the command; a gnuplot script
- * experiments/<name>/*.gp renders them to PNG; and two fragments that
+ * experiments/<name>/NAME.gp renders them to PNG; and two fragments that
  * run_all.sh assembles into the report:
  *   OUTDIR/index.md    one paragraph per figure or table (what it shows)
  *   OUTDIR/claims.tsv  rows of the claims ledger (no header)
