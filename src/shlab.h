@@ -212,6 +212,23 @@ int sh_ringing(int order, sh_convention conv, const double *coeffs, const sh_win
 /* [section: projection and lights] */
 /* [end section: projection and lights] */
 /* [section: images] */
+/* Read an EXR through OpenEXR's ImfCRgbaFile C interface (the DWAA/DWAB
+ * fallback of sh_exr_read; any compression the C++ library knows).  R,G,B
+ * → 3 channels; a luminance-only (Y) file → 1 channel "Y"; half → float. */
+int sh_exr_read_rgba(const char *path, sh_image *img);
+/* Write img (1 channel → Y; 3 → RGB; 4 → RGBA) as a half-float DWAB file
+ * through ImfCRgbaFile, via a temporary file renamed into place. */
+int sh_exr_write_dwab_rgba(const char *path, const sh_image *img);
+/* Fill a 1-channel "Y" image by point-sampling f at the pixel centres of
+ * the layout.  Probe pixels wholly outside the unit disc get 0; rim pixels
+ * whose centre lies outside but which overlap the disc are sampled at the
+ * rim (θ = π), as sh_project_image treats them.  Allocates out->data; free
+ * with sh_image_free. */
+int sh_image_from_fn(sh_layout layout, int width, int height, sh_sphere_fn f, void *ctx,
+                     sh_image *out);
+/* Direction of the centre of pixel (x, y) (fractional pixel coordinates
+ * allowed, e.g. x+0.5 is a centre).  Probe: SH_EINVAL outside the disc. */
+int sh_pixel_dir(sh_layout layout, int width, int height, double x, double y, double dir[3]);
 /* [end section: images] */
 /* [section: triple] */
 /* [end section: triple] */
