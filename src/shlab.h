@@ -231,6 +231,33 @@ int sh_image_from_fn(sh_layout layout, int width, int height, sh_sphere_fn f, vo
 int sh_pixel_dir(sh_layout layout, int width, int height, double x, double y, double dir[3]);
 /* [end section: images] */
 /* [section: triple] */
+/* Wigner 3j symbols (integer j) by the Schulten-Gordon recursion in j
+ * (wigner3j.c).  The family  (j j2 j3; -m2-m3 m2 m3)  for j = *jmin..*jmax
+ * (jmin = max(|j2-j3|, |m2+m3|), jmax = j2+j3) is written to f[j - *jmin];
+ * f needs sh_wigner3j_family_n(j2, j3) entries.  An empty family (|m| > j)
+ * gives *jmin > *jmax.  Single symbols: 0 outside the selection rules; the
+ * plain version returns NaN on error. */
+size_t sh_wigner3j_family_n(int j2, int j3);
+int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin, int *jmax, double *f);
+int sh_wigner3j_e(int j1, int j2, int j3, int m1, int m2, int m3, double *result);
+double sh_wigner3j(int j1, int j2, int j3, int m1, int m2, int m3);
+/* Complex Gaunt coefficient ∫ Y_l1^m1 Y_l2^m2 Y_l3^m3 dΩ (CS phase, no
+ * conjugates); sh_gaunt_real_e is sh_gaunt_real with a status (gaunt.c). */
+int sh_gaunt_complex_e(int l1, int m1, int l2, int m2, int l3, int m3, double *result);
+int sh_gaunt_real_e(sh_convention conv, int i, int j, int k, double *result);
+/* Real-basis product expansion  y_i y_j = Σ_k G(i,j,k) y_k : the possibly
+ * non-zero terms with band l3 <= lmax3 are written as (k[q], g[q]),
+ * q < *count <= sh_gaunt_real_row_n(l_i, l_j); `work` holds
+ * sh_gaunt_real_row_work_n(l_i, l_j) doubles. */
+size_t sh_gaunt_real_row_n(int l1, int l2);
+size_t sh_gaunt_real_row_work_n(int l1, int l2);
+int sh_gaunt_real_row(sh_convention conv, int i, int j, int lmax3, int *k, double *g,
+                      int *count, double *work);
+/* Second, independent method for Green eq. 8: M_ij = ∫ f y_i y_j by the
+ * product rule of `nodes` Gauss-Legendre nodes in cosθ × 2·nodes uniform φ
+ * (exact when f·y_i·y_j has total band < 2·nodes). */
+int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx, int nodes,
+                          double *M);
 /* [end section: triple] */
 
 #ifdef __cplusplus
