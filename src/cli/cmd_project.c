@@ -1,4 +1,196 @@
-/* cmd_project.c — placeholder until the command lands (being written now). */
+/* cmd_project.c — `shlab project`: SH coefficients of an analytic light
+ * (closed form or a projection rule) or of an EXR environment image. */
 #include "cli.h"
-static int run(int argc, char **argv) { return cli_fail("project: not implemented yet"); }
-const cli_command cmd_project = {"project", run, "(not implemented yet)", "not implemented yet\n"};
+
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+
+extern const cli_command cmd_project;
+
+static const char help[] =
+    "Usage: shlab project --order N --light SPEC [--method quad|mc|random|qmc]\n"
+    "                     [--samples S] [--seed K] [--degrees] [OPTIONS]\n"
+    "       shlab project --order N --exr FILE [--layout latlong|probe] [OPTIONS]\n"
+    "\n"
+    "Project a spherical function onto the n² real SH of bands 0..N-1,\n"
+    "c_i = ∫ f y_i dΩ.\n"
+    "\n"
+    "  --order N            number of bands (1..2049)\n"
+    "  --light SPEC         an analytic light:\n"
+    "                         green                Green (2003) Figure 7 two-lobe light\n"
+    "                         cap:T                1 for θ < T (T in [0,π])\n"
+    "                         cie-overcast         CIE overcast sky (1+2cosθ)/3\n"
+    "                         cie-clear:TH,PH      CIE clear sky, sun at (TH,PH), TH in [0,π/2]\n"
+    "                         cie-partly:TH,PH     CIE partly cloudy sky, sun at (TH,PH)\n"
+    "                         const:V              constant V\n"
+    "                         lobe:E               max(0,cosθ)^E, E >= 0\n"
+    "                       cap, const and lobe use their closed forms unless\n"
+    "                       --method is given; the others default to quad.\n"
+    "  --method M           quad   Gauss-Legendre in cosθ (S nodes) × 2S uniform φ\n"
+    "                       mc     Green's stratified jittered Monte Carlo (S → round(√S)²)\n"
+    "                       random plain uniform Monte Carlo\n"
+    "                       qmc    Sobol points, shifted by a seeded random vector\n"
+    "  --samples S          quad: θ nodes (default 1000); others: sample count\n"
+    "                       (default 10000)\n"
+    "  --seed K             random seed (integer >= 0, default 1; qmc: 0 = no shift)\n"
+    "  --degrees            angles in SPEC are in degrees\n"
+    "  --exr FILE           an OpenEXR environment image (R,G,B or Y channels)\n"
+    "  --layout L           latlong (default) or probe (Debevec angle map)\n"
+    "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
+    "  --format table|csv|json\n"
+    "  --help               this text\n"
+    "\n"
+    "JSON (light): {\"order\",\"convention\",\"method\",\"samples\",\"seed\",\"coeffs\":[n²]}\n"
+    "  (\"method\" is \"closed-form\" when the closed form was used; \"samples\" is\n"
+    "  the number actually used, 0 for closed forms)\n"
+    "JSON (exr): {\"order\",\"convention\",\"layout\",\"width\",\"height\",\"fallback\",\n"
+    "  \"channels\":{\"R\":[n²],\"G\":[n²],\"B\":[n²]}}\n";
+
+/* Upper bounds that keep a request from running for hours. */
+#define MAX_QUAD_NODES 20000L
+#define MAX_SAMPLES 100000000L
+
+static int run_light(int order, sh_convention conv, const char *spec, int degrees, int have_method,
+                     sh_rule rule, long samples, unsigned long seed, cli_format fmt)
+{
+    sh_light L;
+    if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());
+    const int n = sh_ncoeff(order);
+    double *c = malloc(sizeof(double) * (size_t)n);
+    if (!c) return cli_fail("out of memory");
+    int st;
+    const char *method;
+    long used;
+    if (!have_method && sh_light_has_closed_form(&L)) {
+        st = sh_light_closed_form(&L, order, conv, c);
+        method = "closed-form";
+        used = 0;
+    } else {
+        st = sh_project(order, conv, sh_light_fn, &L, rule, samples, seed, c);
+        method = sh_rule_name(rule);
+        used = sh_rule_samples_used(rule, samples);
+    }
+    if (st) { free(c); return cli_fail_status(st); }
+    json_t *root = json_object();
+    root = cli_put(root, "order", json_integer(order));
+    root = cli_put(root, "convention", json_string(sh_convention_name(conv)));
+    root = cli_put(root, "light", json_string(spec));
+    root = cli_put(root, "method", json_string(method));
+    root = cli_put(root, "samples", json_integer(used));
+    root = cli_put(root, "seed", json_integer((json_int_t)seed));
+    root = cli_put(root, "coeffs", cli_json_array(c, (size_t)n));
+    free(c);
+    return cli_emit(root, fmt);
+}
+
+static int run_exr(int order, sh_convention conv, const char *path, sh_layout layout, cli_format fmt)
+{
+    sh_image img;
+    int fallback = 0;
+    int st = sh_exr_read(path, &img, &fallback);
+    if (st) return cli_fail_status(st);
+    const int n = sh_ncoeff(order);
+    double *c = malloc(sizeof(double) * (size_t)n * img.nchan);
+    if (!c) { sh_image_free(&img); return cli_fail("out of memory"); }
+    st = sh_project_image(&img, layout, order, conv, c);
+    if (st) { free(c); sh_image_free(&img); return cli_fail_status(st); }
+    json_t *ch = json_object();
+    for (int k = 0; k < img.nchan && ch; k++)
+        ch = cli_put(ch, img.names[k], cli_json_array(c + (size_t)k * n, (size_t)n));
+    json_t *root = json_object();
+    root = cli_put(root, "order", json_integer(order));
+    root = cli_put(root, "convention", json_string(sh_convention_name(conv)));
+    root = cli_put(root, "layout", json_string(layout == SH_LAYOUT_LATLONG ? "latlong" : "probe"));
+    root = cli_put(root, "width", json_integer(img.width));
+    root = cli_put(root, "height", json_integer(img.height));
+    root = cli_put(root, "fallback", json_boolean(fallback));
+    root = cli_put(root, "channels", ch);
+    free(c);
+    sh_image_free(&img);
+    return cli_emit(root, fmt);
+}
+
+static int run(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        CLI_COMMON_LONGOPTS,
+        {"order", required_argument, 0, 'n'},
+        {"light", required_argument, 0, 'L'},
+        {"exr", required_argument, 0, 'x'},
+        {"layout", required_argument, 0, 'y'},
+        {"method", required_argument, 0, 'm'},
+        {"samples", required_argument, 0, 's'},
+        {"seed", required_argument, 0, 'k'},
+        {"degrees", no_argument, 0, 'D'},
+        {"convention", required_argument, 0, 'c'},
+        {0, 0, 0, 0}};
+    int order = 0, degrees = 0, have_method = 0, have_samples = 0, have_seed = 0, have_layout = 0;
+    const char *spec = NULL, *exr = NULL;
+    sh_rule rule = SH_RULE_QUAD;
+    sh_layout layout = SH_LAYOUT_LATLONG;
+    long samples = 0, seed = 1;
+    sh_convention conv = SH_CS;
+    cli_format fmt = CLI_TABLE;
+    opterr = 0;
+    optind = 1;
+    int o;
+    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        switch (o) {
+        case 'h': return cli_help(&cmd_project);
+        case 0x101: if (cli_format_parse(optarg, &fmt)) return CLI_EXIT_USAGE; break;
+        case 'n': if (cli_order("--order", optarg, &order)) return CLI_EXIT_USAGE; break;
+        case 'L':
+            if (spec) return cli_fail("project: --light given twice");
+            spec = optarg;
+            break;
+        case 'x':
+            if (exr) return cli_fail("project: --exr given twice");
+            exr = optarg;
+            break;
+        case 'y':
+            if (sh_layout_parse(optarg, &layout)) return cli_fail("--layout: %s", sh_last_error());
+            have_layout = 1;
+            break;
+        case 'm':
+            if (sh_rule_parse(optarg, &rule)) return cli_fail("--method: %s", sh_last_error());
+            have_method = 1;
+            break;
+        case 's':
+            if (cli_long("--samples", optarg, &samples)) return CLI_EXIT_USAGE;
+            if (samples < 1) return cli_fail("--samples must be >= 1, got %ld", samples);
+            have_samples = 1;
+            break;
+        case 'k':
+            if (cli_long("--seed", optarg, &seed)) return CLI_EXIT_USAGE;
+            if (seed < 0) return cli_fail("--seed must be >= 0, got %ld", seed);
+            have_seed = 1;
+            break;
+        case 'D': degrees = 1; break;
+        case 'c': if (cli_convention(optarg, &conv)) return CLI_EXIT_USAGE; break;
+        default: return cli_fail_getopt("project", argv, optind, optopt);
+        }
+    }
+    if (optind < argc) return cli_fail("project: unexpected argument '%s'", argv[optind]);
+    if (!order) return cli_fail("project: --order is required");
+    if (spec && exr) return cli_fail("project: give --light or --exr, not both");
+    if (!spec && !exr) return cli_fail("project: give --light SPEC or --exr FILE");
+    if (exr) {
+        if (have_method || have_samples || have_seed || degrees)
+            return cli_fail("project: --method, --samples, --seed and --degrees apply to --light only");
+        return run_exr(order, conv, exr, layout, fmt);
+    }
+    if (have_layout) return cli_fail("project: --layout applies to --exr only");
+    if ((have_samples || have_seed) && !have_method) {
+        sh_light L;
+        if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());
+        if (sh_light_has_closed_form(&L))
+            return cli_fail("project: --samples/--seed need --method (light '%s' uses its closed form)", spec);
+    }
+    const long cap = rule == SH_RULE_QUAD ? MAX_QUAD_NODES : MAX_SAMPLES;
+    if (samples > cap) return cli_fail("--samples %ld is too large for %s (at most %ld)", samples,
+                                       sh_rule_name(rule), cap);
+    return run_light(order, conv, spec, degrees, have_method, rule, samples, (unsigned long)seed, fmt);
+}
+
+const cli_command cmd_project = {"project", run, "project a light or an EXR environment onto SH", help};
