@@ -210,6 +210,14 @@ int sh_ringing(int order, sh_convention conv, const double *coeffs, const sh_win
 /* --------------------------------------------- more declarations by module
  * (each module appends its extra public declarations in its own section) */
 /* [section: projection and lights] */
+/* The number of samples sh_project really uses for `samples` (MC rounds to
+ * a square N², samples <= 0 is the rule's default). */
+long sh_rule_samples_used(sh_rule r, long samples);
+/* Accurate projection of Green's Figure 7 light (the reading with the −3
+ * inside the second max, see lights.c): analytic φ integrals, GSL QAGP in
+ * cosθ with the kinks as breakpoints, to absolute/relative tolerance tol
+ * (1e-12 is reachable).  order <= 64. */
+int sh_green_reference(int order, sh_convention conv, double tol, double *coeffs);
 /* [end section: projection and lights] */
 /* [section: images] */
 /* Read an EXR through OpenEXR's ImfCRgbaFile C interface (the DWAA/DWAB
