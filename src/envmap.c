@@ -33,7 +33,8 @@
  * separable: per row one Legendre evaluation (sh__legendre_core) and the
  * azimuthal sums A_m = Σ_i L cos(mφ_i), B_m = Σ_i L sin(mφ_i) from a
  * cos/sin table built once, O(H·W·n + H·n²) per channel.  The angle map
- * has no separable structure and costs O(size²·n²).
+ * is not separable, but its 8-fold grid symmetry lets one Legendre
+ * evaluation serve up to 8 pixels (see project_probe).
  *
  * [1] R. Green, "Spherical Harmonic Lighting: The Gritty Details", GDC 2003.
  */
@@ -297,33 +298,84 @@ static int project_latlong(const sh_image *img, int order, sh_convention conv, d
     return SH_OK;
 }
 
+/* Angle-map projection.  The pixel grid is symmetric under the 8 maps
+ * (du,dv) → (±du,±dv), (±dv,±du) of centre offsets, which keep ρ (so θ,
+ * Q_l^m and, by construction, the weight) and change only φ.  Pixels are
+ * therefore processed by orbit: azimuthal sums A_m = Σ L Ω cos mφ,
+ * B_m = Σ L Ω sin mφ over the orbit (Chebyshev recurrence in m), then one
+ * Legendre evaluation per orbit, as in the lat-long case:
+ * O(size²·n + size²·n²/8). */
 static int project_probe(const sh_image *img, int order, sh_convention conv, double *coeffs)
 {
-    const int s = img->width, nn = order * order;
+    const int s = img->width, n = order, nn = n * n, nc = img->nchan;
     const size_t plane = (size_t)s * s;
     double *w = malloc(plane * sizeof *w);
-    double *y = malloc((size_t)nn * sizeof *y);
-    if (!w || !y) {
-        free(w); free(y);
+    double *Q = malloc(sh_legendre_n(n - 1) * sizeof *Q);
+    double *AB = malloc((size_t)2 * n * nc * sizeof *AB);
+    if (!w || !Q || !AB) {
+        free(w); free(Q); free(AB);
         return sh_error(SH_ENOMEM, "sh_project_image: out of memory");
     }
     int st = probe_solid_angles(s, w);
-    if (st) { free(w); free(y); return st; }
-    memset(coeffs, 0, (size_t)img->nchan * nn * sizeof *coeffs);
-    for (int py = 0; py < s; py++)
-        for (int px = 0; px < s; px++) {
-            const double om = w[(size_t)py * s + px];
-            if (om == 0.0) continue;
-            double th, phi;
-            probe_centre(s, px, py, &th, &phi);
-            sh_eval(order, conv, th, phi, y);
-            for (int c = 0; c < img->nchan; c++) {
-                const double L = img->data[c * plane + (size_t)py * s + px] * om;
+    if (st) { free(w); free(Q); free(AB); return st; }
+    memset(coeffs, 0, (size_t)nc * nn * sizeof *coeffs);
+    /* centre offsets d = 2x + 1 − s, in units of 1/s */
+    for (int a = (s + 1) % 2; a < s; a += 2)
+        for (int b = (s + 1) % 2; b <= a; b += 2) {
+            const int x0 = (a + s - 1) / 2, y0 = (b + s - 1) / 2;
+            double th, ph;
+            if (!probe_centre(s, x0, y0, &th, &ph)) continue;
+            /* the orbit of (a, b), without repeats */
+            int orb[8][2], no = 0;
+            const int cand[8][2] = {{a, b}, {-a, b}, {a, -b}, {-a, -b},
+                                    {b, a}, {-b, a}, {b, -a}, {-b, -a}};
+            for (int k = 0; k < 8; k++) {
+                int dup = 0;
+                for (int q = 0; q < no; q++)
+                    if (orb[q][0] == cand[k][0] && orb[q][1] == cand[k][1]) dup = 1;
+                if (!dup) { orb[no][0] = cand[k][0]; orb[no][1] = cand[k][1]; no++; }
+            }
+            memset(AB, 0, (size_t)2 * n * nc * sizeof *AB);
+            for (int q = 0; q < no; q++) {
+                const int px = (orb[q][0] + s - 1) / 2, py = (orb[q][1] + s - 1) / 2;
+                const size_t pix = (size_t)py * s + px;
+                const double om = w[pix];
+                if (om == 0.0) continue;
+                double phi = atan2((double)orb[q][1], (double)orb[q][0]);
+                if (phi < 0.0) phi += 2.0 * M_PI;
+                const double c1 = cos(phi), s1 = sin(phi);
+                for (int c = 0; c < nc; c++) {
+                    const double L = img->data[c * plane + pix] * om;
+                    double *A = AB + (size_t)c * 2 * n, *B = A + n;
+                    /* cos, sin((m+1)φ) = rotation of (cos mφ, sin mφ) by φ */
+                    double cm = 1.0, sm = 0.0;
+                    for (int m = 0; m < n; m++) {
+                        A[m] += L * cm;
+                        B[m] += L * sm;
+                        const double t = cm * c1 - sm * s1;
+                        sm = sm * c1 + cm * s1;
+                        cm = t;
+                    }
+                }
+            }
+            sh__legendre_core(n - 1, cos(th), Q, 0);
+            for (int c = 0; c < nc; c++) {
+                const double *A = AB + (size_t)c * 2 * n, *B = A + n;
                 double *cc = coeffs + (size_t)c * nn;
-                for (int i = 0; i < nn; i++) cc[i] += L * y[i];
+                /* c_l^0 += Q_l^0 A_0;  c_l^{±m} += √2 Q_l^m {A_m, B_m} (Green eq. 6) */
+                for (int m = 0; m < n; m++) {
+                    double f = m ? M_SQRT2 : 1.0;
+                    if (conv == SH_NOCS && (m & 1)) f = -f;
+                    const double fa = f * A[m], fb = f * B[m];
+                    for (int l = m; l < n; l++) {
+                        const double qv = Q[sh_legendre_idx(l, m)];
+                        cc[sh_index(l, m)] += qv * fa;
+                        if (m) cc[sh_index(l, -m)] += qv * fb;
+                    }
+                }
             }
         }
-    free(w); free(y);
+    free(w); free(Q); free(AB);
     return SH_OK;
 }
 

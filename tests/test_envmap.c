@@ -288,6 +288,46 @@ START_TEST(project_multichannel_and_errors)
 }
 END_TEST
 
+/* The projection against the obvious per-pixel sum Σ L Ω y_i(centre) (the
+ * library groups probe pixels by symmetry orbits; this checks it does so
+ * without changing the result), odd and even sizes, both conventions. */
+START_TEST(project_matches_direct_pixel_sum)
+{
+    const int order = 5, nn = 25;
+    for (int layout = 0; layout <= 1; layout++)
+        for (int s = 31; s <= 32; s++) {
+            const int W = layout ? s : 2 * s, H = s;
+            sh_image img = {W, H, 2, {"R", "G"}, malloc(sizeof(float) * W * H * 2)};
+            for (int i = 0; i < W * H * 2; i++) img.data[i] = (float)(sin(i * 12.9898) * 4.0 + 1.0);
+            double *w = malloc(sizeof(double) * W * H);
+            ck_assert_int_eq(sh_pixel_solid_angles(layout, W, H, w), SH_OK);
+            for (int conv = 0; conv <= 1; conv++) {
+                double got[50], ref[50] = {0}, y[25];
+                ck_assert_int_eq(sh_project_image(&img, layout, order, conv, got), SH_OK);
+                for (int py = 0; py < H; py++)
+                    for (int px = 0; px < W; px++) {
+                        const double om = w[py * W + px];
+                        if (om == 0.0) continue;
+                        double d[3];
+                        if (sh_pixel_dir(layout, W, H, px + 0.5, py + 0.5, d) != SH_OK) {
+                            d[0] = d[1] = 0.0; /* rim sliver → θ = π */
+                            d[2] = -1.0;
+                        }
+                        ck_assert_int_eq(sh_eval_dir(order, conv, d, y), SH_OK);
+                        for (int c = 0; c < 2; c++)
+                            for (int i = 0; i < nn; i++)
+                                ref[c * nn + i] += img.data[c * W * H + py * W + px] * om * y[i];
+                    }
+                for (int i = 0; i < 2 * nn; i++)
+                    ck_close(got[i], ref[i], 1e-12, 1.0, "layout %d size %d conv %d c[%d]", layout, s,
+                             conv, i);
+            }
+            free(w);
+            sh_image_free(&img);
+        }
+}
+END_TEST
+
 static Suite *envmap_suite(void)
 {
     Suite *s = suite_create("envmap");
@@ -301,6 +341,7 @@ static Suite *envmap_suite(void)
     tcase_add_test(tc, probe_inverse_matches_forward);
     tcase_add_test(tc, latlong_and_probe_agree_with_funk_hecke);
     tcase_add_test(tc, project_multichannel_and_errors);
+    tcase_add_test(tc, project_matches_direct_pixel_sum);
     suite_add_tcase(s, tc);
     return s;
 }
