@@ -34,10 +34,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* Shared with exr_rgba_fallback.c (the DWAB writer uses the same
- * temporary-file discipline). */
-int sh__make_temp_path(const char *path, char **tmp_out);
-int sh__commit_temp(const char *tmp, const char *path);
 
 void sh_image_free(sh_image *img)
 {

@@ -17,9 +17,6 @@
 #include <string.h>
 #include <unistd.h>
 
-/* Defined in exr_io.c: temporary file next to `path`, and its rename. */
-int sh__make_temp_path(const char *path, char **tmp_out);
-int sh__commit_temp(const char *tmp, const char *path);
 
 int sh_exr_read_rgba(const char *path, sh_image *img)
 {

@@ -8,4 +8,11 @@
  * or at the SH flat index l(l+1)+m (sh_layout=1). */
 void sh__legendre_core(int lmax, double x, double *out, int sh_layout);
 
+/* exr_io.c: atomic output.  sh__make_temp_path creates an empty temporary
+ * file next to `path` (mkstemp, name malloc'd into *tmp_out); sh__commit_temp
+ * renames it onto `path` (removing it on failure).  Writers write the temp,
+ * then commit, so a failure never leaves a partial output file. */
+int sh__make_temp_path(const char *path, char **tmp_out);
+int sh__commit_temp(const char *tmp, const char *path);
+
 #endif

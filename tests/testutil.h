@@ -5,6 +5,7 @@
 
 #include <check.h>
 #include <float.h>
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 
