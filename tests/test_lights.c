@@ -4,6 +4,8 @@
  * not our closed forms); Green's Maple-generated synth_light() for 4 bands;
  * the clamped-cosine coefficients √π/2, √(π/3), √(5π)/8; the CIE formulas
  * at the zenith and below the horizon. */
+#include <stdio.h>
+
 #include "testutil.h"
 
 #include <gsl/gsl_errno.h>

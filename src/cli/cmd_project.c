@@ -31,7 +31,7 @@ static const char help[] =
     "                       mc     Green's stratified jittered Monte Carlo (S → round(√S)²)\n"
     "                       random plain uniform Monte Carlo\n"
     "                       qmc    Sobol points, shifted by a seeded random vector\n"
-    "  --samples S          quad: θ nodes (default 1000); others: sample count\n"
+    "  --samples S          quad: θ nodes (default 1500); others: sample count\n"
     "                       (default 10000)\n"
     "  --seed K             random seed (integer >= 0, default 1; qmc: 0 = no shift)\n"
     "  --degrees            angles in SPEC are in degrees\n"
