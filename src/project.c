@@ -175,18 +175,81 @@ static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx
     return st;
 }
 
-/* Accumulate one equal-weight sample at (cosθ = z, φ) (θ given as well). */
-static int add_sample(int order, sh_convention conv, sh_sphere_fn f, void *ctx, double theta, double phi,
-                      double *y, double *c)
+/* ---- equal-weight sample sequences (MC, RANDOM, QMC) --------------------
+ * One generator serves sh_project (streaming, any count) and sh_rule_nodes
+ * (explicit node lists), so both see exactly the same points for a seed. */
+typedef struct {
+    sh_rule rule;
+    long N, k, used; /* MC: N×N strata; k = next sample; used = total */
+    gsl_rng *r;
+    gsl_qrng *q;
+    double shift[2];
+} sampler;
+
+static void sampler_free(sampler *s)
 {
-    double d[3];
-    sh_dir_from_angles(theta, phi, d);
-    const double v = f(d, theta, phi, ctx);
-    if (!isfinite(v)) return sh_error(SH_ENUM, "function is not finite at theta=%g phi=%g", theta, phi);
-    sh_eval(order, conv, theta, phi, y);
-    const int n = sh_ncoeff(order);
-    for (int i = 0; i < n; i++) c[i] += v * y[i];
+    if (s->r) gsl_rng_free(s->r);
+    if (s->q) gsl_qrng_free(s->q);
+    s->r = NULL;
+    s->q = NULL;
+}
+
+static int sampler_init(sampler *s, sh_rule rule, long samples, unsigned long seed)
+{
+    s->rule = rule;
+    s->k = 0;
+    s->r = gsl_rng_alloc(gsl_rng_mt19937);
+    s->q = rule == SH_RULE_QMC ? gsl_qrng_alloc(gsl_qrng_sobol, 2) : NULL;
+    if (!s->r || (rule == SH_RULE_QMC && !s->q)) {
+        sampler_free(s);
+        return sh_error(SH_ENOMEM, "out of memory");
+    }
+    gsl_rng_set(s->r, seed);
+    s->N = lround(sqrt((double)samples));
+    if (s->N < 1) s->N = 1;
+    s->used = rule == SH_RULE_MC ? s->N * s->N : samples;
+    s->shift[0] = s->shift[1] = 0.0;
+    if (rule == SH_RULE_QMC && seed != 0) {
+        s->shift[0] = gsl_rng_uniform(s->r);
+        s->shift[1] = gsl_rng_uniform(s->r);
+    }
     return SH_OK;
+}
+
+/* Next point (θ, φ); returns 0 when the sequence is exhausted. */
+static int sampler_next(sampler *s, double *theta, double *phi)
+{
+    if (s->k >= s->used) return 0;
+    if (s->rule == SH_RULE_MC) {
+        /* Green's SH_setup_spherical_samples [1]: N×N strata of the unit
+         * square, one jittered point in each, x = (a+ξ)/N, y = (b+ξ)/N,
+         * θ = 2 acos(√(1−x)) (so cosθ = 1−2x, uniform), φ = 2πy; w = 4π/N². */
+        const long a = s->k / s->N, b = s->k % s->N;
+        const double inv = 1.0 / (double)s->N;
+        const double x = (a + gsl_rng_uniform(s->r)) * inv;
+        const double y = (b + gsl_rng_uniform(s->r)) * inv;
+        *theta = 2.0 * acos(sqrt(1.0 - x));
+        *phi = 2.0 * M_PI * y;
+    } else {
+        /* Uniform on the sphere: z = 1 − 2u uniform in [−1,1], φ = 2πv.
+         * RANDOM: (u,v) pseudo-random.  QMC: (u,v) the 2-D Sobol sequence
+         * shifted modulo 1 by a seeded random vector [3] (seed 0: no shift). */
+        double u[2];
+        if (s->rule == SH_RULE_QMC) {
+            gsl_qrng_get(s->q, u);
+            for (int d = 0; d < 2; d++) {
+                u[d] += s->shift[d];
+                if (u[d] >= 1.0) u[d] -= 1.0;
+            }
+        } else {
+            u[0] = gsl_rng_uniform(s->r);
+            u[1] = gsl_rng_uniform(s->r);
+        }
+        *theta = acos(1.0 - 2.0 * u[0]);
+        *phi = 2.0 * M_PI * u[1];
+    }
+    s->k++;
+    return 1;
 }
 
 int sh_project(int order, sh_convention conv, sh_sphere_fn f, void *ctx, sh_rule rule, long samples,
@@ -203,60 +266,73 @@ int sh_project(int order, sh_convention conv, sh_sphere_fn f, void *ctx, sh_rule
     if (samples > 1000000000L) return sh_error(SH_EINVAL, "%ld samples is too many", samples);
     const int n = sh_ncoeff(order);
     double *y = malloc(sizeof(double) * (size_t)n);
-    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-    gsl_qrng *q = rule == SH_RULE_QMC ? gsl_qrng_alloc(gsl_qrng_sobol, 2) : NULL;
-    if (!y || !r || (rule == SH_RULE_QMC && !q)) {
+    sampler sm;
+    if (!y) return sh_error(SH_ENOMEM, "out of memory");
+    if ((st = sampler_init(&sm, rule, samples, seed))) {
         free(y);
-        if (r) gsl_rng_free(r);
-        if (q) gsl_qrng_free(q);
-        return sh_error(SH_ENOMEM, "out of memory");
+        return st;
     }
-    gsl_rng_set(r, seed);
     memset(coeffs, 0, sizeof(double) * (size_t)n);
-    long used = samples;
-    if (rule == SH_RULE_MC) {
-        /* Green's SH_setup_spherical_samples [1]: N×N strata of the unit
-         * square, one jittered point in each, x = (a+ξ)/N, y = (b+ξ)/N,
-         * θ = 2 acos(√(1−x)) (so cosθ = 1−2x, uniform), φ = 2πy; w = 4π/N². */
-        long N = lround(sqrt((double)samples));
-        if (N < 1) N = 1;
-        used = N * N;
-        const double inv = 1.0 / (double)N;
-        for (long a = 0; a < N && !st; a++)
-            for (long b = 0; b < N && !st; b++) {
-                const double x = (a + gsl_rng_uniform(r)) * inv;
-                const double yy = (b + gsl_rng_uniform(r)) * inv;
-                st = add_sample(order, conv, f, ctx, 2.0 * acos(sqrt(1.0 - x)), 2.0 * M_PI * yy, y, coeffs);
-            }
-    } else {
-        /* Uniform on the sphere: z = 1 − 2u uniform in [−1,1], φ = 2πv.
-         * RANDOM: (u,v) pseudo-random.  QMC: (u,v) the 2-D Sobol sequence
-         * shifted modulo 1 by a seeded random vector [3] (seed 0: no shift). */
-        double shift[2] = {0.0, 0.0};
-        if (rule == SH_RULE_QMC && seed != 0) {
-            shift[0] = gsl_rng_uniform(r);
-            shift[1] = gsl_rng_uniform(r);
+    double theta, phi;
+    while (!st && sampler_next(&sm, &theta, &phi)) {
+        double d[3];
+        sh_dir_from_angles(theta, phi, d);
+        const double v = f(d, theta, phi, ctx);
+        if (!isfinite(v)) {
+            st = sh_error(SH_ENUM, "function is not finite at theta=%g phi=%g", theta, phi);
+            break;
         }
-        for (long k = 0; k < samples && !st; k++) {
-            double u[2];
-            if (rule == SH_RULE_QMC) {
-                gsl_qrng_get(q, u);
-                for (int d = 0; d < 2; d++) {
-                    u[d] += shift[d];
-                    if (u[d] >= 1.0) u[d] -= 1.0;
-                }
-            } else {
-                u[0] = gsl_rng_uniform(r);
-                u[1] = gsl_rng_uniform(r);
-            }
-            const double z = 1.0 - 2.0 * u[0];
-            st = add_sample(order, conv, f, ctx, acos(z), 2.0 * M_PI * u[1], y, coeffs);
-        }
+        sh_eval(order, conv, theta, phi, y);
+        for (int i = 0; i < n; i++) coeffs[i] += v * y[i];
     }
-    const double wgt = 4.0 * M_PI / (double)used;
+    const double wgt = 4.0 * M_PI / (double)sm.used;
     for (int i = 0; i < n; i++) coeffs[i] *= wgt;
     free(y);
-    gsl_rng_free(r);
-    if (q) gsl_qrng_free(q);
+    sampler_free(&sm);
     return st;
+}
+
+int sh_rule_nodes(sh_rule rule, long samples, unsigned long seed, double **theta, double **phi,
+                  double **weight, long *count)
+{
+    if (rule < SH_RULE_QUAD || rule > SH_RULE_QMC) return sh_error(SH_EINVAL, "unknown projection rule");
+    if (samples <= 0) samples = sh_rule_default_samples(rule);
+    const long S = samples;
+    const long total = rule == SH_RULE_QUAD ? 2 * S * S : sh_rule_samples_used(rule, samples);
+    if (total > 100000000L) return sh_error(SH_EINVAL, "%ld nodes is too many", total);
+    double *t = malloc(sizeof(double) * (size_t)total), *p = malloc(sizeof(double) * (size_t)total);
+    double *w = malloc(sizeof(double) * (size_t)total);
+    if (!t || !p || !w) {
+        free(t), free(p), free(w);
+        return sh_error(SH_ENOMEM, "out of memory (%ld nodes)", total);
+    }
+    int st = SH_OK;
+    if (rule == SH_RULE_QUAD) {
+        double *xw = malloc(sizeof(double) * (size_t)S * 2);
+        if (!xw || (st = gl_nodes(S, xw, xw + S))) {
+            free(xw), free(t), free(p), free(w);
+            return st ? st : sh_error(SH_ENOMEM, "out of memory");
+        }
+        for (long k = 0; k < S; k++)
+            for (long j = 0; j < 2 * S; j++) {
+                const long i = k * 2 * S + j;
+                t[i] = acos(xw[k]);
+                p[i] = M_PI * (double)j / (double)S;
+                w[i] = xw[S + k] * M_PI / (double)S;
+            }
+        free(xw);
+    } else {
+        sampler sm;
+        if ((st = sampler_init(&sm, rule, samples, seed))) {
+            free(t), free(p), free(w);
+            return st;
+        }
+        for (long i = 0; sampler_next(&sm, &t[i], &p[i]); i++) w[i] = 4.0 * M_PI / (double)total;
+        sampler_free(&sm);
+    }
+    *theta = t;
+    *phi = p;
+    *weight = w;
+    *count = total;
+    return SH_OK;
 }

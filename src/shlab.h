@@ -218,6 +218,11 @@ long sh_rule_samples_used(sh_rule r, long samples);
  * cosθ with the kinks as breakpoints, to absolute/relative tolerance tol
  * (1e-12 is reachable).  order <= 64. */
 int sh_green_reference(int order, sh_convention conv, double tol, double *coeffs);
+/* The nodes of a rule as explicit lists (θ, φ, weight), malloc'd (caller
+ * frees all three): QUAD gives S × 2S product nodes, the others the same
+ * points sh_project uses for that seed, each of weight 4π/count. */
+int sh_rule_nodes(sh_rule rule, long samples, unsigned long seed, double **theta, double **phi,
+                  double **weight, long *count);
 /* [end section: projection and lights] */
 /* [section: images] */
 /* Read an EXR through OpenEXR's ImfCRgbaFile C interface (the DWAA/DWAB
