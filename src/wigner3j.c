@@ -67,6 +67,9 @@ int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin_out, int *jmax_
         return SH_OK;
     }
     const int n = jmax - jmin + 1;
+    /* sign of the unnormalised f(jmax), tracked separately: the stored
+     * value may underflow to 0 deep in the upper forbidden region */
+    double top_sign = 1.0;
     const double J2 = j2, J3 = j3, M1 = m1, M2 = m2, M3 = m3;
     if (n == 1) {
         f[0] = 1.0 / sqrt(2.0 * jmin + 1.0);
@@ -95,11 +98,12 @@ int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin_out, int *jmax_
             if (fabs(f[jf - jmin]) > W3J_BIG)
                 for (int q = 0; q <= jf - jmin; q++) f[q] *= W3J_SMALL;
         }
-        /* ---- then through the classically allowed region: forward is
-         * neutrally stable there; the backward sweep below takes over for the
-         * upper forbidden region.  The forward solution is carried up to jm,
-         * the backward one down to jm-1 (two-point overlap). */
+        /* ---- backward from jmax through the upper forbidden region (where
+         * the solution grows going down) and the classically allowed region
+         * (neutrally stable), down to jm-1: a two-point overlap {jm-1, jm}
+         * with the forward solution, which is valid on [jmin, jm]. */
         int jm = jf; /* forward values valid on [jmin, jm] */
+        if (jm == jmax) top_sign = f[n - 1] < 0.0 ? -1.0 : 1.0;
         if (jm < jmax) {
             /* backward sweep into the scratch tail: g(jmax) = 1 */
             double *g = f; /* reuse: write g over [jm-1, jmax], keep f copies */
@@ -125,6 +129,7 @@ int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin_out, int *jmax_
             for (int q = jm - jmin; q <= jmax - jmin; q++) f[q] = g[q] * scale;
             f[jm - 1 - jmin] = f_jm1;
             f[jm - jmin] = f_jm;
+            top_sign = scale < 0.0 ? -1.0 : 1.0; /* g(jmax) = 1 times positive rescalings */
             /* f and g·scale agree on the overlap; keep f there.  If the
              * match is badly conditioned (gg tiny) the normalisation below
              * still fixes the overall scale, only the relative one is lost. */
@@ -143,7 +148,7 @@ int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin_out, int *jmax_
     double norm = 1.0 / (big * sqrt(s));
     const int e = j2 - j3 - m1;
     const int want_neg = (e % 2 != 0);
-    if ((f[n - 1] < 0.0) != want_neg) norm = -norm;
+    if ((top_sign < 0.0) != want_neg) norm = -norm;
     for (int q = 0; q < n; q++) f[q] *= norm;
     if (!isfinite(norm)) return sh_error(SH_ENUM, "3j: normalisation failed");
     return SH_OK;
@@ -158,7 +163,8 @@ int sh_wigner3j_e(int j1, int j2, int j3, int m1, int m2, int m3, double *result
     /* selection rules: m sum, |m| <= j, triangle */
     if (m1 + m2 + m3 != 0 || abs(m1) > j1 || abs(m2) > j2 || abs(m3) > j3) return SH_OK;
     if (j1 < abs(j2 - j3) || j1 > j2 + j3) return SH_OK;
-    /* (j1 j2 j3; 0 0 0) = 0 for odd j1+j2+j3 is produced by the recursion too */
+    /* (j1 j2 j3; 0 0 0) = 0 for odd j1+j2+j3 (exactly, not by cancellation) */
+    if (m1 == 0 && m2 == 0 && ((j1 + j2 + j3) & 1)) return SH_OK;
     double stackbuf[512];
     const size_t need = sh_wigner3j_family_n(j2, j3);
     double *buf = need <= 512 ? stackbuf : malloc(need * sizeof(double));

@@ -191,6 +191,22 @@ START_TEST(test_3j_family)
 }
 END_TEST
 
+/* Regression: when the top of a family underflows to 0 (deep in the upper
+ * forbidden region), the sign must not be read from the stored f(jmax).
+ * Reference values: exact rational evaluation (sympy.physics.wigner.wigner_3j). */
+START_TEST(test_3j_underflowed_top_sign)
+{
+    ck_close(sh_wigner3j(1637, 1829, 1729, -19, 1717, -1698), -1.5766923941564767e-76, 1e-11, 0,
+             "3j(1637 1829 1729; -19 1717 -1698)");
+    ck_close(sh_wigner3j(500, 1829, 1729, -19, 1717, -1698), -6.795400372113466e-4, 1e-11, 0,
+             "3j(500 1829 1729; -19 1717 -1698)");
+    ck_close(sh_wigner3j(100, 1829, 1729, -19, 1717, -1698), 5.700672179602399e-44, 1e-11, 0,
+             "3j(100 1829 1729; -19 1717 -1698)");
+    /* beyond ~2900 the true values are below the double range */
+    ck_assert(fabs(sh_wigner3j(3558, 1829, 1729, -19, 1717, -1698)) < 1e-300);
+}
+END_TEST
+
 /* -------------------------------------------------------- real Gaunt */
 
 /* Product quadrature table: y values at nth GL nodes × 2nth φ nodes. */
@@ -365,6 +381,7 @@ static Suite *gaunt_suite(void)
     tcase_add_test(tc, test_3j_symmetries);
     tcase_add_test(tc, test_3j_orthogonality);
     tcase_add_test(tc, test_3j_family);
+    tcase_add_test(tc, test_3j_underflowed_top_sign);
     tcase_add_loop_test(tc, test_gaunt_vs_quadrature_l4, 0, 2);
     tcase_add_loop_test(tc, test_gaunt_vs_quadrature_l20, 0, 2);
     tcase_add_loop_test(tc, test_gaunt_identities, 0, 2);
