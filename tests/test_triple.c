@@ -189,6 +189,24 @@ START_TEST(test_green_example)
 }
 END_TEST
 
+static double one_fn(const double d[3], double th, double ph, void *ctx) { return 1.0; }
+
+/* The quadrature method with many (untabulated) nodes stays exact:
+ * b = 1 gives the orthonormality matrix I.  Regression: GSL's computed
+ * Gauss-Legendre nodes for such n are only ~1e-10 accurate. */
+START_TEST(test_quad_many_nodes)
+{
+    static const int nodes[] = {60, 200, 1000};
+    double M[25 * 25];
+    for (int t = 0; t < 3; t++) {
+        ck_assert_int_eq(sh_triple_matrix_quad(5, SH_CS, one_fn, NULL, nodes[t], M), SH_OK);
+        for (int i = 0; i < 25; i++)
+            for (int j = 0; j < 25; j++)
+                ck_close(M[i * 25 + j], i == j ? 1.0 : 0.0, 1e-13, 1.0, "nodes %d: M[%d][%d]", nodes[t], i, j);
+    }
+}
+END_TEST
+
 START_TEST(test_errors)
 {
     double b[4] = {1, 0, 0, 0}, M[16];
@@ -211,6 +229,7 @@ static Suite *triple_suite(void)
     tcase_add_loop_test(tc, test_identity, 0, 2);
     tcase_add_loop_test(tc, test_apply_equals_product_projection, 0, 2);
     tcase_add_test(tc, test_green_example);
+    tcase_add_test(tc, test_quad_many_nodes);
     tcase_add_test(tc, test_errors);
     suite_add_tcase(s, tc);
     return s;
