@@ -100,21 +100,25 @@ int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *c
     const int nphi = 2 * nodes;
     gsl_integration_glfixed_table *tab = gsl_integration_glfixed_table_alloc((size_t)nodes);
     double *y = malloc((size_t)n * sizeof *y);
-    if (!tab || !y) {
+    double *R = malloc((size_t)n * n * sizeof *R); /* one ring's partial sums */
+    if (!tab || !y || !R) {
         if (tab) gsl_integration_glfixed_table_free(tab);
         free(y);
+        free(R);
         return sh_error(SH_ENOMEM, "triple: out of memory");
     }
     memset(M, 0, sizeof(double) * (size_t)n * n);
     /* ∫ b y_i y_j dΩ ≈ Σ_a Σ_c w_a (2π/nphi) b y_i y_j at x_a = cosθ_a (GL)
      * and φ_c = 2π c/nphi: exact for band-limited integrands of total
-     * band < min(2·nodes, nphi). */
+     * band < min(2·nodes, nphi).  Each θ ring is summed separately, then
+     * added with its weight (pairwise-style, to keep rounding ~1e-15). */
     const double dphi = 2.0 * M_PI / nphi;
     for (int a = 0; a < nodes && st == SH_OK; a++) {
         double x, w;
         gsl_integration_glfixed_point(-1.0, 1.0, (size_t)a, &x, &w, tab);
         gl_polish(nodes, &x, &w);
         const double theta = acos(x);
+        memset(R, 0, sizeof(double) * (size_t)n * n);
         for (int c = 0; c < nphi; c++) {
             const double phi = c * dphi;
             double dir[3];
@@ -125,17 +129,20 @@ int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *c
                 break;
             }
             if ((st = sh_eval(order, conv, theta, phi, y))) break;
-            const double s = w * dphi * bv;
             for (int i = 0; i < n; i++) {
-                const double si = s * y[i];
-                double *row = M + (size_t)i * n;
+                const double si = bv * y[i];
+                double *row = R + (size_t)i * n;
                 for (int j = i; j < n; j++) row[j] += si * y[j];
             }
         }
+        const double s = w * dphi;
+        for (int i = 0; i < n; i++)
+            for (int j = i; j < n; j++) M[(size_t)i * n + j] += s * R[(size_t)i * n + j];
     }
     for (int i = 0; i < n; i++)
         for (int j = 0; j < i; j++) M[(size_t)i * n + j] = M[(size_t)j * n + i];
     gsl_integration_glfixed_table_free(tab);
     free(y);
+    free(R);
     return st;
 }
