@@ -70,47 +70,6 @@ long sh_rule_samples_used(sh_rule r, long samples)
  * Exact when f·y_i is a polynomial of degree <= 2S−1 in x and a
  * trigonometric polynomial of degree <= 2S−1 in φ.  Q is evaluated once per
  * row, the trig factors once per column. */
-/* P_n(x) and P'_n(x) by the three-term recurrence (stable upwards):
- *   k P_k = (2k−1) x P_{k−1} − (k−1) P_{k−2},   (x²−1) P'_n = n (x P_n − P_{n−1}). */
-static void legendre_pd(long n, double x, double *p, double *dp)
-{
-    double p0 = 1.0, p1 = x;
-    for (long k = 2; k <= n; k++) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / (double)k;
-        p0 = p1;
-        p1 = p2;
-    }
-    *p = p1;
-    *dp = (double)n * (x * p1 - p0) / (x * x - 1.0);
-}
-
-/* Gauss-Legendre nodes and weights on [−1,1].  GSL's glfixed tables are
- * exact for its precomputed sizes, but for other n its nodes are only good
- * to ~1e-10 (measured: Σw − 2 = 1.7e-10 at n = 200, 4e-10 at n = 1000), so
- * every node is polished by Newton steps on P_n and the weight recomputed,
- * w = 2 / ((1−x²) P'_n(x)²)  (Abramowitz & Stegun 25.4.29). */
-static int gl_nodes(long S, double *x, double *w)
-{
-    gsl_integration_glfixed_table *tab = gsl_integration_glfixed_table_alloc((size_t)S);
-    if (!tab) return sh_error(SH_ENOMEM, "out of memory (Gauss-Legendre table of %ld nodes)", S);
-    for (long k = 0; k < S; k++) gsl_integration_glfixed_point(-1.0, 1.0, (size_t)k, &x[k], &w[k], tab);
-    gsl_integration_glfixed_table_free(tab);
-    if (S == 1) { x[0] = 0.0; w[0] = 2.0; return SH_OK; }
-    for (long k = 0; k < S; k++) {
-        double xi = x[k], p, dp;
-        for (int it = 0; it < 4; it++) {
-            legendre_pd(S, xi, &p, &dp);
-            const double dx = p / dp;
-            xi -= dx;
-            if (fabs(dx) <= 1e-17) break;
-        }
-        legendre_pd(S, xi, &p, &dp);
-        x[k] = xi;
-        w[k] = 2.0 / ((1.0 - xi) * (1.0 + xi) * dp * dp);
-    }
-    return SH_OK;
-}
-
 static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx, long S, double *c)
 {
     if (S > 100000000L / 2) return sh_error(SH_EINVAL, "quad: %ld nodes is too many", S);
@@ -124,7 +83,7 @@ static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx
         free(xs), free(trig), free(fr), free(Fm), free(Q);
         return sh_error(SH_ENOMEM, "out of memory (quad with %ld nodes)", S);
     }
-    int st = gl_nodes(S, xs, xs + S);
+    int st = sh__gauss_legendre(S, xs, xs + S);
     if (st) {
         free(xs), free(trig), free(fr), free(Fm), free(Q);
         return st;
@@ -309,7 +268,7 @@ int sh_rule_nodes(sh_rule rule, long samples, unsigned long seed, double **theta
     int st = SH_OK;
     if (rule == SH_RULE_QUAD) {
         double *xw = malloc(sizeof(double) * (size_t)S * 2);
-        if (!xw || (st = gl_nodes(S, xw, xw + S))) {
+        if (!xw || (st = sh__gauss_legendre(S, xw, xw + S))) {
             free(xw), free(t), free(p), free(w);
             return st ? st : sh_error(SH_ENOMEM, "out of memory");
         }

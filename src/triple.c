@@ -9,13 +9,11 @@
  *
  * References
  *  [1] R. Green, "Spherical Harmonic Lighting: The Gritty Details" (2003), eqs. 8-9.
- *  [2] GSL gsl_integration_glfixed: n-point Gauss-Legendre rules.  Its nodes
- *      for untabulated n are only good to ~1e-10 (measured: Σw − 2 = 4e-10 at
- *      n = 1000), so each node gets Newton steps on P_n here.
+ *  [2] Gauss-Legendre nodes from sh__gauss_legendre (gauss_legendre.c: GSL's
+ *      glfixed table polished by Newton steps to full double accuracy).
  */
 #include "shlab_internal.h"
 
-#include <gsl/gsl_integration.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,28 +64,6 @@ done:
     return st;
 }
 
-/* Polish a Gauss-Legendre node x of P_n by Newton steps and return its
- * weight w = 2 / ((1 − x²) P_n'(x)²).  P_n by the three-term recurrence
- * (k+1) P_{k+1} = (2k+1) x P_k − k P_{k−1}; P_n' = n (x P_n − P_{n−1})/(x² − 1). */
-static void gl_polish(int n, double *x, double *w)
-{
-    double xx = *x, dp = 1.0;
-    for (int it = 0; it < 3; it++) {
-        double p0 = 1.0, p1 = xx;
-        for (int k = 1; k < n; k++) {
-            const double p2 = ((2.0 * k + 1.0) * xx * p1 - k * p0) / (k + 1.0);
-            p0 = p1;
-            p1 = p2;
-        }
-        dp = n * (xx * p1 - p0) / (xx * xx - 1.0);
-        const double dx = p1 / dp;
-        xx -= dx;
-        if (fabs(dx) < 1e-17) break;
-    }
-    *x = xx;
-    *w = 2.0 / ((1.0 - xx * xx) * dp * dp);
-}
-
 int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx, int nodes,
                           double *M)
 {
@@ -98,14 +74,20 @@ int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *c
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "triple: unknown convention");
     const int n = sh_ncoeff(order);
     const int nphi = 2 * nodes;
-    gsl_integration_glfixed_table *tab = gsl_integration_glfixed_table_alloc((size_t)nodes);
+    double *xw = malloc((size_t)nodes * 2 * sizeof *xw); /* GL nodes, then weights */
     double *y = malloc((size_t)n * sizeof *y);
     double *R = malloc((size_t)n * n * sizeof *R); /* one ring's partial sums */
-    if (!tab || !y || !R) {
-        if (tab) gsl_integration_glfixed_table_free(tab);
+    if (!xw || !y || !R) {
+        free(xw);
         free(y);
         free(R);
         return sh_error(SH_ENOMEM, "triple: out of memory");
+    }
+    if ((st = sh__gauss_legendre(nodes, xw, xw + nodes))) {
+        free(xw);
+        free(y);
+        free(R);
+        return st;
     }
     memset(M, 0, sizeof(double) * (size_t)n * n);
     /* ∫ b y_i y_j dΩ ≈ Σ_a Σ_c w_a (2π/nphi) b y_i y_j at x_a = cosθ_a (GL)
@@ -114,9 +96,7 @@ int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *c
      * added with its weight (pairwise-style, to keep rounding ~1e-15). */
     const double dphi = 2.0 * M_PI / nphi;
     for (int a = 0; a < nodes && st == SH_OK; a++) {
-        double x, w;
-        gsl_integration_glfixed_point(-1.0, 1.0, (size_t)a, &x, &w, tab);
-        gl_polish(nodes, &x, &w);
+        const double x = xw[a], w = xw[nodes + a];
         const double theta = acos(x);
         memset(R, 0, sizeof(double) * (size_t)n * n);
         for (int c = 0; c < nphi; c++) {
@@ -141,7 +121,7 @@ int sh_triple_matrix_quad(int order, sh_convention conv, sh_sphere_fn f, void *c
     }
     for (int i = 0; i < n; i++)
         for (int j = 0; j < i; j++) M[(size_t)i * n + j] = M[(size_t)j * n + i];
-    gsl_integration_glfixed_table_free(tab);
+    free(xw);
     free(y);
     free(R);
     return st;
