@@ -7,7 +7,8 @@ REV=${REV:-unknown}
 export REV
 mkdir -p reports
 failed=""
-for name in "$@"; do
+# ASSEMBLE_ONLY=1: only rebuild index.md and claims.tsv from existing fragments
+[ "${ASSEMBLE_ONLY:-0}" = 1 ] || for name in "$@"; do
     out=reports/$name
     mkdir -p "$out"
     echo "== experiment $name" >&2
@@ -49,7 +50,7 @@ done
 {
     printf 'claim_id\tsource\tstatement\tprinted\tmeasured\ttolerance\tverdict\tevidence\n'
     for name in "$@"; do
-        [ -f "reports/$name/claims.tsv" ] && cat "reports/$name/claims.tsv"
+        if [ -f "reports/$name/claims.tsv" ]; then cat "reports/$name/claims.tsv"; fi
     done
 } > reports/claims.tsv.tmp && mv reports/claims.tsv.tmp reports/claims.tsv
 

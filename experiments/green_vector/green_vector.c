@@ -126,6 +126,21 @@ int main(int argc, char **argv)
               meas, "3 sd", fabs(alt[0] - printed[0]) < 0.01 ? "reproduced" : "differs",
               "green_vector/green_vector.dat");
 
+    /* Green, "Associated Legendre Polynomials": "a triangular grid of functions
+     * per band, giving us a total of n(n+1) coefficients for an n band
+     * approximation".  Count the grid P_l^m, 0 <= m <= l < n. */
+    {
+        const int nb = 4;
+        int count = 0;
+        for (int l = 0; l < nb; l++)
+            for (int m = 0; m <= l; m++) count++;
+        char pr[64], me[96];
+        snprintf(pr, sizeof pr, "n(n+1) = %d for n = %d", nb * (nb + 1), nb);
+        snprintf(me, sizeof me, "%d = n(n+1)/2 (counted: 0 <= m <= l < n)", count);
+        exp_claim("green-legendre-count", "Green 2003, Associated Legendre Polynomials",
+                  "the triangular grid of associated Legendre functions of an n-band approximation has n(n+1) entries",
+                  pr, me, "exact", count == nb * (nb + 1) ? "reproduced" : "differs", "green_vector/green_vector.c");
+    }
     exp_index("![Green's example vector](green_vector.png)\n\n"
               "Green's Figure 7 light projected onto 4 bands: the 15 numbers the paper prints, the exact "
               "projection (adaptive quadrature with the kinks as breakpoints, 1e-12) and the mean ± 2σ of "
