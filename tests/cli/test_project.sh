@@ -79,6 +79,11 @@ if "$SHLAB" reconstruct --order 3 --coeffs 1,0.2,-0.3,0.1,0,0.05,0.4,0,-0.1 --wi
     if [ $good = 1 ] && [ "$(field "$TMP/out" 1 width)" = 512 ] && [ "$(field "$TMP/out" 1 layout)" = latlong ]; then
         ok "exr round trip recovers the coefficients (1e-3)"; else notok "exr round trip: $(cat "$TMP/out")"; fi
     expect_usage_error "exr probe layout needs a square image" project --order 3 --exr "$TMP/rt.exr" --layout probe
+    size=$(wc -c < "$TMP/rt.exr")
+    head -c $((size / 2)) "$TMP/rt.exr" > "$TMP/half.exr"
+    expect_usage_error "truncated exr" project --order 3 --exr "$TMP/half.exr"
+    : > "$TMP/empty.exr"
+    expect_usage_error "empty exr" project --order 3 --exr "$TMP/empty.exr"
 else
     notok "shlab reconstruct could not write an EXR for the round trip"
 fi
