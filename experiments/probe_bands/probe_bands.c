@@ -150,14 +150,13 @@ int main(int argc, char **argv)
               "Real HDR scenes (%d CC0 world probes from Debian's blender-data, 1024×512 lat-long, DWAB): "
               "relative L2 error of the luminance after keeping bands 0..n−1, from the Parseval residual "
               "E − Σ c² (pixel centres × exact solid angles, order ≤ %d). Smallest order per probe:\n\n%s\n"
-              "Radiance: energy per band stays flat up to l ≈ 200 where a scene has a small bright sun or "
-              "lamps, so the L2 error of the radiance itself falls slowly and no order up to the image's own "
-              "resolution limit (512 rows) reaches 1 %% in such scenes: a sun has to be modelled apart from "
-              "the SH part. Irradiance (what a diffuse surface sees: radiance convolved with the clamped "
-              "cosine, Â_l = sqrt(4π/(2l+1)) z_l from the closed-form lobe) is another matter: orders %d–%d "
-              "reach 1 %%. The usual 9-coefficient (order 3) irradiance leaves %.1f–%.1f %% here, so "
-              "Ramamoorthi and Hanrahan's \"about 1 %% on average\" holds only for the softest of these scenes.",
-              np, order, table, irr_o1_min, irr_o1_max, 100 * irr3_min, 100 * irr3_max);
+              "Radiance: in the scenes with a small bright sun or lamps the energy per band stays flat to "
+              "l ≈ 200, and none of the eight probes reaches 1 %% relative L2 error of the radiance by order "
+              "%d (the image's own resolution limit): a sun has to be modelled apart from the SH part. "
+              "Irradiance (what a diffuse surface sees: radiance convolved with the clamped cosine, "
+              "Â_l = sqrt(4π/(2l+1)) z_l from the closed-form lobe) needs orders %d–%d for 1 %%, and the usual "
+              "9-coefficient (order 3) irradiance leaves %.1f–%.1f %% relative L2 error on these scenes.",
+              np, order, table, order, irr_o1_min, irr_o1_max, 100 * irr3_min, 100 * irr3_max);
     for (int p = 0; p < np; p++) free(names[p]);
     free(coeffs);
     free(y);
