@@ -158,6 +158,23 @@ START_TEST(test_lobe_high_order)
 }
 END_TEST
 
+/* Large exponents (regression: the log-gamma form returned ~4e222 for
+ * e = 1e17 and the e = 0 answer for e = 1e300).  Truths: z_0 = √π/(e+1)
+ * exactly, and for e ≫ l², I_l/I_0 = Π (e−k+2)/(e+k+1) = 1 − O(l²/e), so
+ * z_l ≈ √(2l+1) z_0. */
+START_TEST(test_lobe_huge_exponent)
+{
+    const double es[] = {1e6, 1e12, 1e15, 1e17, 1e100, 1e300};
+    double z[11];
+    for (size_t k = 0; k < sizeof es / sizeof *es; k++) {
+        ck_assert_int_eq(sh_lobe_zonal(es[k], 11, z), SH_OK);
+        ck_close(z[0], sqrt(M_PI) / (es[k] + 1.0), 1e-15, 0.0, "lobe e=%g c0", es[k]);
+        for (int l = 1; l < 11; l++)
+            ck_close(z[l], sqrt(2.0 * l + 1.0) * z[0], 200.0 / es[k] + 1e-14, 0.0, "lobe e=%g l=%d", es[k], l);
+    }
+}
+END_TEST
+
 START_TEST(test_lobe_clamped_cosine)
 {
     double z[12];
@@ -300,6 +317,7 @@ static Suite *lights_suite(void)
     tcase_add_test(tc, test_lobe_vs_quadrature);
     tcase_add_test(tc, test_lobe_high_order);
     tcase_add_test(tc, test_lobe_clamped_cosine);
+    tcase_add_test(tc, test_lobe_huge_exponent);
     tcase_add_test(tc, test_const_closed_form);
     tcase_add_test(tc, test_cie_skies);
     tcase_add_test(tc, test_green_light_values);
