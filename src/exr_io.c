@@ -34,6 +34,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#define TMP_SUFFIX ".tmp.XXXXXX"
+
 
 void sh_image_free(sh_image *img)
 {
@@ -327,10 +329,30 @@ static int check_image(const sh_image *img, const char *who)
 
 int sh__make_temp_path(const char *path, char **tmp_out)
 {
-    const size_t n = strlen(path) + 16;
+    /* The file really written is the link's target when path is a symbolic
+     * link (the link stays a link), and an existing target must be a regular
+     * file: renaming over /dev/null or a FIFO would replace the node itself. */
+    struct stat sb;
+    char *target = NULL;
+    if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) {
+        target = realpath(path, NULL);
+        if (!target) return sh_error(SH_EIO, "cannot write '%s': it is a symbolic link to nowhere", path);
+    } else {
+        target = strdup(path);
+        if (!target) return sh_error(SH_ENOMEM, "out of memory");
+    }
+    if (stat(target, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        free(target);
+        return sh_error(SH_EIO, "cannot write '%s': not a regular file", path);
+    }
+    const size_t n = strlen(target) + 16;
     char *tmp = malloc(n);
-    if (!tmp) return sh_error(SH_ENOMEM, "out of memory");
-    snprintf(tmp, n, "%s.tmp.XXXXXX", path);
+    if (!tmp) {
+        free(target);
+        return sh_error(SH_ENOMEM, "out of memory");
+    }
+    snprintf(tmp, n, "%s" TMP_SUFFIX, target);
+    free(target);
     int fd = mkstemp(tmp);
     if (fd < 0) {
         int e = errno;
@@ -344,12 +366,21 @@ int sh__make_temp_path(const char *path, char **tmp_out)
 
 int sh__commit_temp(const char *tmp, const char *path)
 {
+    /* the target is the temporary name without its suffix (see above) */
+    const size_t n = strlen(tmp) - (sizeof TMP_SUFFIX - 1);
+    char *target = strndup(tmp, n);
+    if (!target) {
+        unlink(tmp);
+        return sh_error(SH_ENOMEM, "out of memory");
+    }
     /* mkstemp makes the file 0600; give it the usual 0666 & ~umask */
     mode_t um = umask(0);
     umask(um);
     chmod(tmp, 0666 & ~um);
-    if (rename(tmp, path) != 0) {
-        int e = errno;
+    int rc = rename(tmp, target);
+    int e = errno;
+    free(target);
+    if (rc != 0) {
         unlink(tmp);
         return sh_error(SH_EIO, "cannot write '%s': %s", path, strerror(e));
     }

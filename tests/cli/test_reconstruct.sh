@@ -57,3 +57,12 @@ echo '{"channels": {"R":[3.5449077018110318,0,0,0],"G":[0,0,0,0],"B":[1,0,0,0]}}
 expect_success "rgb channels file" reconstruct --order 2 --in "$TMP/rgb.json" --out "$OUT" --window hann --format json
 if grep -q '"window":"hann"' "$TMP/out"; then ok "window echoed"; else notok "window: $(cat "$TMP/out")"; fi
 if [ -s "$OUT" ]; then ok "rgb EXR written"; else notok "rgb EXR missing"; fi
+
+# Output through a symbolic link writes the link's target (the link stays a
+# link); a non-regular file (FIFO) is refused, not replaced (review 1.1).
+: > "$TMP/target.exr"; ln -s target.exr "$TMP/link.exr"
+if "$SHLAB" reconstruct --order 2 --coeffs 1,0,0,0 --width 8 --out "$TMP/link.exr" >/dev/null 2>&1 &&
+   [ -L "$TMP/link.exr" ] && [ -s "$TMP/target.exr" ]; then ok "output via symlink keeps the link"; else notok "output via symlink"; fi
+mkfifo "$TMP/fifo"
+expect_usage_error "output to a FIFO is refused" reconstruct --order 2 --coeffs 1,0,0,0 --width 8 --out "$TMP/fifo"
+if [ -p "$TMP/fifo" ] && [ -z "$(ls "$TMP" | grep 'fifo.tmp')" ]; then ok "FIFO left in place, no temp file"; else notok "FIFO replaced or temp left"; fi
