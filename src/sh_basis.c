@@ -24,11 +24,13 @@ int sh_angles_from_dir(const double dir[3], double *theta, double *phi)
 {
     for (int k = 0; k < 3; k++)
         if (!isfinite(dir[k])) return sh_error(SH_EINVAL, "direction has a non-finite component");
-    const double r = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    if (!(r > 0.0) || !isfinite(r)) return sh_error(SH_EINVAL, "direction vector has zero length");
+    /* scale by the largest component first: 1e-320 or 1e200 are valid directions */
+    const double big = fmax(fabs(dir[0]), fmax(fabs(dir[1]), fabs(dir[2])));
+    if (!(big > 0.0)) return sh_error(SH_EINVAL, "direction vector has zero length");
+    const double x = dir[0] / big, y = dir[1] / big, z = dir[2] / big;
     /* atan2 of (|xy|, z) is accurate near the poles, unlike acos(z/r) */
-    *theta = atan2(hypot(dir[0], dir[1]), dir[2]);
-    double p = atan2(dir[1], dir[0]);
+    *theta = atan2(hypot(x, y), z);
+    double p = atan2(y, x);
     if (p < 0.0) p += 2.0 * M_PI;
     if (p >= 2.0 * M_PI) p = 0.0;
     *phi = p;
@@ -57,7 +59,16 @@ int sh_eval(int order, sh_convention conv, double theta, double phi, double *y)
     if (st) return st;
     if (!isfinite(theta) || !isfinite(phi))
         return sh_error(SH_EINVAL, "angle is not finite");
-    eval_x_phi(order, conv, cos(theta), phi, y);
+    /* Any (θ, φ) names the direction (sinθ cosφ, sinθ sinφ, cosθ).  Reduce
+     * both through libm's sin/cos (exact argument reduction, unlike fmod by a
+     * rounded 2π): only cosθ enters the recurrence, which assumes sinθ >= 0, so
+     * sinθ < 0 is turned into the same direction at −θ, φ + π; φ goes into
+     * (−π, π] so that m·φ stays small. */
+    const double st_ = sin(theta), ct = cos(theta);
+    double sp = sin(phi), cp = cos(phi);
+    if (st_ < 0.0) { sp = -sp; cp = -cp; }
+    phi = atan2(sp, cp);
+    eval_x_phi(order, conv, ct, phi, y);
     return SH_OK;
 }
 
@@ -68,11 +79,7 @@ int sh_eval_dir(int order, sh_convention conv, const double dir[3], double *y)
     double theta, phi;
     st = sh_angles_from_dir(dir, &theta, &phi);
     if (st) return st;
-    const double r = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    double x = dir[2] / r;
-    if (x > 1.0) x = 1.0;
-    if (x < -1.0) x = -1.0;
-    eval_x_phi(order, conv, x, phi, y);
+    eval_x_phi(order, conv, cos(theta), phi, y);
     return SH_OK;
 }
 

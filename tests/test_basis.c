@@ -198,6 +198,33 @@ START_TEST(basis_bad_input)
 }
 END_TEST
 
+/* Any (θ, φ) names the direction (sinθcosφ, sinθsinφ, cosθ), and any finite
+ * non-zero vector a direction (regressions from review: θ < 0 gave the
+ * direction at φ+π; φ = 1e308 overflowed m·φ; 1e-320 was "zero length"). */
+START_TEST(basis_any_angles_and_scales)
+{
+    const double thetas[] = {-0.5, 4.0, 7.0, -20.0, 1.0};
+    const double phis[] = {0.0, 1e6, -3.0, 1e308, 2.0};
+    double y[16], yd[16];
+    for (int k = 0; k < 5; k++) {
+        double d[3];
+        sh_dir_from_angles(thetas[k], phis[k], d);
+        ck_assert_int_eq(sh_eval(4, SH_CS, thetas[k], phis[k], y), SH_OK);
+        ck_assert_int_eq(sh_eval_dir(4, SH_CS, d, yd), SH_OK);
+        for (int i = 0; i < 16; i++) ck_close(y[i], yd[i], 1e-9, 1.0, "theta=%g phi=%g y_%d", thetas[k], phis[k], i);
+    }
+    const double tiny[3] = {1e-320, 0, 0}, huge[3] = {1e200, 0, 0}, unit[3] = {1, 0, 0};
+    double yt[16];
+    ck_assert_int_eq(sh_eval_dir(4, SH_CS, unit, y), SH_OK);
+    ck_assert_int_eq(sh_eval_dir(4, SH_CS, tiny, yt), SH_OK);
+    ck_assert_int_eq(sh_eval_dir(4, SH_CS, huge, yd), SH_OK);
+    for (int i = 0; i < 16; i++) {
+        ck_close(yt[i], y[i], TOL1, 1.0, "tiny dir y_%d", i);
+        ck_close(yd[i], y[i], TOL1, 1.0, "huge dir y_%d", i);
+    }
+}
+END_TEST
+
 START_TEST(index_round_trip)
 {
     for (int l = 0; l < 300; l++)
@@ -284,6 +311,7 @@ static Suite *basis_suite(void)
     tcase_add_test(b, basis_vs_green_code);
     tcase_add_test(b, basis_bad_input);
     tcase_add_test(b, index_round_trip);
+    tcase_add_test(b, basis_any_angles_and_scales);
     tcase_add_test(b, convert_preserves_function);
     tcase_add_test(b, convert_basis_matches_eval);
     suite_add_tcase(s, b);
