@@ -61,7 +61,7 @@ static int check_size(sh_layout layout, int width, int height)
 {
     if (layout != SH_LAYOUT_LATLONG && layout != SH_LAYOUT_PROBE)
         return sh_error(SH_EINVAL, "unknown layout %d", (int)layout);
-    if (width < 1 || height < 1 || (long long)width * height > (1LL << 30))
+    if (width < 1 || height < 1 || (long long)width * height > SH_IMAGE_MAX_PIXELS)
         return sh_error(SH_EINVAL, "image size %d×%d is not usable", width, height);
     if (layout == SH_LAYOUT_PROBE && width != height)
         return sh_error(SH_EINVAL, "a probe (angle map) must be square, got %d×%d", width,

@@ -219,7 +219,7 @@ int sh_exr_read(const char *path, sh_image *img, int *used_fallback)
     }
     {
         const int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
-        if (w < 1 || h < 1 || w > (1 << 24) || h > (1 << 24) || w * h > ((int64_t)1 << 31)) {
+        if (w < 1 || h < 1 || w > (1 << 24) || h > (1 << 24) || w * h > SH_IMAGE_MAX_PIXELS) {
             st = sh_error(SH_EFORMAT, "%s: unusable data window %lld×%lld", path, (long long)w,
                           (long long)h);
             goto done;

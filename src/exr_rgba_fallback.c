@@ -35,7 +35,7 @@ int sh_exr_read_rgba(const char *path, sh_image *img)
     const int chans = ImfInputChannels(in);
     int st = SH_OK;
     ImfRgba *buf = NULL;
-    if (w < 1 || h < 1 || w * h > (1LL << 31)) {
+    if (w < 1 || h < 1 || w * h > SH_IMAGE_MAX_PIXELS) {
         st = sh_error(SH_EFORMAT, "%s: unusable data window %lld×%lld", path, w, h);
         goto done;
     }

@@ -110,15 +110,15 @@ static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx
             }
         }
         if (st) break;
-        for (int m = 0; m < order; m++) {
-            double sc = 0.0, ss = 0.0;
-            for (int j = 0; j < nphi; j++) {
-                sc += fr[j] * trig[((size_t)j * order + m) * 2];
-                ss += fr[j] * trig[((size_t)j * order + m) * 2 + 1];
-            }
-            Fm[2 * m] = sc * dphi * w;
-            Fm[2 * m + 1] = ss * dphi * w;
+        /* Fm[2m], Fm[2m+1] = Σ_j f_j {cos, sin}(mφ_j): j outer so that the
+         * trig table is read contiguously */
+        memset(Fm, 0, sizeof(double) * (size_t)order * 2);
+        for (int j = 0; j < nphi; j++) {
+            const double fj = fr[j];
+            const double *tj = trig + (size_t)j * order * 2;
+            for (int m = 0; m < 2 * order; m++) Fm[m] += fj * tj[m];
         }
+        for (int m = 0; m < 2 * order; m++) Fm[m] *= dphi * w;
         sh_legendre_array(order - 1, x, Q);
         for (int l = 0; l < order; l++) {
             c[sh_index(l, 0)] += Q[sh_legendre_idx(l, 0)] * Fm[0];

@@ -169,6 +169,8 @@ int sh_triple_matrix(int order, sh_convention conv, const double *b, int border,
 /* ----------------------------------------------------------------- images
  * Planar float image: data[c*width*height + y*width + x]. */
 #define SH_IMAGE_MAX_CHANNELS 4
+/* Largest image (width × height) any routine reads, writes or projects. */
+#define SH_IMAGE_MAX_PIXELS (1LL << 30)
 typedef struct {
     int width, height, nchan;
     char names[SH_IMAGE_MAX_CHANNELS][8]; /* "R","G","B","A" or "Y" */

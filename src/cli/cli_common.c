@@ -180,6 +180,10 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
     fclose(f);
     if (rerr) { free(buf); return cli_fail("cannot read '%s'", path); }
     buf[n] = '\0';
+    if (memchr(buf, '\0', n)) {
+        free(buf);
+        return cli_fail("%s: contains a NUL byte (not a text or JSON coefficient file)", path);
+    }
     const char *p = buf;
     while (*p && isspace((unsigned char)*p)) p++;
     int rc = 0;
@@ -200,6 +204,10 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
             double *all = NULL;
             json_object_foreach(ch, key, val) {
                 if (c == SH_IMAGE_MAX_CHANNELS) { rc = cli_fail("%s: more than %d channels", path, SH_IMAGE_MAX_CHANNELS); break; }
+                if (strlen(key) == 0 || strlen(key) > 7) {
+                    rc = cli_fail("%s: channel name '%.20s' must have 1 to 7 characters", path, key);
+                    break;
+                }
                 double *v;
                 int vl;
                 if ((rc = json_to_doubles(val, &v, &vl, path))) break;

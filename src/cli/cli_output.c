@@ -73,7 +73,19 @@ static void put_scalar(FILE *o, const json_t *v, int table)
 {
     if (json_is_real(v)) fprintf(o, table ? "%.10g" : "%.17g", json_real_value(v));
     else if (json_is_integer(v)) fprintf(o, "%lld", (long long)json_integer_value(v));
-    else if (json_is_string(v)) fputs(json_string_value(v), o);
+    else if (json_is_string(v)) {
+        const char *str = json_string_value(v);
+        if (!table && strpbrk(str, ",\"\n\r")) { /* RFC 4180 quoting */
+            fputc('"', o);
+            for (; *str; str++) {
+                if (*str == '"') fputc('"', o);
+                fputc(*str, o);
+            }
+            fputc('"', o);
+        } else {
+            fputs(str, o);
+        }
+    }
     else if (json_is_true(v)) fputs("true", o);
     else if (json_is_false(v)) fputs("false", o);
     else if (json_is_null(v)) fputs("", o);

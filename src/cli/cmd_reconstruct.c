@@ -23,7 +23,7 @@ static const char help[] =
     "  --in FILE            JSON {\"coeffs\":[...]} or {\"channels\":{\"R\":[...],...}}\n"
     "                       (1, 3 or 4 channels), or plain numbers\n"
     "  --out F.exr          output file (written to a temporary name, then renamed)\n"
-    "  --width W            image width, 2..65536 (default 256); height is W/2\n"
+    "  --width W            image width, 2..46340 (default 256); height is W/2\n"
     "  --window SPEC        none (default), gauss:S  σ_l = exp(-S·l(l+1)), S >= 0,\n"
     "                       hann[:W]  σ_l = ½(1+cos(πl/W)) for l < W else 0,\n"
     "                       lanczos[:W]  σ_l = sinc(l/W) for l < W else 0\n"
@@ -68,8 +68,9 @@ static int run(int argc, char **argv)
         case 'o': out = optarg; break;
         case 'w':
             if (cli_int("--width", optarg, &width)) return CLI_EXIT_USAGE;
-            if (width < 2 || width > 65536)
-                return cli_fail("--width: %d is out of range (2..65536)", width);
+            /* width × width/2 pixels must stay within SH_IMAGE_MAX_PIXELS */
+            if (width < 2 || width > 46340)
+                return cli_fail("--width: %d is out of range (2..46340)", width);
             break;
         case 'W':
             if (sh_window_parse(optarg, &win)) return cli_fail("--window: %s", sh_last_error());
@@ -148,7 +149,9 @@ static int run(int argc, char **argv)
     st = sh_exr_write(out, &img);
     sh_image_free(&img);
     if (st) { json_decref(root); return cli_fail_status(st); }
-    return cli_emit(root, fmt);
+    const int rc = cli_emit(root, fmt);
+    if (rc != CLI_EXIT_OK) remove(out); /* the result could not be printed: no output file either */
+    return rc;
 }
 
 const cli_command cmd_reconstruct = {"reconstruct", run,

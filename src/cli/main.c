@@ -19,6 +19,7 @@ const cli_command *cli_find(const char *name)
 int cli_help(const cli_command *cmd)
 {
     fputs(cmd->help, stdout);
+    if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
     return CLI_EXIT_OK;
 }
 
@@ -55,10 +56,12 @@ int main(int argc, char **argv)
             return cli_help(cmd);
         }
         usage(stdout);
+        if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
         return CLI_EXIT_OK;
     }
     if (!strcmp(c, "--version")) {
         printf("shlab %s\n", SHLAB_VERSION);
+        if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
         return CLI_EXIT_OK;
     }
     const cli_command *cmd = cli_find(c);

@@ -47,3 +47,18 @@ expect_usage_error "convert corrupt json" convert --from cs --to nocs --in "$TMP
 echo '{"channels": {"R":[1,2,3,4],"G":[0,0,0,1]}}' > "$TMP/ch.json"
 expect_success "convert channels file" convert --from cs --to nocs --in "$TMP/ch.json" --format json
 if grep -q '"G":\[0.0,-0.0,0.0,-1.0\]' "$TMP/out"; then ok "convert channels"; else notok "convert channels: $(cat "$TMP/out")"; fi
+
+# review regressions: NUL bytes, over-long channel names (would collide when
+# truncated), write errors on stdout, CSV quoting of strings with commas
+printf '1 2 3 4\0 5' > "$TMP/nul.txt"
+expect_usage_error "convert file with a NUL byte" convert --from cs --to nocs --in "$TMP/nul.txt"
+echo '{"channels":{"RRRRRRRRa":[1,0,0,0],"RRRRRRRRb":[2,0,0,0]}}' > "$TMP/long.json"
+expect_usage_error "convert channel name too long" convert --from cs --to nocs --in "$TMP/long.json"
+if [ -w /dev/full ]; then
+    "$SHLAB" --help > /dev/full 2>/dev/null; rc=$?
+    if [ "$rc" = 2 ]; then ok "--help to a full device fails"; else notok "--help to /dev/full exit $rc"; fi
+    "$SHLAB" eval --order 2 --dir 0,0,1 > /dev/full 2>/dev/null; rc=$?
+    if [ "$rc" = 2 ]; then ok "eval to a full device fails"; else notok "eval to /dev/full exit $rc"; fi
+fi
+expect_success "csv quoting" project --order 1 --light cie-clear:0.5,1 --format csv
+if [ "$(awk -F'"' 'NR == 2 { print $2 }' "$TMP/out")" = "cie-clear:0.5,1" ]; then ok "csv quotes a string with a comma"; else notok "csv quoting: $(cat "$TMP/out")"; fi
