@@ -72,9 +72,28 @@ const cli_command *cli_find(const char *name);
 extern const cli_command cli_commands[];
 extern const int cli_ncommands;
 
-/* Common long options shared by commands (use in option tables). */
-#define CLI_OPT_HELP 'h'
-#define CLI_COMMON_LONGOPTS \
-    {"help", no_argument, 0, 'h'}, {"format", required_argument, 0, 0x101}
+/* Options most commands share.  A command lists the ones it takes in its
+ * getopt_long table (CLI_LONGOPTS_BASE always: --help and --format), keeps
+ * their values in a cli_common, and hands every option it does not handle
+ * itself to cli_common_opt(). */
+enum { CLI_OPT_FORMAT = 0x101, CLI_OPT_ORDER, CLI_OPT_CONVENTION, CLI_OPT_DEGREES };
+#define CLI_LONGOPTS_BASE {"help", no_argument, 0, 'h'}, {"format", required_argument, 0, CLI_OPT_FORMAT}
+#define CLI_LONGOPT_ORDER {"order", required_argument, 0, CLI_OPT_ORDER}
+#define CLI_LONGOPT_CONVENTION {"convention", required_argument, 0, CLI_OPT_CONVENTION}
+#define CLI_LONGOPT_DEGREES {"degrees", no_argument, 0, CLI_OPT_DEGREES}
+
+typedef struct {
+    cli_format fmt;     /* --format (default table) */
+    int order;          /* --order (0 = not given) */
+    sh_convention conv; /* --convention (default cs) */
+    int degrees;        /* --degrees */
+} cli_common;
+#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0}
+
+/* Handle getopt_long's result o for command cmd: --help (prints the help),
+ * the shared options, and unknown options or missing values (one error
+ * line).  Returns -1 when parsing should go on, otherwise the exit code the
+ * command must return at once (0 after --help, CLI_EXIT_USAGE on error). */
+int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c);
 
 #endif

@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <ctype.h>
+#include <getopt.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -34,6 +35,18 @@ int cli_fail_getopt(const char *cmd, char **argv, int optind_now, int optopt_val
     if (optopt_val == 0 || (arg[0] == '-' && arg[1] != '-' && optopt_val != 'h'))
         return cli_fail("%s: unknown option '%s' (see 'shlab %s --help')", cmd, arg, cmd);
     return cli_fail("%s: option '%s' needs a value (see 'shlab %s --help')", cmd, arg, cmd);
+}
+
+int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
+{
+    switch (o) {
+    case 'h': return cli_help(cmd);
+    case CLI_OPT_FORMAT: return cli_format_parse(optarg, &c->fmt) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_ORDER: return cli_order("--order", optarg, &c->order) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_DEGREES: c->degrees = 1; return -1;
+    default: return cli_fail_getopt(cmd->name, argv, optind, optopt);
+    }
 }
 
 int cli_long(const char *opt, const char *s, long *out)

@@ -31,7 +31,7 @@ static const char help[] =
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {
-        CLI_COMMON_LONGOPTS,
+        CLI_LONGOPTS_BASE,
         {"from", required_argument, 0, 'f'},
         {"to", required_argument, 0, 't'},
         {"coeffs", required_argument, 0, 'c'},
@@ -42,19 +42,20 @@ static int run(int argc, char **argv)
     double *c = NULL;
     const char *in = NULL;
     char names[SH_IMAGE_MAX_CHANNELS][8] = {"Y"};
-    cli_format fmt = CLI_TABLE;
+    cli_common com = CLI_COMMON_DEFAULTS;
     opterr = 0;
     optind = 1;
     int o, rc = 0;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case 'h': free(c); return cli_help(&cmd_convert);
-        case 0x101: rc = cli_format_parse(optarg, &fmt); break;
         case 'f': if (sh_norm_parse(optarg, &from)) rc = cli_fail("--from: %s", sh_last_error()); have_from = 1; break;
         case 't': if (sh_norm_parse(optarg, &to)) rc = cli_fail("--to: %s", sh_last_error()); have_to = 1; break;
         case 'c': free(c); c = NULL; rc = cli_doubles("--coeffs", optarg, &c, &n); break;
         case 'i': in = optarg; break;
-        default: rc = cli_fail_getopt("convert", argv, optind, optopt);
+        default: {
+            const int r = cli_common_opt(&cmd_convert, o, argv, &com);
+            if (r >= 0) { free(c); return r; }
+        }
         }
         if (rc) { free(c); return rc; }
     }
@@ -81,7 +82,7 @@ static int run(int argc, char **argv)
         root = cli_put(root, "channels", ch);
     }
     free(c);
-    return cli_emit(root, fmt);
+    return cli_emit(root, com.fmt);
 }
 
 const cli_command cmd_convert = {"convert", run, "convert coefficients between cs, nocs, 4pi and schmidt", help};

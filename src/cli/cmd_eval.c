@@ -26,39 +26,38 @@ static const char help[] =
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {
-        CLI_COMMON_LONGOPTS,
-        {"order", required_argument, 0, 'n'},
+        CLI_LONGOPTS_BASE,
+        CLI_LONGOPT_ORDER,
         {"dir", required_argument, 0, 'd'},
         {"theta", required_argument, 0, 't'},
         {"phi", required_argument, 0, 'p'},
-        {"degrees", no_argument, 0, 'D'},
-        {"convention", required_argument, 0, 'c'},
+        CLI_LONGOPT_DEGREES,
+        CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
-    int order = 0, have_dir = 0, have_t = 0, have_p = 0, degrees = 0;
+    int have_dir = 0, have_t = 0, have_p = 0;
     double dir[3], theta = 0, phi = 0;
-    sh_convention conv = SH_CS;
-    cli_format fmt = CLI_TABLE;
+    cli_common com = CLI_COMMON_DEFAULTS;
     opterr = 0;
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case 'h': return cli_help(&cmd_eval);
-        case 0x101: if (cli_format_parse(optarg, &fmt)) return CLI_EXIT_USAGE; break;
-        case 'n': if (cli_order("--order", optarg, &order)) return CLI_EXIT_USAGE; break;
         case 'd': if (cli_vec3("--dir", optarg, dir)) return CLI_EXIT_USAGE; have_dir = 1; break;
         case 't': if (cli_double("--theta", optarg, &theta)) return CLI_EXIT_USAGE; have_t = 1; break;
         case 'p': if (cli_double("--phi", optarg, &phi)) return CLI_EXIT_USAGE; have_p = 1; break;
-        case 'D': degrees = 1; break;
-        case 'c': if (cli_convention(optarg, &conv)) return CLI_EXIT_USAGE; break;
-        default: return cli_fail_getopt("eval", argv, optind, optopt);
+        default: {
+            const int r = cli_common_opt(&cmd_eval, o, argv, &com);
+            if (r >= 0) return r;
+        }
         }
     }
+    const int order = com.order;
+    const sh_convention conv = com.conv;
     if (optind < argc) return cli_fail("eval: unexpected argument '%s'", argv[optind]);
     if (!order) return cli_fail("eval: --order is required");
     if (have_dir && (have_t || have_p)) return cli_fail("eval: give --dir or --theta/--phi, not both");
     if (!have_dir && !(have_t && have_p)) return cli_fail("eval: give --dir X,Y,Z or both --theta and --phi");
-    if (degrees) { theta *= M_PI / 180.0; phi *= M_PI / 180.0; }
+    if (com.degrees) { theta *= M_PI / 180.0; phi *= M_PI / 180.0; }
 
     double *y = malloc(sizeof(double) * sh_ncoeff(order));
     if (!y) return cli_fail("out of memory");
@@ -68,7 +67,7 @@ static int run(int argc, char **argv)
                              sh_convention_name(conv), "values",
                              cli_json_array(y, (size_t)sh_ncoeff(order)));
     free(y);
-    return cli_emit(root, fmt);
+    return cli_emit(root, com.fmt);
 }
 
 const cli_command cmd_eval = {"eval", run, "evaluate the real SH basis at a direction", help};

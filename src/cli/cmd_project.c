@@ -114,32 +114,28 @@ static int run_exr(int order, sh_convention conv, const char *path, sh_layout la
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {
-        CLI_COMMON_LONGOPTS,
-        {"order", required_argument, 0, 'n'},
+        CLI_LONGOPTS_BASE,
+        CLI_LONGOPT_ORDER,
         {"light", required_argument, 0, 'L'},
         {"exr", required_argument, 0, 'x'},
         {"layout", required_argument, 0, 'y'},
         {"method", required_argument, 0, 'm'},
         {"samples", required_argument, 0, 's'},
         {"seed", required_argument, 0, 'k'},
-        {"degrees", no_argument, 0, 'D'},
-        {"convention", required_argument, 0, 'c'},
+        CLI_LONGOPT_DEGREES,
+        CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
-    int order = 0, degrees = 0, have_method = 0, have_samples = 0, have_seed = 0, have_layout = 0;
+    int have_method = 0, have_samples = 0, have_seed = 0, have_layout = 0;
+    cli_common com = CLI_COMMON_DEFAULTS;
     const char *spec = NULL, *exr = NULL;
     sh_rule rule = SH_RULE_QUAD;
     sh_layout layout = SH_LAYOUT_LATLONG;
     long samples = 0, seed = 1;
-    sh_convention conv = SH_CS;
-    cli_format fmt = CLI_TABLE;
     opterr = 0;
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case 'h': return cli_help(&cmd_project);
-        case 0x101: if (cli_format_parse(optarg, &fmt)) return CLI_EXIT_USAGE; break;
-        case 'n': if (cli_order("--order", optarg, &order)) return CLI_EXIT_USAGE; break;
         case 'L':
             if (spec) return cli_fail("project: --light given twice");
             spec = optarg;
@@ -166,11 +162,15 @@ static int run(int argc, char **argv)
             if (seed < 0) return cli_fail("--seed must be >= 0, got %ld", seed);
             have_seed = 1;
             break;
-        case 'D': degrees = 1; break;
-        case 'c': if (cli_convention(optarg, &conv)) return CLI_EXIT_USAGE; break;
-        default: return cli_fail_getopt("project", argv, optind, optopt);
+        default: {
+            const int r = cli_common_opt(&cmd_project, o, argv, &com);
+            if (r >= 0) return r;
+        }
         }
     }
+    const int order = com.order, degrees = com.degrees;
+    const sh_convention conv = com.conv;
+    const cli_format fmt = com.fmt;
     if (optind < argc) return cli_fail("project: unexpected argument '%s'", argv[optind]);
     if (!order) return cli_fail("project: --order is required");
     if (spec && exr) return cli_fail("project: give --light or --exr, not both");

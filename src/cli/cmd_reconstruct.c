@@ -41,28 +41,24 @@ static const char help[] =
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {
-        CLI_COMMON_LONGOPTS,
-        {"order", required_argument, 0, 'n'},
+        CLI_LONGOPTS_BASE,
+        CLI_LONGOPT_ORDER,
         {"coeffs", required_argument, 0, 'k'},
         {"in", required_argument, 0, 'i'},
         {"out", required_argument, 0, 'o'},
         {"width", required_argument, 0, 'w'},
         {"window", required_argument, 0, 'W'},
-        {"convention", required_argument, 0, 'c'},
+        CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
-    int order = 0, width = 256;
+    int width = 256;
+    cli_common com = CLI_COMMON_DEFAULTS;
     const char *coeff_arg = NULL, *in = NULL, *out = NULL, *win_arg = "none";
-    sh_convention conv = SH_CS;
     sh_window win = {SH_WINDOW_NONE, 0.0};
-    cli_format fmt = CLI_TABLE;
     opterr = 0;
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case 'h': return cli_help(&cmd_reconstruct);
-        case 0x101: if (cli_format_parse(optarg, &fmt)) return CLI_EXIT_USAGE; break;
-        case 'n': if (cli_order("--order", optarg, &order)) return CLI_EXIT_USAGE; break;
         case 'k': coeff_arg = optarg; break;
         case 'i': in = optarg; break;
         case 'o': out = optarg; break;
@@ -76,10 +72,15 @@ static int run(int argc, char **argv)
             if (sh_window_parse(optarg, &win)) return cli_fail("--window: %s", sh_last_error());
             win_arg = optarg;
             break;
-        case 'c': if (cli_convention(optarg, &conv)) return CLI_EXIT_USAGE; break;
-        default: return cli_fail_getopt("reconstruct", argv, optind, optopt);
+        default: {
+            const int r = cli_common_opt(&cmd_reconstruct, o, argv, &com);
+            if (r >= 0) return r;
+        }
         }
     }
+    int order = com.order;
+    const sh_convention conv = com.conv;
+    const cli_format fmt = com.fmt;
     if (optind < argc) return cli_fail("reconstruct: unexpected argument '%s'", argv[optind]);
     if (!order) return cli_fail("reconstruct: --order is required");
     if (!coeff_arg == !in) return cli_fail("reconstruct: give exactly one of --coeffs and --in");

@@ -40,30 +40,32 @@ static const char help[] =
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {
-        CLI_COMMON_LONGOPTS,
-        {"order", required_argument, 0, 'n'},
+        CLI_LONGOPTS_BASE,
+        CLI_LONGOPT_ORDER,
         {"light", required_argument, 0, 'L'},
-        {"degrees", no_argument, 0, 'D'},
-        {"convention", required_argument, 0, 'c'},
+        CLI_LONGOPT_DEGREES,
+        CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
-    int order = 0, degrees = 0;
     const char *spec = NULL;
-    sh_convention conv = SH_CS;
-    cli_format fmt = CLI_TABLE;
+    cli_common com = CLI_COMMON_DEFAULTS;
     opterr = 0;
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case 'h': return cli_help(&cmd_triple);
-        case 0x101: if (cli_format_parse(optarg, &fmt)) return CLI_EXIT_USAGE; break;
-        case 'n': if (cli_order("--order", optarg, &order)) return CLI_EXIT_USAGE; break;
-        case 'L': spec = optarg; break;
-        case 'D': degrees = 1; break;
-        case 'c': if (cli_convention(optarg, &conv)) return CLI_EXIT_USAGE; break;
-        default: return cli_fail_getopt("triple", argv, optind, optopt);
+        case 'L':
+            if (spec) return cli_fail("triple: --light given twice");
+            spec = optarg;
+            break;
+        default: {
+            const int r = cli_common_opt(&cmd_triple, o, argv, &com);
+            if (r >= 0) return r;
+        }
         }
     }
+    const int order = com.order, degrees = com.degrees;
+    const sh_convention conv = com.conv;
+    const cli_format fmt = com.fmt;
     if (optind < argc) return cli_fail("triple: unexpected argument '%s'", argv[optind]);
     if (!order) return cli_fail("triple: --order is required");
     if (order > TRIPLE_MAX_ORDER)
