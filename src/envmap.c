@@ -254,13 +254,7 @@ static int project_latlong(const sh_image *img, int order, sh_convention conv, d
         free(cs); free(Q); free(AB);
         return sh_error(SH_ENOMEM, "sh_project_image: out of memory");
     }
-    for (int i = 0; i < W; i++) {
-        const double phi = 2.0 * M_PI * (i + 0.5) / W;
-        for (int m = 0; m < n; m++) {
-            cs[((size_t)i * n + m) * 2] = cos(m * phi);
-            cs[((size_t)i * n + m) * 2 + 1] = sin(m * phi);
-        }
-    }
+    sh__trig_table(n, W, 0.5, cs); /* pixel centres φ_i = 2π(i+½)/W */
     memset(coeffs, 0, (size_t)img->nchan * nn * sizeof *coeffs);
     const double half = 0.5 * M_PI / H;
     for (int j = 0; j < H; j++) {
@@ -281,17 +275,7 @@ static int project_latlong(const sh_image *img, int order, sh_convention conv, d
                 }
             }
             /* c_l^0 += Ω Q_l^0 A_0;  c_l^{±m} += Ω √2 Q_l^m {A_m, B_m} (Green eq. 6) */
-            double *cc = coeffs + (size_t)c * nn;
-            for (int m = 0; m < n; m++) {
-                double f = (m == 0) ? om : om * M_SQRT2;
-                if (conv == SH_NOCS && (m & 1)) f = -f;
-                const double fa = f * A[m], fb = f * B[m];
-                for (int l = m; l < n; l++) {
-                    const double q = Q[sh_legendre_idx(l, m)];
-                    cc[sh_index(l, m)] += q * fa;
-                    if (m) cc[sh_index(l, -m)] += q * fb;
-                }
-            }
+            sh__ring_accumulate(n, conv, Q, om, A, B, coeffs + (size_t)c * nn);
         }
     }
     free(cs); free(Q); free(AB);
@@ -361,18 +345,8 @@ static int project_probe(const sh_image *img, int order, sh_convention conv, dou
             sh__legendre_core(n - 1, cos(th), Q, 0);
             for (int c = 0; c < nc; c++) {
                 const double *A = AB + (size_t)c * 2 * n, *B = A + n;
-                double *cc = coeffs + (size_t)c * nn;
                 /* c_l^0 += Q_l^0 A_0;  c_l^{±m} += √2 Q_l^m {A_m, B_m} (Green eq. 6) */
-                for (int m = 0; m < n; m++) {
-                    double f = m ? M_SQRT2 : 1.0;
-                    if (conv == SH_NOCS && (m & 1)) f = -f;
-                    const double fa = f * A[m], fb = f * B[m];
-                    for (int l = m; l < n; l++) {
-                        const double qv = Q[sh_legendre_idx(l, m)];
-                        cc[sh_index(l, m)] += qv * fa;
-                        if (m) cc[sh_index(l, -m)] += qv * fb;
-                    }
-                }
+                sh__ring_accumulate(n, conv, Q, 1.0, A, B, coeffs + (size_t)c * nn);
             }
         }
     free(w); free(Q); free(AB);

@@ -77,24 +77,18 @@ static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx
     double *xs = malloc(sizeof(double) * (size_t)S * 2); /* nodes, then weights */
     double *trig = malloc(sizeof(double) * (size_t)nphi * order * 2); /* cos, sin of mφ_j */
     double *fr = malloc(sizeof(double) * (size_t)nphi);               /* f on one row */
-    double *Fm = malloc(sizeof(double) * (size_t)order * 2);          /* Σ_j f trig */
+    double *AB = malloc(sizeof(double) * (size_t)order * 2);          /* Σ_j f {cos, sin} */
     double *Q = malloc(sizeof(double) * sh_legendre_n(order - 1));
-    if (!xs || !trig || !fr || !Fm || !Q) {
-        free(xs), free(trig), free(fr), free(Fm), free(Q);
+    if (!xs || !trig || !fr || !AB || !Q) {
+        free(xs), free(trig), free(fr), free(AB), free(Q);
         return sh_error(SH_ENOMEM, "out of memory (quad with %ld nodes)", S);
     }
     int st = sh__gauss_legendre(S, xs, xs + S);
     if (st) {
-        free(xs), free(trig), free(fr), free(Fm), free(Q);
+        free(xs), free(trig), free(fr), free(AB), free(Q);
         return st;
     }
-    for (int j = 0; j < nphi; j++) {
-        const double phi = 2.0 * M_PI * j / nphi;
-        for (int m = 0; m < order; m++) {
-            trig[((size_t)j * order + m) * 2] = cos(m * phi);
-            trig[((size_t)j * order + m) * 2 + 1] = sin(m * phi);
-        }
-    }
+    sh__trig_table(order, nphi, 0.0, trig);
     memset(c, 0, sizeof(double) * (size_t)n);
     const double dphi = 2.0 * M_PI / nphi;
     for (long k = 0; k < S && !st; k++) {
@@ -110,27 +104,22 @@ static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx
             }
         }
         if (st) break;
-        /* Fm[2m], Fm[2m+1] = Σ_j f_j {cos, sin}(mφ_j): j outer so that the
-         * trig table is read contiguously */
-        memset(Fm, 0, sizeof(double) * (size_t)order * 2);
+        /* A_m, B_m = Σ_j f_j {cos, sin}(mφ_j): j outer so that the trig
+         * table is read contiguously */
+        double *A = AB, *B = AB + order;
+        memset(AB, 0, sizeof(double) * (size_t)order * 2);
         for (int j = 0; j < nphi; j++) {
             const double fj = fr[j];
             const double *tj = trig + (size_t)j * order * 2;
-            for (int m = 0; m < 2 * order; m++) Fm[m] += fj * tj[m];
-        }
-        for (int m = 0; m < 2 * order; m++) Fm[m] *= dphi * w;
-        sh_legendre_array(order - 1, x, Q);
-        for (int l = 0; l < order; l++) {
-            c[sh_index(l, 0)] += Q[sh_legendre_idx(l, 0)] * Fm[0];
-            for (int m = 1; m <= l; m++) {
-                double q = M_SQRT2 * Q[sh_legendre_idx(l, m)];
-                if (conv == SH_NOCS && (m & 1)) q = -q;
-                c[sh_index(l, m)] += q * Fm[2 * m];
-                c[sh_index(l, -m)] += q * Fm[2 * m + 1];
+            for (int m = 0; m < order; m++) {
+                A[m] += fj * tj[2 * m];
+                B[m] += fj * tj[2 * m + 1];
             }
         }
+        sh_legendre_array(order - 1, x, Q);
+        sh__ring_accumulate(order, conv, Q, dphi * w, A, B, c);
     }
-    free(xs), free(trig), free(fr), free(Fm), free(Q);
+    free(xs), free(trig), free(fr), free(AB), free(Q);
     return st;
 }
 

@@ -104,13 +104,7 @@ static int synth_alloc(synth_t *s, int order, const sh_window *win, int W)
         synth_free(s);
         return sh_error(SH_ENOMEM, "reconstruction: out of memory");
     }
-    for (int i = 0; i < W; i++) {
-        const double phi = 2.0 * M_PI * (i + 0.5) / W;
-        for (int m = 0; m < order; m++) {
-            s->cs[((size_t)i * order + m) * 2] = cos(m * phi);
-            s->cs[((size_t)i * order + m) * 2 + 1] = sin(m * phi);
-        }
-    }
+    sh__trig_table(order, W, 0.5, s->cs); /* pixel centres φ_i = 2π(i+½)/W */
     for (int l = 0; l < order; l++) s->sig[l] = sh_window_factor(win, l, order);
     return SH_OK;
 }

@@ -83,6 +83,35 @@ int sh_eval_dir(int order, sh_convention conv, const double dir[3], double *y)
     return SH_OK;
 }
 
+void sh__trig_table(int order, int nphi, double offset, double *t)
+{
+    for (int j = 0; j < nphi; j++) {
+        const double phi = 2.0 * M_PI * (j + offset) / nphi;
+        for (int m = 0; m < order; m++) {
+            t[((size_t)j * order + m) * 2] = cos(m * phi);
+            t[((size_t)j * order + m) * 2 + 1] = sin(m * phi);
+        }
+    }
+}
+
+/* One ring of a separable projection (Green eq. 6 with the φ sums done):
+ *   c_l^0 += w Q_l^0 A_0,   c_l^{±m} += w √2 Q_l^m {A_m, B_m},
+ * odd m negated in nocs. */
+void sh__ring_accumulate(int order, sh_convention conv, const double *Q, double w, const double *A,
+                         const double *B, double *c)
+{
+    for (int m = 0; m < order; m++) {
+        double f = m ? M_SQRT2 * w : w;
+        if (conv == SH_NOCS && (m & 1)) f = -f;
+        const double fa = f * A[m], fb = f * B[m];
+        for (int l = m; l < order; l++) {
+            const double q = Q[sh_legendre_idx(l, m)];
+            c[sh_index(l, m)] += q * fa;
+            if (m) c[sh_index(l, -m)] += q * fb;
+        }
+    }
+}
+
 void sh_convention_switch(int order, double *coeffs)
 {
     for (int l = 1; l < order; l++)

@@ -8,6 +8,17 @@
  * or at the SH flat index l(l+1)+m (sh_layout=1). */
 void sh__legendre_core(int lmax, double x, double *out, int sh_layout);
 
+/* sh_basis.c: pieces of the separable (ring by ring) projections.
+ * sh__trig_table fills t[(j·order + m)·2 + {0,1}] = {cos, sin}(m φ_j) with
+ * φ_j = 2π(j + offset)/nphi.  sh__ring_accumulate adds one ring of latitude:
+ * given Q_l^m(cosθ) (triangular layout, sh_legendre_idx) and the azimuthal
+ * sums A_m = Σ_j f_j cos(mφ_j), B_m = Σ_j f_j sin(mφ_j), it adds
+ * w·Q_l^0·A_0 to c_l^0 and w·√2·Q_l^m·{A_m, B_m} to c_l^{±m} (Green eq. 6;
+ * odd m negated in nocs). */
+void sh__trig_table(int order, int nphi, double offset, double *t);
+void sh__ring_accumulate(int order, sh_convention conv, const double *Q, double w, const double *A,
+                         const double *B, double *c);
+
 /* gauss_legendre.c: S-point Gauss-Legendre nodes x[0..S) and weights w on
  * [−1,1] (GSL's glfixed table, every node polished by Newton steps on P_S:
  * GSL's computed nodes for sizes outside its tables are good to ~1e-10 only). */
