@@ -28,7 +28,7 @@ CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
             -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS)
-LDLIBS   += $(PKG_LIBS) -lstdc++ -lm
+LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
 
 LIB_SRC  := $(sort $(wildcard src/*.c))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))

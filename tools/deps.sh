@@ -3,7 +3,7 @@
 # As root: installs what is missing (apt-get update first).  Otherwise: prints
 # the exact command to run and fails.  --quiet: say nothing when all is there.
 set -eu
-PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev check gnuplot-nox"
+PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
 missing=""
 for p in $PKGS; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
