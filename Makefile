@@ -33,7 +33,10 @@ LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
 LIB_SRC  := $(sort $(wildcard src/*.c))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
-LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
+# src/rot_*.c are precision-generic rotation kernels (rot_real.h): compiled
+# once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
+ROTK_SRC := $(sort $(wildcard src/rot_*.c))
+LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
@@ -48,9 +51,13 @@ deps-quiet:
 	@tools/deps.sh --quiet
 
 # ---- library and CLI --------------------------------------------------------
-$(BUILD)/obj/%.o: src/%.c src/shlab.h src/shlab_internal.h
+$(BUILD)/obj/%.o: src/%.c src/shlab.h src/shlab_internal.h src/rot_internal.h src/rot_real.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/%_f.o: src/%.c src/shlab.h src/shlab_internal.h src/rot_internal.h src/rot_real.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DSH_REAL_FLOAT -c $< -o $@
 
 $(BUILD)/obj/cli/%.o: src/cli/%.c src/cli/cli.h src/shlab.h
 	@mkdir -p $(dir $@)

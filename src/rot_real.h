@@ -1,0 +1,32 @@
+/* rot_real.h — precision-generic rotation kernels.
+ *
+ * Every file named src/rot_*.c is a rotation kernel written once in terms of
+ * `sh_real` and compiled twice by the Makefile: as double (rot_x.o, function
+ * names suffixed _d) and with -DSH_REAL_FLOAT as float (rot_x_f.o, suffix _f).
+ * A float kernel does its arithmetic in float, so the stability experiment
+ * measures what a single-precision implementation (a shader) really gets.
+ */
+#ifndef SHLAB_ROT_REAL_H
+#define SHLAB_ROT_REAL_H
+
+#include <math.h>
+
+#ifdef SH_REAL_FLOAT
+typedef float sh_real;
+#define SH_R(name) name##_f
+#define SH_SQRT sqrtf
+#define SH_SIN sinf
+#define SH_COS cosf
+#define SH_FABS fabsf
+#define SH_REAL_EPS 1.1920929e-07f
+#else
+typedef double sh_real;
+#define SH_R(name) name##_d
+#define SH_SQRT sqrt
+#define SH_SIN sin
+#define SH_COS cos
+#define SH_FABS fabs
+#define SH_REAL_EPS 2.220446049250313e-16
+#endif
+
+#endif
