@@ -203,3 +203,41 @@ void sh_rotation_compose(const sh_rotation *A, const sh_rotation *B, sh_rotation
         }
     finish_from_matrix(R, C);
 }
+
+void sh_rotation_to_quat(const sh_rotation *rot, double q[4])
+{
+    /* Shepperd (1978): take the largest of 4w², 4x², 4y², 4z² (from the
+     * trace and the diagonal) as the pivot, so no square root of a small
+     * difference is taken. */
+    const double *R = rot->R;
+    const double t = R[0] + R[4] + R[8];
+    double w, x, y, z;
+    if (t >= R[0] && t >= R[4] && t >= R[8]) {
+        const double s = 2 * sqrt(1 + t);
+        w = s / 4; x = (R[7] - R[5]) / s; y = (R[2] - R[6]) / s; z = (R[3] - R[1]) / s;
+    } else if (R[0] >= R[4] && R[0] >= R[8]) {
+        const double s = 2 * sqrt(1 + R[0] - R[4] - R[8]);
+        w = (R[7] - R[5]) / s; x = s / 4; y = (R[1] + R[3]) / s; z = (R[2] + R[6]) / s;
+    } else if (R[4] >= R[8]) {
+        const double s = 2 * sqrt(1 - R[0] + R[4] - R[8]);
+        w = (R[2] - R[6]) / s; x = (R[1] + R[3]) / s; y = s / 4; z = (R[5] + R[7]) / s;
+    } else {
+        const double s = 2 * sqrt(1 - R[0] - R[4] + R[8]);
+        w = (R[3] - R[1]) / s; x = (R[2] + R[6]) / s; y = (R[5] + R[7]) / s; z = s / 4;
+    }
+    const double sg = w < 0 ? -1 : 1, n = sqrt(w * w + x * x + y * y + z * z);
+    q[0] = sg * w / n; q[1] = sg * x / n; q[2] = sg * y / n; q[3] = sg * z / n;
+}
+
+void sh_rotation_to_axis_angle(const sh_rotation *rot, double axis[3], double *angle)
+{
+    double q[4];
+    sh_rotation_to_quat(rot, q);
+    const double s = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    *angle = 2 * atan2(s, q[0]);
+    if (s == 0) {
+        axis[0] = 0; axis[1] = 0; axis[2] = 1;
+    } else {
+        axis[0] = q[1] / s; axis[1] = q[2] / s; axis[2] = q[3] / s;
+    }
+}

@@ -304,6 +304,10 @@ void sh_rotation_inverse(const sh_rotation *in, sh_rotation *out);
 void sh_euler_from_matrix(const double R[9], double *alpha, double *beta, double *gamma);
 /* Product C = A·B of two rotations (matrices multiplied, angles re-extracted). */
 void sh_rotation_compose(const sh_rotation *A, const sh_rotation *B, sh_rotation *C);
+/* The rotation as a unit quaternion (w ≥ 0; Shepperd's method) and as axis
+ * and angle ∈ [0, π] (axis (0,0,1) for the identity). */
+void sh_rotation_to_quat(const sh_rotation *rot, double q[4]);
+void sh_rotation_to_axis_angle(const sh_rotation *rot, double axis[3], double *angle);
 
 /* Block-diagonal storage of an SH rotation of order n: band l is a
  * (2l+1)×(2l+1) row-major block (rows and columns m = −l..l) starting at

@@ -96,4 +96,39 @@ typedef struct {
  * command must return at once (0 after --help, CLI_EXIT_USAGE on error). */
 int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c);
 
+/* ---- rotations (cli_rotation.c) ------------------------------------------
+ * The rotation options every rotation command takes:
+ *   --euler A,B,G | --quat W,X,Y,Z | --matrix R00,...,R22 | --axis X,Y,Z --angle T,
+ *   --inverse, --orthonormalize   (angles in radians unless --degrees). */
+enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OPT_ANGLE,
+       CLI_OPT_INVERSE, CLI_OPT_ORTHO, CLI_OPT_METHOD, CLI_OPT_PRECISION };
+#define CLI_LONGOPTS_ROTATION                                                                      \
+    {"euler", required_argument, 0, CLI_OPT_EULER}, {"quat", required_argument, 0, CLI_OPT_QUAT},  \
+        {"matrix", required_argument, 0, CLI_OPT_MATRIX},                                          \
+        {"axis", required_argument, 0, CLI_OPT_AXIS},                                              \
+        {"angle", required_argument, 0, CLI_OPT_ANGLE},                                            \
+        {"inverse", no_argument, 0, CLI_OPT_INVERSE},                                              \
+        {"orthonormalize", no_argument, 0, CLI_OPT_ORTHO}
+#define CLI_LONGOPT_METHOD {"method", required_argument, 0, CLI_OPT_METHOD}
+#define CLI_LONGOPT_PRECISION {"precision", required_argument, 0, CLI_OPT_PRECISION}
+typedef struct {
+    const char *form;   /* "euler", "quat", "matrix", "axis-angle" or NULL */
+    double v[9];        /* the numbers of that form */
+    double axis[3];
+    int have_axis, have_angle, inverse, ortho;
+    double angle;
+} cli_rotation_args;
+/* Handle a rotation option (returns -1 if o is not one, 0 if handled, or an
+ * exit code after printing the error). */
+int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r);
+/* Build the rotation (exactly one form required unless `optional`; then
+ * *given says whether one was).  Returns 0 or an exit code. */
+int cli_rotation_finish(const char *cmd, const cli_rotation_args *r, int degrees, int optional,
+                        int *given, sh_rotation *rot);
+/* The rotation in every input form: {"euler":[α,β,γ],"quat":[w,x,y,z],
+ * "matrix":[9],"axis":[3],"angle":t} (radians). */
+json_t *cli_rotation_json(const sh_rotation *rot);
+int cli_method(const char *s, sh_rot_method *out);
+int cli_precision(const char *s, sh_precision *out);
+
 #endif

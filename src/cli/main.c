@@ -4,9 +4,11 @@
 #include <string.h>
 
 extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
+extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
+    &cmd_rotmat, &cmd_rotate, &cmd_euler,
 };
 
 const cli_command *cli_find(const char *name)

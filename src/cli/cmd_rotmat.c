@@ -1,0 +1,130 @@
+/* cmd_rotmat.c — `shlab rotmat`: the SH rotation matrix of a rotation, by a
+ * chosen method, whole (order N) or one band (--band L). */
+#include "cli.h"
+
+#include <getopt.h>
+#include <stdlib.h>
+
+extern const cli_command cmd_rotmat;
+
+/* The dense matrix has N⁴ entries; beyond this the output stops being useful. */
+#define ROTMAT_MAX_ORDER 32
+
+static const char help[] =
+    "Usage: shlab rotmat --order N --method M ROTATION [OPTIONS]\n"
+    "       shlab rotmat --band L --method M ROTATION [OPTIONS]\n"
+    "\n"
+    "The real SH rotation matrix R_sh(R): the coefficients of f map to those of\n"
+    "g(s) = f(R⁻¹s) (CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
+    "matrix is printed, or with --band L only the (2L+1)×(2L+1) block of band L\n"
+    "(rows and columns m = -L..L).\n"
+    "\n"
+    "Rotation (exactly one):\n"
+    "  --euler A,B,G        ZYZ active: R = Rz(A) Ry(B) Rz(G)\n"
+    "  --quat W,X,Y,Z       unit quaternion, active\n"
+    "  --matrix R00,...,R22 row-major 3×3 (refused unless proper orthogonal to 1e-6)\n"
+    "  --axis X,Y,Z --angle T   right-handed rotation by T about the axis\n"
+    "  --inverse            use R⁻¹ (the frame rotation, R_sh transposed)\n"
+    "  --orthonormalize     accept a matrix/quaternion that is not orthonormal:\n"
+    "                       use the nearest proper rotation\n"
+    "  --degrees            angles in degrees\n"
+    "\n"
+    "  --order N            bands 0..N-1 (1..32 for the printed matrix)\n"
+    "  --band L             one band only (0..1000); methods blanco, wigner and\n"
+    "                       reference compute it without the lower bands\n"
+    "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
+    "                       (default ivanic)\n"
+    "  --precision P        double (default) | float (computed in float)\n"
+    "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
+    "  --format table|csv|json\n"
+    "  --help               this text\n"
+    "\n"
+    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],\"matrix\":[[...]]}\n";
+
+static int run(int argc, char **argv)
+{
+    static const struct option opts[] = {CLI_LONGOPTS_BASE,     CLI_LONGOPT_ORDER,
+                                         CLI_LONGOPT_CONVENTION, CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPTS_ROTATION,  CLI_LONGOPT_METHOD,
+                                         CLI_LONGOPT_PRECISION,  {"band", required_argument, 0, 'b'},
+                                         {0, 0, 0, 0}};
+    cli_common com = CLI_COMMON_DEFAULTS;
+    cli_rotation_args ra = {0};
+    sh_rot_method method = SH_ROT_IVANIC;
+    sh_precision prec = SH_PREC_DOUBLE;
+    int band = -1, have_method = 0;
+    opterr = 0;
+    optind = 1;
+    int o;
+    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        int r = cli_rotation_opt("rotmat", o, optarg, &ra);
+        if (r > 0) return r;
+        if (r == 0) continue;
+        switch (o) {
+        case CLI_OPT_METHOD:
+            if (cli_method(optarg, &method)) return CLI_EXIT_USAGE;
+            have_method = 1;
+            break;
+        case CLI_OPT_PRECISION:
+            if (cli_precision(optarg, &prec)) return CLI_EXIT_USAGE;
+            break;
+        case 'b':
+            if (cli_int("--band", optarg, &band)) return CLI_EXIT_USAGE;
+            if (band < 0 || band > 1000) return cli_fail("--band: %d out of range 0..1000", band);
+            break;
+        default: {
+            const int e = cli_common_opt(&cmd_rotmat, o, argv, &com);
+            if (e >= 0) return e;
+        }
+        }
+    }
+    if (optind < argc) return cli_fail("rotmat: unexpected argument '%s'", argv[optind]);
+    (void)have_method;
+    if (band >= 0 && com.order) return cli_fail("rotmat: give --order or --band, not both");
+    if (band < 0 && !com.order) return cli_fail("rotmat: --order (or --band) is required");
+    if (band < 0 && com.order > ROTMAT_MAX_ORDER)
+        return cli_fail("rotmat: --order %d too large for a printed N²×N² matrix (max %d; use --band)",
+                        com.order, ROTMAT_MAX_ORDER);
+    const int order = band >= 0 ? band + 1 : com.order;
+    if (order > sh_rot_method_max_order(method))
+        return cli_fail("rotmat: method %s is limited to order %d", sh_rot_method_name(method),
+                        sh_rot_method_max_order(method));
+    sh_rotation rot;
+    int r = cli_rotation_finish("rotmat", &ra, com.degrees, 0, NULL, &rot);
+    if (r) return r;
+
+    json_t *root = json_object();
+    root = cli_put(root, "order", json_integer(order));
+    root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
+    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
+    root = cli_put(root, "precision", json_string(sh_precision_name(prec)));
+    int st;
+    if (band >= 0) {
+        const size_t w = 2 * (size_t)band + 1;
+        double *B = malloc(w * w * sizeof *B);
+        if (!B) { json_decref(root); return cli_fail("out of memory"); }
+        st = sh_rot_band(band, method, prec, com.conv, &rot, B);
+        if (st) { free(B); json_decref(root); return cli_fail_status(st); }
+        root = cli_put(root, "band", json_integer(band));
+        root = cli_put(root, "matrix", cli_json_matrix(B, w, w));
+        free(B);
+    } else {
+        const size_t n = (size_t)order * order;
+        double *blocks = malloc(sh_rot_block_offset(order) * sizeof *blocks);
+        double *M = malloc(n * n * sizeof *M);
+        sh_rot_plan *p = NULL;
+        if (!blocks || !M) { free(blocks); free(M); json_decref(root); return cli_fail("out of memory"); }
+        st = sh_rot_plan_create(order, method, prec, com.conv, &p);
+        if (!st) st = sh_rot_plan_set(p, &rot);
+        if (!st) st = sh_rot_plan_blocks(p, blocks);
+        sh_rot_plan_free(p);
+        if (st) { free(blocks); free(M); json_decref(root); return cli_fail_status(st); }
+        sh_rot_blocks_to_dense(order, blocks, M);
+        root = cli_put(root, "matrix", cli_json_matrix(M, n, n));
+        free(blocks);
+        free(M);
+    }
+    return cli_emit(root, com.fmt);
+}
+
+const cli_command cmd_rotmat = {"rotmat", run, "SH rotation matrix of a rotation (7 methods)", help};
