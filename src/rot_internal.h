@@ -37,6 +37,12 @@ typedef struct {
     /* a single band without the lower ones (NULL: compute 0..band) */
     int (*band_d)(int band, const sh_rotation *rot, double *block, void *work);
     size_t (*band_work_bytes)(int band);
+    /* streaming (optional): bands l = 0, 1, 2, ... in order, each from the
+     * method's own state of the previous band, in O(lmax²) memory; `state`
+     * has stream_bytes(lmax) bytes, zeroed before band 0. */
+    size_t (*stream_bytes)(int lmax);
+    int (*stream_d)(int l, const sh_rotation *rot, void *state, double *block);
+    int (*stream_f)(int l, const sh_rotation *rot, void *state, float *block);
 } sh__rot_ops;
 
 /* ---- rot_blocks.c (generic): shared pieces ----------------------------- */

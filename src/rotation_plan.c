@@ -287,3 +287,105 @@ void sh_rot_blocks_to_dense(int order, const double *blocks, double *dense)
             for (int c = 0; c < w; c++) dense[(size_t)(l * l + r) * n + (l * l + c)] = B[(size_t)r * w + c];
     }
 }
+
+/* ------------------------------------------------------- band iterator */
+struct sh_rot_bands {
+    sh_rot_method method;
+    sh_precision prec;
+    sh_convention conv;
+    int lmax, next;
+    sh_rotation rot;
+    const sh__rot_ops *ops;
+    enum { IT_STREAM, IT_BAND, IT_PLAN } kind;
+    void *state;   /* stream state, band work, or the plan's blocks */
+    float *fblock; /* float streams */
+};
+
+#define BANDS_PLAN_LIMIT ((size_t)2 << 30)
+
+int sh_rot_bands_create(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
+                        const sh_rotation *rot, sh_rot_bands **out)
+{
+    *out = NULL;
+    int st = check_args(lmax + 1, method, prec, conv);
+    if (st) return st;
+    sh_rot_bands *it = calloc(1, sizeof *it);
+    if (!it) return sh_error(SH_ENOMEM, "rotation bands: out of memory");
+    it->method = method;
+    it->prec = prec;
+    it->conv = conv;
+    it->lmax = lmax;
+    it->rot = *rot;
+    it->ops = methods[method];
+    const sh__rot_ops *ops = it->ops;
+    const size_t w = 2 * (size_t)lmax + 1;
+    if (ops->stream_bytes && (prec == SH_PREC_DOUBLE ? ops->stream_d != NULL : ops->stream_f != NULL)) {
+        it->kind = IT_STREAM;
+        it->state = calloc(1, ops->stream_bytes(lmax) + 64);
+        if (prec == SH_PREC_FLOAT) it->fblock = malloc(w * w * sizeof(float));
+        if (!it->state || (prec == SH_PREC_FLOAT && !it->fblock)) goto nomem;
+    } else if (ops->band_d && prec == SH_PREC_DOUBLE) {
+        it->kind = IT_BAND;
+        it->state = malloc((ops->band_work_bytes ? ops->band_work_bytes(lmax) : 0) + 64);
+        if (!it->state) goto nomem;
+    } else {
+        it->kind = IT_PLAN;
+        const size_t bytes = sh_rot_block_offset(lmax + 1) * sizeof(double);
+        if (bytes > BANDS_PLAN_LIMIT) {
+            free(it);
+            return sh_error(SH_ENOTSUP,
+                            "method %s (%s) has no band-by-band path; bands to %d would need %.1f GB",
+                            method_names[method], sh_precision_name(prec), lmax, bytes / 1e9);
+        }
+        it->state = malloc(bytes);
+        if (!it->state) goto nomem;
+        sh_rot_plan *p;
+        if ((st = sh_rot_plan_create(lmax + 1, method, prec, conv, &p))) { sh_rot_bands_free(it); return st; }
+        if (!(st = sh_rot_plan_set(p, rot))) st = sh_rot_plan_blocks(p, it->state);
+        sh_rot_plan_free(p);
+        if (st) { sh_rot_bands_free(it); return st; }
+    }
+    *out = it;
+    return SH_OK;
+nomem:
+    sh_rot_bands_free(it);
+    return sh_error(SH_ENOMEM, "rotation bands: out of memory (lmax %d)", lmax);
+}
+
+int sh_rot_bands_next(sh_rot_bands *it, int *l_out, double *block)
+{
+    const int l = it->next;
+    if (l > it->lmax) return sh_error(SH_EINVAL, "rotation bands: past lmax %d", it->lmax);
+    const size_t w = 2 * (size_t)l + 1;
+    int st = SH_OK;
+    switch (it->kind) {
+    case IT_STREAM:
+        if (it->prec == SH_PREC_FLOAT) {
+            st = it->ops->stream_f(l, &it->rot, it->state, it->fblock);
+            for (size_t i = 0; !st && i < w * w; i++) block[i] = it->fblock[i];
+        } else {
+            st = it->ops->stream_d(l, &it->rot, it->state, block);
+        }
+        break;
+    case IT_BAND: st = it->ops->band_d(l, &it->rot, block, it->state); break;
+    case IT_PLAN:
+        memcpy(block, (double *)it->state + sh_rot_block_offset(l), w * w * sizeof *block);
+        break;
+    }
+    if (st) return st;
+    if (it->conv == SH_NOCS && it->kind != IT_PLAN)
+        for (int mp = -l; mp <= l; mp++)
+            for (int m = -l; m <= l; m++)
+                if ((mp ^ m) & 1) block[(size_t)(mp + l) * w + (m + l)] *= -1;
+    *l_out = l;
+    it->next++;
+    return SH_OK;
+}
+
+void sh_rot_bands_free(sh_rot_bands *it)
+{
+    if (!it) return;
+    free(it->state);
+    free(it->fblock);
+    free(it);
+}

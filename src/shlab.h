@@ -360,6 +360,15 @@ void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *appl
  * others compute bands 0..l and keep the last). */
 int sh_rot_band(int band, sh_rot_method method, sh_precision prec, sh_convention conv,
                 const sh_rotation *rot, double *block);
+/* Band by band, l = 0..lmax, in O(lmax²) memory where the method allows it
+ * (a streaming recursion, or a single-band routine); otherwise through a
+ * plan of order lmax+1, refused (SH_ENOTSUP) if its blocks would exceed
+ * 2 GiB.  Each call of next writes band *l (0, 1, 2, ...) into block. */
+typedef struct sh_rot_bands sh_rot_bands;
+int sh_rot_bands_create(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
+                        const sh_rotation *rot, sh_rot_bands **out);
+int sh_rot_bands_next(sh_rot_bands *it, int *l, double *block);
+void sh_rot_bands_free(sh_rot_bands *it);
 /* Dense order²×order² matrix (row-major) from blocks. */
 void sh_rot_blocks_to_dense(int order, const double *blocks, double *dense);
 /* Reference band block: MPFR with precision chosen for `digits` (≥ 30)
@@ -367,6 +376,29 @@ void sh_rot_blocks_to_dense(int order, const double *blocks, double *dense);
  * rounded to double and to long double. */
 int sh_rot_reference_band(int band, sh_convention conv, const sh_rotation *rot, int digits,
                           double *block, long double *block_ld);
+/* Stability of a method, band by band (rotation_stability.c), over the
+ * fixed rotation set of sh_rot_stability_set: for each band the maximum over
+ * the set of
+ *   orth  max|R Rᵀ − I| (exactly for l ≤ exact_max; above, the probe
+ *         estimate max|Rᵀ(R v) − v| over two seeded unit vectors v),
+ *   hom   max|R(a)(R(b) v) − R(ab) v| over two unit probes, pairs (a, b) of
+ *         the set (b three places after a, cyclically),
+ *   ref   max|R − R_reference| (MPFR) for l ≤ ref_max, else not computed.
+ * Rotations a method refuses (z: β ≠ 0) are left out of its set. */
+typedef struct {
+    int band;
+    double orth, hom, ref;
+    int orth_exact, have_ref;
+    int broken; /* some entry was not finite (overflow): the numbers are void */
+} sh_rot_stability_row;
+#define SH_ROT_STABILITY_NSET 10
+/* The set: β = 0, 1e-12, π/2, π−1e-9, π, gimbal-lock pairs (α, 0, −α) and
+ * (π/2, π, π/2), tiny β with α+γ = 0, and two seeded random rotations; names
+ * (may be NULL) get a short label for each. */
+int sh_rot_stability_set(sh_rotation set[SH_ROT_STABILITY_NSET], const char *names[SH_ROT_STABILITY_NSET]);
+typedef int (*sh_rot_stability_cb)(const sh_rot_stability_row *row, void *ctx);
+int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
+                     int ref_max, int exact_max, sh_rot_stability_cb cb, void *ctx);
 /* [end section: rotation] */
 
 #ifdef __cplusplus

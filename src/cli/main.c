@@ -4,11 +4,11 @@
 #include <string.h>
 
 extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
-extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler;
+extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
-    &cmd_rotmat, &cmd_rotate, &cmd_euler,
+    &cmd_rotmat, &cmd_rotate, &cmd_euler, &cmd_stability,
 };
 
 const cli_command *cli_find(const char *name)
