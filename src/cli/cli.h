@@ -131,4 +131,28 @@ json_t *cli_rotation_json(const sh_rotation *rot);
 int cli_method(const char *s, sh_rot_method *out);
 int cli_precision(const char *s, sh_precision *out);
 
+/* ---- rotation fixtures (cli_fixture.c) -----------------------------------
+ * A golden case: rotate `input` (order² coefficients, or the 2L+1 of band L
+ * when band >= 0) by `rot` in `conv`; `expected` is exact to double rounding
+ * (MPFR reference), `expected_f` the same rounded to float32. */
+typedef struct {
+    char id[64];
+    int order, band;
+    sh_convention conv;
+    sh_rotation rot;
+    int n;              /* number of coefficients */
+    double *input, *expected, *expected_f;
+    double tol_double, tol_float;
+} fx_case;
+typedef struct {
+    int ncases;
+    fx_case *cases;
+} fx_set;
+/* Read a fixture file (one line "shlab: error: ..." and CLI_EXIT_USAGE on failure). */
+int fx_load(const char *path, fx_set *set);
+void fx_free(fx_set *set);
+/* out = R_sh(rot)·in for a case's shape (its order, or band only), by method. */
+int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
+             sh_convention conv, const double *in, double *out);
+
 #endif

@@ -4,11 +4,13 @@
 #include <string.h>
 
 extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
-extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability;
+extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability, cmd_fixtures,
+    cmd_verify;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
-    &cmd_rotmat, &cmd_rotate, &cmd_euler, &cmd_stability,
+    &cmd_rotmat, &cmd_rotate, &cmd_euler, &cmd_stability, &cmd_fixtures,
+    &cmd_verify,
 };
 
 const cli_command *cli_find(const char *name)
