@@ -47,7 +47,15 @@
  * Cost of one apply (counted in the loops): per band l, three z rotations
  * (4l each) and two X products (l² + l + 1 each) = the n(2n²+18n−14)/3 of
  * [2] summed over l < n, plus the multiple angles of α, β, γ by the
- * Chebyshev recurrence, 3·2(n−2) for n ≥ 2, which the paper's count omits.
+ * Chebyshev recurrence, 3·2(n−2) for n ≥ 3, which the paper's count omits.
+ * blocks (for rotmat) runs the band pipeline on each unit vector: O(l³) per
+ * band, counted the same way.
+ *
+ * Memory.  A plan's tables hold Σ_{l<n} (l²+l+1) = n(n²+2)/3 values (X₋₉₀
+ * shares them), ≈ 360 MB in double at order 512.  The single-band path
+ * (sh_rot_band) builds X₊₉₀ of that band only, O(l²) memory, so band 1000
+ * takes ~3 s; hence max_order is SHLAB_MAX_ORDER and a large plan simply
+ * fails with SH_ENOMEM if the tables do not fit.
  */
 #include "rot_internal.h"
 #include "rot_real.h"
@@ -59,7 +67,7 @@ SH__ROT_DECLARE_TABLES(zxzxz);
 #include <stdlib.h>
 #include <string.h>
 
-#define ZX_MAX_ORDER 512
+#define ZX_MAX_ORDER SHLAB_MAX_ORDER
 
 /* Compact X₊₉₀ storage: band l's l²+l+1 non-zeros start at zx_off(l). */
 static inline size_t zx_off(int l) { return (size_t)l * ((size_t)l * l + 2) / 3; }
@@ -292,6 +300,40 @@ void SH_R(sh__rot_zxzxz_apply)(int order, const sh_rotation *rot, const void *ta
     if (mults) *mults += count;
 }
 
+#ifndef SH_REAL_FLOAT
+/* One band without the lower ones (double): X₊₉₀ of band l alone (no
+ * per-order tables), then the block column by column.  O(l²) memory. */
+static size_t zx_band_work(int l)
+{
+    const size_t w = 2 * (size_t)l + 1, nnz = (size_t)l * l + l + 1;
+    return zx_gen_work(l) + (w * w + nnz + 6 * (size_t)(l + 1) + 2 * w) * sizeof(double);
+}
+static int zx_band_double(int l, const sh_rotation *rot, double *block, void *work)
+{
+    const int w = 2 * l + 1;
+    double *X = (double *)((char *)work + zx_gen_work(l)), *xc = X + (size_t)w * w;
+    double *csa = xc + ((size_t)l * l + l + 1), *csb = csa + 2 * (l + 1), *csg = csb + 2 * (l + 1);
+    double *col = csg + 2 * (l + 1), *tmp = col + w;
+    zx_xplus_dense(l, work, X);
+    size_t k = 0;
+    for (int mp = -l; mp <= l; mp++) {
+        int q, s;
+        const int cnt = zx_row(l, mp, &q, &s);
+        for (int j = 0; j < cnt; j++) xc[k++] = X[(size_t)(mp + l) * w + (size_t)(l + s * (q + 2 * j))];
+    }
+    sh__rot_multiple_angles_d(rot->alpha, l, csa);
+    sh__rot_multiple_angles_d(rot->beta, l, csb);
+    sh__rot_multiple_angles_d(rot->gamma, l, csg);
+    for (int j = 0; j < w; j++) {
+        for (int i = 0; i < w; i++) col[i] = 0;
+        col[j] = 1;
+        zx_band_d(l, xc, csa, csb, csg, col, tmp);
+        for (int i = 0; i < w; i++) block[(size_t)i * w + j] = col[i];
+    }
+    return SH_OK;
+}
+#endif
+
 int SH_R(sh__rot_zxzxz_blocks)(int order, const sh_rotation *rot, const void *tables,
                                sh_real *blocks, void *work, uint64_t *mults)
 {
@@ -340,5 +382,7 @@ const sh__rot_ops sh__rot_zxzxz_ops = {
     .blocks_f = sh__rot_zxzxz_blocks_f,
     .apply_d = sh__rot_zxzxz_apply_d,
     .apply_f = sh__rot_zxzxz_apply_f,
+    .band_d = zx_band_double,
+    .band_work_bytes = zx_band_work,
 };
 #endif
