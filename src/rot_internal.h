@@ -41,6 +41,7 @@ typedef struct {
      * method's own state of the previous band, in O(lmax²) memory; `state`
      * has stream_bytes(lmax) bytes, zeroed before band 0. */
     size_t (*stream_bytes)(int lmax);
+    int (*stream_init)(int lmax, void *state); /* optional, after zeroing */
     int (*stream_d)(int l, const sh_rotation *rot, void *state, double *block);
     int (*stream_f)(int l, const sh_rotation *rot, void *state, float *block);
 } sh__rot_ops;
@@ -94,6 +95,10 @@ void sh__rot_blocks_nocs_f(int order, float *blocks);
 #define SH__ROT_DECLARE_BAND(m)                                                                    \
     int sh__rot_##m##_band_d(int, const sh_rotation *, double *, void *);                          \
     int sh__rot_##m##_band_f(int, const sh_rotation *, float *, void *)
+
+#define SH__ROT_DECLARE_STREAM(m)                                                                  \
+    int sh__rot_##m##_stream_d(int, const sh_rotation *, void *, double *);                         \
+    int sh__rot_##m##_stream_f(int, const sh_rotation *, void *, float *)
 
 /* rotation_reference.c: the reference band computed at two MPFR precisions
  * (for `digits` and for digits + 30); the largest difference between them,

@@ -66,6 +66,7 @@
 SH__ROT_DECLARE_BLOCKS(ivanic);
 SH__ROT_DECLARE_TABLES(ivanic);
 SH__ROT_DECLARE_BAND(ivanic);
+SH__ROT_DECLARE_STREAM(ivanic);
 
 #include <math.h>
 #include <stdlib.h>
@@ -231,6 +232,33 @@ int SH_R(sh__rot_ivanic_band)(int band, const sh_rotation *rot, sh_real *block, 
     return SH_OK;
 }
 
+/* Streaming: band l from the state's band l−1 (state: band 1 in nocs, the
+ * previous band in nocs, a buffer for the current one, the coefficients;
+ * the same layout as ivanic_band_work(lmax)). */
+int SH_R(sh__rot_ivanic_stream)(int l, const sh_rotation *rot, void *state, sh_real *block)
+{
+    /* the buffers are sized for the largest band: offsets from lmax are not
+     * known here, so the state starts with lmax's wmax */
+    size_t *hdr = state;
+    const size_t wmax = hdr[0];
+    sh_real *M1 = (sh_real *)(hdr + 1), *prev = M1 + 9, *cur = prev + wmax, *t = cur + wmax;
+    if (l == 0) {
+        block[0] = 1;
+        return SH_OK;
+    }
+    if (l == 1) {
+        SH_R(ivanic_band1)(rot, M1);
+        for (int i = 0; i < 9; i++) prev[i] = M1[i];
+    } else {
+        SH_R(ivanic_coeffs)(l, t);
+        SH_R(ivanic_step)(l, M1, prev, t, cur);
+        for (size_t i = 0; i < (size_t)(2 * l + 1) * (2 * l + 1); i++) prev[i] = cur[i];
+    }
+    for (size_t i = 0; i < (size_t)(2 * l + 1) * (2 * l + 1); i++) block[i] = prev[i];
+    SH_R(ivanic_to_cs)(l, block);
+    return SH_OK;
+}
+
 #ifndef SH_REAL_FLOAT
 static void ivanic_tables_free(void *tables)
 {
@@ -243,6 +271,15 @@ static size_t ivanic_band_work(int band)
     const size_t wmax = (size_t)(2 * band + 1) * (2 * band + 1);
     return (9 + 5 * wmax) * sizeof(double);
 }
+static size_t ivanic_stream_bytes(int lmax)
+{
+    return sizeof(size_t) + ivanic_band_work(lmax);
+}
+static int ivanic_stream_init(int lmax, void *state)
+{
+    *(size_t *)state = (size_t)(2 * lmax + 1) * (2 * lmax + 1);
+    return SH_OK;
+}
 const sh__rot_ops sh__rot_ivanic_ops = {
     .name = "ivanic",
     .max_order = SHLAB_MAX_ORDER,
@@ -253,5 +290,9 @@ const sh__rot_ops sh__rot_ivanic_ops = {
     .blocks_f = sh__rot_ivanic_blocks_f,
     .band_d = sh__rot_ivanic_band_d,
     .band_work_bytes = ivanic_band_work,
+    .stream_bytes = ivanic_stream_bytes,
+    .stream_init = ivanic_stream_init,
+    .stream_d = sh__rot_ivanic_stream_d,
+    .stream_f = sh__rot_ivanic_stream_f,
 };
 #endif

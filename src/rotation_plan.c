@@ -326,6 +326,7 @@ int sh_rot_bands_create(sh_rot_method method, sh_precision prec, sh_convention c
         it->state = calloc(1, ops->stream_bytes(lmax) + 64);
         if (prec == SH_PREC_FLOAT) it->fblock = malloc(w * w * sizeof(float));
         if (!it->state || (prec == SH_PREC_FLOAT && !it->fblock)) goto nomem;
+        if (ops->stream_init && (st = ops->stream_init(lmax, it->state))) { sh_rot_bands_free(it); return st; }
     } else if (ops->band_d && prec == SH_PREC_DOUBLE) {
         it->kind = IT_BAND;
         it->state = malloc((ops->band_work_bytes ? ops->band_work_bytes(lmax) : 0) + 64);
@@ -382,6 +383,19 @@ int sh_rot_bands_next(sh_rot_bands *it, int *l_out, double *block)
     *l_out = l;
     it->next++;
     return SH_OK;
+}
+
+int sh_rot_bands_get(sh_rot_bands *it, int l, double *block)
+{
+    if (l < it->next || l > it->lmax)
+        return sh_error(SH_EINVAL, "rotation bands: band %d not reachable (next %d, lmax %d)", l,
+                        it->next, it->lmax);
+    if (it->kind != IT_STREAM) it->next = l; /* direct access */
+    int got = -1, st;
+    do {
+        st = sh_rot_bands_next(it, &got, block);
+    } while (!st && got < l);
+    return st;
 }
 
 void sh_rot_bands_free(sh_rot_bands *it)

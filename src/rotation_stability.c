@@ -46,7 +46,8 @@ static void matvec(int w, const double *B, const double *x, double *y, int trans
 }
 
 int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
-                     int ref_max, int exact_max, sh_rot_stability_cb cb, void *ctx)
+                     const int *bands, int nbands, int ref_max, int exact_max, double stop_above,
+                     sh_rot_stability_cb cb, void *ctx)
 {
     sh_rotation all[SH_ROT_STABILITY_NSET], set[SH_ROT_STABILITY_NSET], ab[SH_ROT_STABILITY_NSET];
     int st = sh_rot_stability_set(all, NULL);
@@ -56,6 +57,10 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         if (method != SH_ROT_Z || all[k].beta == 0) set[n++] = all[k];
     for (int k = 0; k < n; k++) sh_rotation_compose(&set[k], &set[(k + 3) % n], &ab[k]);
     if (lmax < 0) return sh_error(SH_EINVAL, "stability: lmax %d < 0", lmax);
+    if (!bands) nbands = lmax + 1;
+    for (int q = 0; bands && q < nbands; q++)
+        if (bands[q] < 0 || bands[q] > lmax || (q && bands[q] <= bands[q - 1]))
+            return sh_error(SH_EINVAL, "stability: bands must increase within 0..%d", lmax);
 
     const size_t W = 2 * (size_t)lmax + 1;
     sh_rot_bands **it = calloc(2 * (size_t)n, sizeof *it);
@@ -69,10 +74,10 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
     gsl_rng_set(rng, 7);
     for (int k = 0; k < 2 * n && !st; k++)
         st = sh_rot_bands_create(method, prec, conv, lmax, k < n ? &set[k] : &ab[k - n], &it[k]);
-    for (int l = 0; l <= lmax && !st; l++) {
+    for (int q = 0; q < nbands && !st; q++) {
+        const int l = bands ? bands[q] : q;
         const int w = 2 * l + 1;
-        int got;
-        for (int k = 0; k < 2 * n && !st; k++) st = sh_rot_bands_next(it[k], &got, blk + (size_t)k * W * W);
+        for (int k = 0; k < 2 * n && !st; k++) st = sh_rot_bands_get(it[k], l, blk + (size_t)k * W * W);
         if (st) break;
         sh_rot_stability_row row = {.band = l, .orth_exact = l <= exact_max, .have_ref = l <= ref_max};
         double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
@@ -112,6 +117,7 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         for (size_t i = 0; i < 2 * (size_t)n * W * W && !row.broken; i += 1)
             if ((i % (W * W)) < (size_t)w * w && !isfinite(blk[i])) row.broken = 1;
         if (cb && (st = cb(&row, ctx))) break;
+        if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
     }
 done:
     if (it)

@@ -368,6 +368,9 @@ typedef struct sh_rot_bands sh_rot_bands;
 int sh_rot_bands_create(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
                         const sh_rotation *rot, sh_rot_bands **out);
 int sh_rot_bands_next(sh_rot_bands *it, int *l, double *block);
+/* Band l (≥ every band asked before): single-band methods compute only it,
+ * streaming ones pass through the bands in between. */
+int sh_rot_bands_get(sh_rot_bands *it, int l, double *block);
 void sh_rot_bands_free(sh_rot_bands *it);
 /* Dense order²×order² matrix (row-major) from blocks. */
 void sh_rot_blocks_to_dense(int order, const double *blocks, double *dense);
@@ -397,8 +400,12 @@ typedef struct {
  * (may be NULL) get a short label for each. */
 int sh_rot_stability_set(sh_rotation set[SH_ROT_STABILITY_NSET], const char *names[SH_ROT_STABILITY_NSET]);
 typedef int (*sh_rot_stability_cb)(const sh_rot_stability_row *row, void *ctx);
+/* Rows for the bands listed (increasing; NULL: every band 0..lmax).  The
+ * sweep stops after the first row whose orth exceeds stop_above (> 0), or
+ * that is broken; a callback returning non-zero also stops it. */
 int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
-                     int ref_max, int exact_max, sh_rot_stability_cb cb, void *ctx);
+                     const int *bands, int nbands, int ref_max, int exact_max, double stop_above,
+                     sh_rot_stability_cb cb, void *ctx);
 /* [end section: rotation] */
 
 #ifdef __cplusplus

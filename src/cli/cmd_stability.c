@@ -4,6 +4,7 @@
 #include "cli.h"
 
 #include <getopt.h>
+#include <math.h>
 #include <stdlib.h>
 
 extern const cli_command cmd_stability;
@@ -22,7 +23,10 @@ static const char help[] =
     "  broken true if the method overflowed (its numbers are then empty)\n"
     "\n"
     "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
-    "  --lmax L             highest band (0..1000)\n"
+    "  --lmax L             every band 0..L (L <= 1000)\n"
+    "  --bands L1,L2,...    only these bands (increasing, <= 1000); single-band\n"
+    "                       methods then compute nothing else\n"
+    "  --stop-above X       stop after the first band whose orth exceeds X\n"
     "  --precision P        double (default) | float\n"
     "  --ref-max R          compare with the reference up to band R (default 40)\n"
     "  --exact-max E        exact orthogonality up to band E (default 128)\n"
@@ -36,7 +40,7 @@ static const char help[] =
 
 typedef struct {
     json_t *rows;
-    int lmax, quiet, fail;
+    int lmax, quiet, fail, sparse;
 } acc;
 
 static json_t *num_or_null(double x, int ok) { return ok ? json_real(x) : json_null(); }
@@ -52,7 +56,7 @@ static int on_row(const sh_rot_stability_row *r, void *vctx)
     o = cli_put(o, "ref", num_or_null(r->ref, r->have_ref && !r->broken));
     o = cli_put(o, "broken", json_boolean(r->broken));
     if (!o || json_array_append_new(a->rows, o)) { a->fail = 1; return SH_ENOMEM; }
-    if (!a->quiet && a->lmax >= 100 && (r->band % 50 == 0 || r->band == a->lmax))
+    if (!a->quiet && a->lmax >= 100 && (r->band % 50 == 0 || r->band == a->lmax || a->sparse))
         fprintf(stderr, "stability: band %d of %d\n", r->band, a->lmax);
     return SH_OK;
 }
@@ -67,11 +71,15 @@ static int run(int argc, char **argv)
                                          {"ref-max", required_argument, 0, 'r'},
                                          {"exact-max", required_argument, 0, 'e'},
                                          {"quiet", no_argument, 0, 'q'},
+                                         {"bands", required_argument, 0, 'B'},
+                                         {"stop-above", required_argument, 0, 's'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     sh_rot_method method = SH_ROT_IVANIC;
     sh_precision prec = SH_PREC_DOUBLE;
-    int lmax = -1, ref_max = 40, exact_max = 128, have_method = 0, quiet = 0;
+    int lmax = -1, ref_max = 40, exact_max = 128, have_method = 0, quiet = 0, nb = 0;
+    int *bands = NULL;
+    double stop_above = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -97,21 +105,45 @@ static int run(int argc, char **argv)
             if (exact_max < -1) return cli_fail("--exact-max: %d must be >= -1", exact_max);
             break;
         case 'q': quiet = 1; break;
+        case 's':
+            if (cli_double("--stop-above", optarg, &stop_above)) return CLI_EXIT_USAGE;
+            if (!(stop_above > 0)) return cli_fail("--stop-above: must be > 0");
+            break;
+        case 'B': {
+            double *v = NULL;
+            if (bands) { free(bands); return cli_fail("stability: --bands given twice"); }
+            if (cli_doubles("--bands", optarg, &v, &nb)) return CLI_EXIT_USAGE;
+            bands = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *bands);
+            for (int q = 0; bands && q < nb; q++) {
+                if (v[q] != floor(v[q]) || v[q] < 0 || v[q] > 1000 || (q && v[q] <= v[q - 1])) {
+                    free(v); free(bands);
+                    return cli_fail("--bands: need increasing integers in 0..1000");
+                }
+                bands[q] = (int)v[q];
+            }
+            free(v);
+            if (!bands || nb < 1) { free(bands); return cli_fail("--bands: empty list"); }
+            break;
+        }
         default: {
             const int e = cli_common_opt(&cmd_stability, o, argv, &com);
             if (e >= 0) return e;
         }
         }
     }
-    if (optind < argc) return cli_fail("stability: unexpected argument '%s'", argv[optind]);
-    if (!have_method) return cli_fail("stability: --method is required");
-    if (lmax < 0) return cli_fail("stability: --lmax is required");
+    if (optind < argc) { free(bands); return cli_fail("stability: unexpected argument '%s'", argv[optind]); }
+    if (!have_method) { free(bands); return cli_fail("stability: --method is required"); }
+    if (bands && lmax >= 0) { free(bands); return cli_fail("stability: give --lmax or --bands, not both"); }
+    if (bands) lmax = bands[nb - 1];
+    if (lmax < 0) return cli_fail("stability: --lmax (or --bands) is required");
     if (lmax + 1 > sh_rot_method_max_order(method))
-        return cli_fail("stability: method %s is limited to order %d (lmax %d)",
+        return free(bands), cli_fail("stability: method %s is limited to order %d (lmax %d)",
                         sh_rot_method_name(method), sh_rot_method_max_order(method),
                         sh_rot_method_max_order(method) - 1);
-    acc a = {json_array(), lmax, quiet, 0};
-    int st = sh_rot_stability(method, prec, com.conv, lmax, ref_max, exact_max, on_row, &a);
+    acc a = {json_array(), lmax, quiet, 0, bands != NULL};
+    int st = sh_rot_stability(method, prec, com.conv, lmax, bands, bands ? nb : 0, ref_max,
+                              exact_max, stop_above, on_row, &a);
+    free(bands);
     if (st) { json_decref(a.rows); return cli_fail_status(st); }
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
