@@ -143,12 +143,17 @@ int SH_R(sh__rot_blanco_blocks)(int order, const sh_rotation *rot, const void *t
          *              − √(((l−1)²−m²)((l−1)²−m'²))/((l−1)(2l−1)) · d^{l−2}_{m'm} ] */
         const sh_real k1 = (sh_real)l * (2 * l - 1), k3 = (sh_real)1 / ((sh_real)(l - 1) * (2 * l - 1));
         const sh_real kg = (sh_real)1 / ((sh_real)l * (l - 1));
+        /* cosβ as 1 − 2sin²(β/2) or 2cos²(β/2) − 1: cosβ itself rounds to ±1
+         * within 1e-8 of 0 or π, and the recurrence then amplifies the
+         * mismatch with the edge columns (which carry the exact β) — measured
+         * at β = π − 1e-9: error 99 at l = 200 with cosβ, ~1e-12 with this */
+        const sh_real tws2 = 2 * s2, tcs2 = 2 * c2;
         for (int mp = -(l - 2); mp <= l - 2; mp++) {
             const sh_real A = k1 * ia[mp + l], B = k3 * bb[mp + l], G = (sh_real)mp * kg;
             const int m0 = mp < 0 ? -mp : mp;
             for (int m = m0; m <= l - 2; m++) {
                 const sh_real fac1 = A * ia[m + l], fac3 = B * bb[m + l];
-                const sh_real fac2 = cb - (sh_real)m * G;
+                const sh_real fac2 = lower ? (1 - (sh_real)m * G) - tws2 : tcs2 - (1 + (sh_real)m * G);
                 cur[IX(mp, m)] = fac1 * (fac2 * dm1[IX(mp, m)] - fac3 * dm2[IX(mp, m)]);
             }
             count += 3 + 6u * (uint64_t)(l - 1 - m0);

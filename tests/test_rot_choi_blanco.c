@@ -290,6 +290,29 @@ START_TEST(test_blanco_single_band)
 }
 END_TEST
 
+
+/* Regression (named after the bug): blanco's eq. 64 with cosβ rounded to −1
+ * at β = π − 1e-9 disagreed with its exact-β edge columns and blew up
+ * (error 2e-8 at l = 100, 99 at l = 200).  Band 100 vs the reference. */
+START_TEST(test_blanco_cos_rounding_near_pi)
+{
+    const int order = 101, l = 100, w = 2 * l + 1;
+    sh_rotation rot;
+    sh_rotation_from_euler(0.4, M_PI - 1e-9, -2.2, &rot);
+    double *all = malloc(sh_rot_block_offset(order) * sizeof *all), *ref = malloc((size_t)w * w * sizeof *ref);
+    sh_rot_plan *p;
+    ck_assert_int_eq(sh_rot_plan_create(order, SH_ROT_BLANCO, SH_PREC_DOUBLE, SH_CS, &p), SH_OK);
+    ck_assert_int_eq(sh_rot_plan_set(p, &rot), SH_OK);
+    ck_assert_int_eq(sh_rot_plan_blocks(p, all), SH_OK);
+    ck_assert_int_eq(sh_rot_reference_band(l, SH_CS, &rot, 32, ref, NULL), SH_OK);
+    for (int i = 0; i < w * w; i++)
+        ck_close(all[sh_rot_block_offset(l) + i], ref[i], 1e-11, 1.0, "blanco l=100 beta=pi-1e-9 entry %d", i);
+    sh_rot_plan_free(p);
+    free(all);
+    free(ref);
+}
+END_TEST
+
 static Suite *rot_suite(void)
 {
     Suite *s = suite_create("rot_choi_blanco");
@@ -303,6 +326,7 @@ static Suite *rot_suite(void)
     tcase_add_loop_test(tc, test_orthogonal_homomorphism, 0, 2);
     tcase_add_test(tc, test_choi_imaginary_part);
     tcase_add_test(tc, test_blanco_single_band);
+    tcase_add_test(tc, test_blanco_cos_rounding_near_pi);
     suite_add_tcase(s, tc);
     return s;
 }
