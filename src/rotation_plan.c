@@ -16,6 +16,8 @@ static const sh__rot_ops *const methods[SH_ROT_NMETHODS] = {
     [SH_ROT_Z] = &sh__rot_z_ops,
     [SH_ROT_IVANIC] = &sh__rot_ivanic_ops,
     [SH_ROT_ZXZXZ] = &sh__rot_zxzxz_ops,
+    [SH_ROT_CHOI] = &sh__rot_choi_ops,
+    [SH_ROT_BLANCO] = &sh__rot_blanco_ops,
     [SH_ROT_WIGNER] = &sh__rot_wigner_ops,
     [SH_ROT_REFERENCE] = &sh__rot_reference_ops,
 };
