@@ -42,7 +42,10 @@ void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real 
 
 void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
 {
-    /* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin. */
+    /* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin.  The
+     * recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
+     * double), so every SH_ANGLE_RESEED steps two consecutive pairs are taken from libm (argument
+     * m·θ formed in double) and the recurrence restarts from it. */
     const sh_real c1 = SH_COS(theta), s1 = SH_SIN(theta), two_c = 2 * c1;
     cs[0] = 1;
     cs[1] = 0;
@@ -50,6 +53,12 @@ void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
     cs[2] = c1;
     cs[3] = s1;
     for (int m = 2; m <= mmax; m++) {
+        if (m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
+            const double a = (double)m * (double)theta;
+            cs[2 * m] = (sh_real)cos(a);
+            cs[2 * m + 1] = (sh_real)sin(a);
+            continue;
+        }
         cs[2 * m] = two_c * cs[2 * (m - 1)] - cs[2 * (m - 2)];
         cs[2 * m + 1] = two_c * cs[2 * (m - 1) + 1] - cs[2 * (m - 2) + 1];
     }

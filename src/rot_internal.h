@@ -54,7 +54,9 @@ void sh__rot_blocks_apply_f(int order, const float *blocks, const float *in, flo
                             uint64_t *mults);
 /* cs[2m], cs[2m+1] = cos(mθ), sin(mθ) for m = 0..mmax by the Chebyshev
  * recurrence cos(mθ) = 2cosθ cos((m−1)θ) − cos((m−2)θ) (and the same for sin),
- * seeded with libm's cosθ, sinθ. */
+ * seeded with libm's cosθ, sinθ and re-seeded from libm every
+ * SH_ANGLE_RESEED steps (bounds the recurrence's m·ε error growth). */
+#define SH_ANGLE_RESEED 16
 void sh__rot_multiple_angles_d(double theta, int mmax, double *cs);
 void sh__rot_multiple_angles_f(float theta, int mmax, float *cs);
 /* Real Z rotation of one band's coefficients in place:
