@@ -155,7 +155,7 @@ int sh_scale_breaks(const sh_scaling *s, double *breaks)
     return 0;
 }
 
-static void family_tau(double theta, void *ctx, double *tau, double *dtau)
+void sh_scale_family_tau(double theta, void *ctx, double *tau, double *dtau)
 {
     tau_eval((const sh_scaling *)ctx, theta, tau, dtau);
 }
@@ -318,7 +318,7 @@ int sh_scale_matrix(int order, const sh_scaling *s, double *M, double *work)
     double br[SH_SCALE_MAX_BREAKS];
     const int nb = sh_scale_breaks(s, br);
     sh_scaling copy = *s;
-    return sh_scale_matrix_tau(order, family_tau, &copy, s->energy, br, nb, M, work);
+    return sh_scale_matrix_tau(order, sh_scale_family_tau, &copy, s->energy, br, nb, M, work);
 }
 
 /* ---- second, independent computation ---------------------------------

@@ -330,6 +330,60 @@ int sh_scale_matrix_quad(int order, sh_convention conv, const sh_scaling *s, int
  * |M_ij| > rel·max|M| (rel = 1e-12 in CONVENTIONS.md). */
 long sh_scale_pattern_bound(int order);
 long sh_scale_nonzeros(int order, const double *M, double rel);
+/* τ of a family as an sh_scale_tau_fn (ctx: const sh_scaling *, checked). */
+void sh_scale_family_tau(double theta, void *ctx, double *tau, double *dtau);
+/* Interpolation over k (scale_interp.c, Wang Sec. 2.2): tabulate M at
+ * `samples` k from kmin to kmax (geometric or uniform), interpolate each
+ * entry in k (linear, or GSL natural cubic spline) and compare with M
+ * computed directly at `dense` points (same spacing, ends included):
+ * largest absolute entry error and RMS over all m_i = m_j entries. */
+typedef enum { SH_SPACING_GEOMETRIC = 0, SH_SPACING_UNIFORM } sh_scale_spacing;
+typedef enum { SH_INTERP_LINEAR = 0, SH_INTERP_CUBIC } sh_scale_interp_kind;
+const char *sh_scale_spacing_name(sh_scale_spacing s);
+int sh_scale_spacing_parse(const char *s, sh_scale_spacing *out);
+const char *sh_scale_interp_name(sh_scale_interp_kind k);
+int sh_scale_interp_parse(const char *s, sh_scale_interp_kind *out);
+double sh_scale_grid_point(sh_scale_spacing sp, double a, double b, int q, int n);
+typedef struct { double max_error, rms_error, worst_k; } sh_scale_interp_result;
+int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
+                          double kmin, double kmax, sh_scale_interp_kind interp, int dense,
+                          sh_scale_interp_result *res);
+/* Scenes with ground truth for scaling (scale_scene.c): sphere occluder
+ * (exact cap), cone occluder (non-zonal rim on a cone: the cone family is
+ * exact geometry), mid-range environment on a sphere of radius R (ray-sphere
+ * intersection).  k: d/r (occluders, reference sample at k = 1) or d/R
+ * (midrange, reference at the centre k = 0).  Displacements along +z only:
+ * an arbitrary direction is rotate → scale → rotate back. */
+typedef enum { SH_SCENE_SPHERE = 0, SH_SCENE_CONE, SH_SCENE_MIDRANGE } sh_scale_scene_kind;
+const char *sh_scale_scene_name(sh_scale_scene_kind k);
+int sh_scale_scene_parse(const char *s, sh_scale_scene_kind *out);
+typedef struct {
+    sh_scale_scene_kind kind;
+    double size;       /* sphere: ρ/r; cone: rim height h/r above the apex */
+    double cone_angle; /* cone occluder half-angle θ0 in (0, π/2) */
+    double wobble;     /* cone: rim at h(1 + wobble·cosφ), |wobble| < 1 */
+    sh_sphere_fn light;        /* midrange: emitted radiance by direction from the centre */
+    void *light_ctx;
+    const sh_image *probe;     /* midrange: or a lat-long image (luminance, bilinear) */
+    int nodes;                 /* midrange: θ nodes of the direct projections (QUAD rule) */
+} sh_scale_scene;
+typedef struct { double err_scaled, err_geom, err_trunc; } sh_scale_scene_err;
+int sh_scale_scene_check(const sh_scale_scene *sc, double k);
+double sh_scale_scene_k_ref(const sh_scale_scene *sc);
+/* The exact scene function at k (occlusion 1/0, or radiance). */
+double sh_scale_scene_value(const sh_scale_scene *sc, double k, double theta, double phi);
+/* Exact projection of the scene at k. */
+int sh_scale_scene_exact(const sh_scale_scene *sc, int order, sh_convention conv, double k, double *c);
+/* Projection of the scaled, untruncated reference function F_r(τ)ψ/sinθ. */
+int sh_scale_scene_scaled_exact(const sh_scale_scene *sc, int order, sh_convention conv, const sh_scaling *s,
+                                double *c);
+/* Relative L2 errors (see scale_scene.c) of scaling S_r (NULL: the exact
+ * projection at the reference k) to k with s; scaled_out (may be NULL)
+ * receives M S_r. */
+int sh_scale_scene_errors(const sh_scale_scene *sc, int order, sh_convention conv, const sh_scaling *s,
+                          double k, const double *S_r, sh_scale_scene_err *e, double *scaled_out);
+/* Built-in smooth two-lobe environment for the midrange scene. */
+double sh_scale_scene_lobes_fn(const double d[3], double theta, double phi, void *ctx);
 /* [end section: scaling] */
 
 #ifdef __cplusplus

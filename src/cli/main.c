@@ -3,10 +3,12 @@
 
 #include <string.h>
 
-extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
+extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert, cmd_scale,
+    cmd_scale_interp, cmd_scale_scene;
 
 static const cli_command *const table[] = {
-    &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
+    &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert, &cmd_scale, &cmd_scale_interp,
+    &cmd_scale_scene,
 };
 
 const cli_command *cli_find(const char *name)
