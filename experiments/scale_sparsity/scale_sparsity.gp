@@ -7,4 +7,4 @@ set key outside right
 set grid
 set title "Non-zero entries of the SH scaling matrix relative to the pattern bound"
 labels = system("sed -n '5,$p' ".outdir."/sparsity_cases.txt | tr ' ' '_' | tr '\\n' ' '")
-plot for [c=0:10] f using 1:(column(3+2*c)/$2) with linespoints pt 7 ps 0.5 title word(labels, c+1)
+plot for [c=0:10] f using 1:(column(3+2*c)/$2) with linespoints pt 7 ps 0.5 title word(labels, c+1) noenhanced
