@@ -19,6 +19,8 @@ unset multiplot
 set output outdir.'/scale_smoothness_interp.png'
 set terminal pngcairo size 1200,430 enhanced font ",11"
 f = outdir.'/interp.dat'
+set autoscale x
+set xtics autofreq
 set multiplot layout 1,3
 set logscale xy
 set format y "10^{%T}"
@@ -26,7 +28,7 @@ set xlabel "samples of k"
 set ylabel "max |M_{interp} − M|"
 set key bottom left font ",9"
 do for [b=0:2] {
-  set title word("cone_plain linear_plain midrange_energy", b+1)
+  set title word("cone_plain linear_plain midrange_energy", b+1) noenhanced
   plot f index b using 1:2 with linespoints pt 7 title "geometric, linear", \
        f index b using 1:4 with linespoints pt 5 title "geometric, cubic", \
        f index b using 1:6 with linespoints pt 9 dt 2 title "uniform, linear", \
