@@ -82,13 +82,12 @@ int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_sca
     const size_t P = sh_scale_integrals_n(order);
     double *ks = malloc(sizeof(double) * (size_t)samples);
     double *tab = malloc(sizeof(double) * (size_t)samples * P); /* tab[q·S + s] */
-    double *col = malloc(sizeof(double) * (size_t)samples);
     double *I = malloc(sizeof(double) * P);
     double *work = malloc(sizeof(double) * sh_scale_work_n(order));
     gsl_interp *gi = gsl_interp_alloc(interp == SH_INTERP_CUBIC ? gsl_interp_cspline : gsl_interp_linear,
                                       (size_t)samples);
     gsl_interp_accel *acc = gsl_interp_accel_alloc();
-    if (!ks || !tab || !col || !I || !work || !gi || !acc) {
+    if (!ks || !tab || !I || !work || !gi || !acc) {
         st = sh_error(SH_ENOMEM, "scale-interp: out of memory");
         goto done;
     }
@@ -142,6 +141,6 @@ int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_sca
 done:
     if (gi) gsl_interp_free(gi);
     if (acc) gsl_interp_accel_free(acc);
-    free(ks), free(tab), free(col), free(I), free(work);
+    free(ks), free(tab), free(I), free(work);
     return st;
 }
