@@ -6,11 +6,12 @@
 extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
 extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability, cmd_fixtures,
     cmd_verify;
+extern const cli_command cmd_scale, cmd_scale_interp, cmd_scale_scene;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
     &cmd_rotmat, &cmd_rotate, &cmd_euler, &cmd_stability, &cmd_fixtures,
-    &cmd_verify,
+    &cmd_verify, &cmd_scale, &cmd_scale_interp, &cmd_scale_scene,
 };
 
 const cli_command *cli_find(const char *name)
