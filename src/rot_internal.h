@@ -20,6 +20,7 @@
 typedef struct {
     const char *name;
     int max_order;
+    int approximate; /* 1: a Taylor approximation (not held to the reference) */
     /* per-order tables: NULL if the method needs none */
     int (*tables_new_d)(int order, void **tables);
     int (*tables_new_f)(int order, void **tables);

@@ -25,7 +25,8 @@ static const sh__rot_ops *const methods[SH_ROT_NMETHODS] = {
 static const char *const method_names[SH_ROT_NMETHODS] = {
     [SH_ROT_Z] = "z",           [SH_ROT_IVANIC] = "ivanic", [SH_ROT_ZXZXZ] = "zxzxz",
     [SH_ROT_CHOI] = "choi",     [SH_ROT_BLANCO] = "blanco", [SH_ROT_WIGNER] = "wigner",
-    [SH_ROT_REFERENCE] = "reference",
+    [SH_ROT_REFERENCE] = "reference", [SH_ROT_TAYLOR1] = "taylor1", [SH_ROT_TAYLOR15] = "taylor1.5",
+    [SH_ROT_TAYLOR2] = "taylor2",
 };
 
 const char *sh_rot_method_name(sh_rot_method m)
@@ -42,8 +43,14 @@ int sh_rot_method_parse(const char *s, sh_rot_method *out)
             return SH_OK;
         }
     return sh_error(SH_EINVAL,
-                    "unknown method '%s' (z, ivanic, zxzxz, choi, blanco, wigner, reference)",
+                    "unknown method '%s' (z, ivanic, zxzxz, choi, blanco, wigner, reference, "
+                    "taylor1, taylor1.5, taylor2)",
                     s ? s : "");
+}
+
+int sh_rot_method_is_exact(sh_rot_method m)
+{
+    return m >= 0 && m < SH_ROT_NMETHODS && methods[m] && !methods[m]->approximate;
 }
 
 const char *sh_precision_name(sh_precision p) { return p == SH_PREC_FLOAT ? "float" : "double"; }

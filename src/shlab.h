@@ -326,6 +326,9 @@ typedef enum {
     SH_ROT_BLANCO,    /* Blanco, Flórez & Bermejo 1997 recursion for d^l(β) */
     SH_ROT_WIGNER,    /* direct Wigner small-d sum in long double */
     SH_ROT_REFERENCE, /* the same sum in MPFR, ≥ 30 correct digits */
+    SH_ROT_TAYLOR1,   /* approximate: Z(α)·(I + βJ)·Z(γ)  (Krivánek et al. 2005) */
+    SH_ROT_TAYLOR15,  /* approximate: Z(α)·(I + βJ + β²/2·diag(J²))·Z(γ) */
+    SH_ROT_TAYLOR2,   /* approximate: Z(α)·(I + βJ + β²/2·J²)·Z(γ) */
     SH_ROT_NMETHODS
 } sh_rot_method;
 typedef enum { SH_PREC_DOUBLE = 0, SH_PREC_FLOAT = 1 } sh_precision;
@@ -333,8 +336,11 @@ const char *sh_rot_method_name(sh_rot_method m);
 int sh_rot_method_parse(const char *s, sh_rot_method *out);
 const char *sh_precision_name(sh_precision p);
 int sh_precision_parse(const char *s, sh_precision *out);
-/* Largest order a method accepts (the direct sums use factorial tables). */
+/* Largest order a method accepts (the direct sums use factorial tables);
+ * 0 if the method is not built in. */
 int sh_rot_method_max_order(sh_rot_method m);
+/* 1 for the exact methods, 0 for the Taylor approximations. */
+int sh_rot_method_is_exact(sh_rot_method m);
 
 /* A rotation plan: create once for (order, method, precision, convention) —
  * per-order tables (X±90 blocks, recursion coefficients) are built here —

@@ -23,6 +23,7 @@ static const char help[] =
     "  broken true if the method overflowed (its numbers are then empty)\n"
     "\n"
     "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
+    "                       | taylor1 | taylor1.5 | taylor2\n"
     "  --lmax L             every band 0..L (L <= 1000)\n"
     "  --bands L1,L2,...    only these bands (increasing, <= 1000); single-band\n"
     "                       methods then compute nothing else\n"
