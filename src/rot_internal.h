@@ -112,5 +112,6 @@ int sh__rot_reference_selfcheck(int band, const sh_rotation *rot, int digits, do
  * double compilation (inside #ifndef SH_REAL_FLOAT), naming both precisions. */
 extern const sh__rot_ops sh__rot_z_ops, sh__rot_ivanic_ops, sh__rot_zxzxz_ops, sh__rot_choi_ops,
     sh__rot_blanco_ops, sh__rot_wigner_ops, sh__rot_reference_ops;
+extern const sh__rot_ops sh__rot_taylor1_ops, sh__rot_taylor15_ops, sh__rot_taylor2_ops;
 
 #endif

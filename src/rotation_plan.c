@@ -20,6 +20,7 @@ static const sh__rot_ops *const methods[SH_ROT_NMETHODS] = {
     [SH_ROT_BLANCO] = &sh__rot_blanco_ops,
     [SH_ROT_WIGNER] = &sh__rot_wigner_ops,
     [SH_ROT_REFERENCE] = &sh__rot_reference_ops,
+    [SH_ROT_TAYLOR1] = &sh__rot_taylor1_ops, [SH_ROT_TAYLOR15] = &sh__rot_taylor15_ops, [SH_ROT_TAYLOR2] = &sh__rot_taylor2_ops,
 };
 
 static const char *const method_names[SH_ROT_NMETHODS] = {
