@@ -567,9 +567,9 @@ double sh_rot_bench_setup_ns(const sh_bench_opts *opts);
 
 /* Error of a method's rotation against the exact one (CONVENTIONS.md,
  * "Taylor-approximated rotation"), computed generically: D = R_method −
- * R_exact for the rotation (α, β, γ) block by block, R_exact from the zxzxz
- * plan in double (accurate to ~1e-15 for order ≤ 100) or, with
- * use_reference, from the MPFR reference.  max = largest singular value of
+ * R_exact for the rotation (α, β, γ) block by block, R_exact from the MPFR
+ * reference plan (use_reference) or the zxzxz plan in double (accurate to
+ * ~1e-15 for order ≤ 100; zxzxz then measures 0 against itself).  max = largest singular value of
  * D, mean = mean of all n² singular values (GSL one-sided Jacobi SVD per
  * band), lobe = ‖D c‖₂, c the unit coefficient vector of max(0, cosθ)^e
  * about +z (sh_lobe_zonal).  Since Z(α), Z(γ) are orthogonal and c is
@@ -584,7 +584,8 @@ int sh_rot_errws_eval(sh_rot_errws *w, sh_rot_method method, sh_precision prec, 
 void sh_rot_errws_free(sh_rot_errws *w);
 
 /* The cheapest method for an error budget (rotation_choose.c): every method
- * built in (reference excluded; z only if max_beta = 0) is measured over the
+ * built in (reference excluded; z only if max_beta = 0) is measured (against
+ * the MPFR reference up to order 32, zxzxz above) over the
  * β grid 0, h, 2h, …, max_beta (h ≤ beta_step) at seeded α, γ, and timed
  * (sh_rot_bench per rotation, short); candidates whose largest error stays
  * ≤ tolerance are ranked by ns_median. */
