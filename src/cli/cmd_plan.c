@@ -1,0 +1,235 @@
+/* cmd_plan.c — `shlab plan`: the cheapest rotation method (measured now)
+ * whose measured error stays within a tolerance for every β up to a
+ * maximum, and the runner-up; with --order auto, first the smallest order
+ * that represents an environment image.  Logic in rotation_choose.c. */
+#include "cli.h"
+
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern const cli_command cmd_plan;
+
+static const char help[] =
+    "Usage: shlab plan --order N --max-beta B --tolerance E [OPTIONS]\n"
+    "       shlab plan --order auto --exr FILE --tolerance E --max-beta B [OPTIONS]\n"
+    "\n"
+    "Choose the cheapest rotation method for a scene: every method built in\n"
+    "(exact ones and the Taylor approximations once available; not the MPFR\n"
+    "reference; z only when B = 0) is measured against the exact rotation on a\n"
+    "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
+    "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
+    "largest error over the grid is <= E; the runner-up the next fastest.\n"
+    "Errors (CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
+    "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
+    "value of R_method − R_exact.\n"
+    "With --order auto the order is first chosen as the smallest n <= --max-order\n"
+    "whose projection of the image has relative L2 residual <= E on the sphere\n"
+    "(Parseval: ε² = (‖f‖² − Σc²)/‖f‖², colour channels together, ‖f‖² by the\n"
+    "same pixel quadrature as the projection); the same E is then the rotation\n"
+    "tolerance (override with --rot-tolerance).\n"
+    "\n"
+    "  --order N|auto       order (1..64) or auto (needs --exr)\n"
+    "  --max-beta B         largest rotation about y the scene needs (<= π)\n"
+    "  --tolerance E        error budget (> 0)\n"
+    "  --rot-tolerance E2   rotation budget when it should differ from E (auto)\n"
+    "  --measure lobe|max   error measure (default lobe)\n"
+    "  --lobe-exp E2        exponent of the lobe (default 7)\n"
+    "  --beta-step S        largest grid step (default 0.25°)\n"
+    "  --degrees            --max-beta and --beta-step in degrees\n"
+    "  --precision P        double (default) | float\n"
+    "  --exr FILE           environment image (with --order auto)\n"
+    "  --layout L           latlong (default) | probe\n"
+    "  --max-order M        largest order tried by auto (default 32)\n"
+    "  --quiet              no progress on stderr\n"
+    "  --format table|csv|json\n"
+    "  --help               this text\n"
+    "\n"
+    "JSON: {\"order\",\"convention\",\"max_beta\",\"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
+    "       \"choice\":{\"method\",\"ns_per_rotation\",\"max_error\"} (null if none qualifies),\n"
+    "       \"runner_up\":{...} (or null),\n"
+    "       \"candidates\":[{\"method\",\"exact\",\"ok\",\"max_error\",\"worst_beta\",\n"
+    "                      \"ns_per_rotation\",\"mults\"}],\n"
+    "       with --order auto also \"order_residual\" (relative L2 at the chosen order)\n"
+    "       and \"image\":{\"path\",\"width\",\"height\",\"layout\"}}.  Exit 0 if a method\n"
+    "       qualifies, 1 if none does (the candidates still printed).\n";
+
+static json_t *cand_json(const sh_rot_candidate *c, int full)
+{
+    json_t *o = json_object();
+    o = cli_put(o, "method", json_string(sh_rot_method_name(c->method)));
+    if (full) {
+        o = cli_put(o, "exact", json_boolean(c->exact));
+        o = cli_put(o, "ok", json_boolean(c->ok));
+    }
+    o = cli_put(o, "ns_per_rotation", json_real(c->ns_per_rotation));
+    o = cli_put(o, "max_error", json_real(c->max_error));
+    if (full) {
+        o = cli_put(o, "worst_beta", json_real(c->worst_beta));
+        o = cli_put(o, "mults", json_real(c->mults));
+    }
+    return o;
+}
+
+static int run(int argc, char **argv)
+{
+    static const struct option opts[] = {CLI_LONGOPTS_BASE,
+                                         CLI_LONGOPT_PRECISION,
+                                         CLI_LONGOPT_DEGREES,
+                                         {"order", required_argument, 0, 'o'},
+                                         {"max-beta", required_argument, 0, 'B'},
+                                         {"tolerance", required_argument, 0, 'e'},
+                                         {"rot-tolerance", required_argument, 0, 'E'},
+                                         {"measure", required_argument, 0, 'm'},
+                                         {"lobe-exp", required_argument, 0, 'l'},
+                                         {"beta-step", required_argument, 0, 's'},
+                                         {"exr", required_argument, 0, 'x'},
+                                         {"layout", required_argument, 0, 'y'},
+                                         {"max-order", required_argument, 0, 'M'},
+                                         {"quiet", no_argument, 0, 'q'},
+                                         {0, 0, 0, 0}};
+    cli_common com = CLI_COMMON_DEFAULTS;
+    sh_rot_choose_opts co = {0};
+    co.lobe_exp = 7;
+    co.measure = SH_MEASURE_LOBE;
+    co.prec = SH_PREC_DOUBLE;
+    double max_beta = 0, beta_step = -1, rot_tol = -1;
+    int have_beta = 0, have_tol = 0, order_auto = 0, quiet = 0, max_order = 32, have_layout = 0;
+    int have_max_order = 0;
+    const char *exr = NULL;
+    sh_layout layout = SH_LAYOUT_LATLONG;
+    opterr = 0;
+    optind = 1;
+    int o;
+    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        switch (o) {
+        case CLI_OPT_PRECISION:
+            if (cli_precision(optarg, &co.prec)) return CLI_EXIT_USAGE;
+            break;
+        case 'o':
+            if (!strcmp(optarg, "auto")) order_auto = 1;
+            else {
+                if (cli_order("--order", optarg, &co.order)) return CLI_EXIT_USAGE;
+                if (co.order > 64) return cli_fail("--order: %d > 64", co.order);
+                order_auto = 0;
+            }
+            break;
+        case 'B':
+            if (cli_double("--max-beta", optarg, &max_beta)) return CLI_EXIT_USAGE;
+            have_beta = 1;
+            break;
+        case 'e':
+            if (cli_double("--tolerance", optarg, &co.tolerance)) return CLI_EXIT_USAGE;
+            if (!(co.tolerance > 0)) return cli_fail("--tolerance: must be > 0");
+            have_tol = 1;
+            break;
+        case 'E':
+            if (cli_double("--rot-tolerance", optarg, &rot_tol)) return CLI_EXIT_USAGE;
+            if (!(rot_tol > 0)) return cli_fail("--rot-tolerance: must be > 0");
+            break;
+        case 'm':
+            if (sh_error_measure_parse(optarg, &co.measure)) return cli_fail("--measure: %s", sh_last_error());
+            break;
+        case 'l':
+            if (cli_double("--lobe-exp", optarg, &co.lobe_exp)) return CLI_EXIT_USAGE;
+            if (!(co.lobe_exp >= 0 && co.lobe_exp <= 1e6)) return cli_fail("--lobe-exp: must be in [0, 1e6]");
+            break;
+        case 's':
+            if (cli_double("--beta-step", optarg, &beta_step)) return CLI_EXIT_USAGE;
+            if (!(beta_step > 0)) return cli_fail("--beta-step: must be > 0");
+            break;
+        case 'x':
+            if (exr) return cli_fail("plan: --exr given twice");
+            exr = optarg;
+            break;
+        case 'y':
+            if (sh_layout_parse(optarg, &layout)) return cli_fail("--layout: %s", sh_last_error());
+            have_layout = 1;
+            break;
+        case 'M':
+            if (cli_int("--max-order", optarg, &max_order)) return CLI_EXIT_USAGE;
+            if (max_order < 1 || max_order > 64) return cli_fail("--max-order: out of range 1..64");
+            have_max_order = 1;
+            break;
+        case 'q': quiet = 1; break;
+        default: {
+            const int e = cli_common_opt(&cmd_plan, o, argv, &com);
+            if (e >= 0) return e;
+        }
+        }
+    }
+    if (optind < argc) return cli_fail("plan: unexpected argument '%s'", argv[optind]);
+    if (!order_auto && co.order == 0) return cli_fail("plan: --order N (or auto) is required");
+    if (!have_beta) return cli_fail("plan: --max-beta is required");
+    if (!have_tol) return cli_fail("plan: --tolerance is required");
+    if (order_auto && !exr) return cli_fail("plan: --order auto needs --exr FILE");
+    if (!order_auto && (exr || have_layout || have_max_order))
+        return cli_fail("plan: --exr, --layout and --max-order apply to --order auto only");
+    if (!order_auto && rot_tol > 0) return cli_fail("plan: --rot-tolerance applies to --order auto only");
+    const double deg = com.degrees ? M_PI / 180 : 1.0;
+    co.max_beta = max_beta * deg;
+    if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
+        return cli_fail("--max-beta: must be in [0, π]");
+    co.max_beta = fmin(co.max_beta, M_PI);
+    co.beta_step = beta_step > 0 ? beta_step * deg : 0.25 * M_PI / 180;
+    if (co.beta_step < 1e-5) return cli_fail("--beta-step: too small (< 1e-5 rad)");
+
+    json_t *img_json = NULL;
+    double order_resid = 0;
+    const double img_tol = co.tolerance;
+    if (order_auto) {
+        sh_image img = {0};
+        int st = sh_exr_read(exr, &img, NULL);
+        if (st) return cli_fail_status(st);
+        double resid[64];
+        int order = -1;
+        if (!quiet) fprintf(stderr, "plan: projecting %s (%dx%d) to order %d\n", exr, img.width, img.height, max_order);
+        st = sh_order_for_image(&img, layout, img_tol, max_order, &order, resid);
+        const int w = img.width, h = img.height;
+        sh_image_free(&img);
+        if (st) return cli_fail_status(st);
+        if (order < 0)
+            return cli_fail("plan: no order <= %d represents %s to relative L2 %g (at order %d: %.3g)",
+                            max_order, exr, img_tol, max_order, resid[max_order - 1]);
+        co.order = order;
+        order_resid = resid[order - 1];
+        if (rot_tol > 0) co.tolerance = rot_tol;
+        img_json = json_object();
+        img_json = cli_put(img_json, "path", json_string(exr));
+        img_json = cli_put(img_json, "width", json_integer(w));
+        img_json = cli_put(img_json, "height", json_integer(h));
+        img_json = cli_put(img_json, "layout", json_string(layout == SH_LAYOUT_LATLONG ? "latlong" : "probe"));
+    }
+    if (!quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
+    sh_rot_candidate cand[SH_ROT_NMETHODS];
+    int nc = 0, choice = -1, runner = -1;
+    int st = sh_rot_choose(&co, cand, &nc, &choice, &runner);
+    if (st) { json_decref(img_json); return cli_fail_status(st); }
+    json_t *cj = json_array();
+    for (int k = 0; k < nc && cj; k++)
+        if (json_array_append_new(cj, cand_json(&cand[k], 1))) { json_decref(cj); cj = NULL; }
+    json_t *root = json_object();
+    root = cli_put(root, "order", json_integer(co.order));
+    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
+    root = cli_put(root, "max_beta", json_real(co.max_beta));
+    root = cli_put(root, "tolerance", json_real(co.tolerance));
+    root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
+    root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
+    root = cli_put(root, "precision", json_string(sh_precision_name(co.prec)));
+    if (order_auto) {
+        root = cli_put(root, "image_tolerance", json_real(img_tol));
+        root = cli_put(root, "order_residual", json_real(order_resid));
+        root = cli_put(root, "image", img_json);
+    }
+    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0) : json_null());
+    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0) : json_null());
+    root = cli_put(root, "candidates", cj);
+    const int rc = cli_emit(root, com.fmt);
+    return rc == CLI_EXIT_OK && choice < 0 ? CLI_EXIT_CHECK : rc;
+}
+
+const cli_command cmd_plan = {"plan", run,
+                              "the cheapest rotation method for an error budget up to a β "
+                              "(measured now); --order auto from an EXR",
+                              help};

@@ -1,0 +1,70 @@
+#!/bin/sh
+# CLI contract of bench and plan (issue 5).  No timing is asserted: only the
+# structure of the results, the counted work against the paper's formula,
+# the error contract, and plan --order auto on an EXR the test writes itself.
+. tests/cli/lib.inc
+for c in bench plan; do expect_success "$c --help" $c --help; done
+expect_usage_error "bench bad method" bench --methods nope --order 3
+expect_usage_error "bench duplicate method" bench --methods zxzxz,zxzxz --order 3
+expect_usage_error "bench bad order" bench --methods zxzxz --order 0
+expect_usage_error "bench bad mode" bench --methods zxzxz --order 3 --mode fast
+expect_usage_error "bench bad repeat" bench --methods zxzxz --order 3 --repeat 0
+expect_usage_error "bench bad batch" bench --methods zxzxz --order 3 --batch 0
+expect_usage_error "bench max-beta > pi" bench --methods zxzxz --order 3 --max-beta 4
+expect_usage_error "bench stray argument" bench --methods zxzxz --order 3 extra
+# the Taylor kernels: refused in one line while not built in, timed once they are
+for t in taylor1 taylor1.5 taylor2; do
+    "$SHLAB" bench --methods $t --order 4 --count 10 --repeat 2 --format csv >"$TMP/out" 2>"$TMP/err"; rc=$?
+    if [ $rc = 2 ] && [ ! -s "$TMP/out" ] && [ "$(wc -l <"$TMP/err")" = 1 ] && grep -q "^shlab: error: .*not built in" "$TMP/err"; then
+        ok "bench $t: refused cleanly (not built in)"
+    elif [ $rc = 0 ] && grep -q ",$t,4," "$TMP/out"; then ok "bench $t: timed"
+    else notok "bench $t (exit $rc: $(head -c 200 "$TMP/err"))"; fi
+done
+
+expect_success "bench zxzxz,ivanic" bench --methods zxzxz,ivanic --order 3,6 --count 20 --repeat 3 --batch 4 --format csv --quiet
+rows=$(($(wc -l <"$TMP/out") - 1))
+[ "$rows" = 8 ] && ok "bench: 2 methods x 2 orders x 2 modes = 8 rows" || notok "bench rows $rows"
+# columns (after convention,repeat,setup_ns): method,order,precision,mode,ns_per_rotation,
+# ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch
+head -1 "$TMP/out" | grep -q ',method,order,precision,mode,ns_per_rotation,ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch$' \
+    && ok "bench csv header" || notok "bench csv header: $(head -1 "$TMP/out")"
+bad=$(awk -F, 'NR > 1 && !($10 > 0 && $10 <= $9 && $9 <= $11 && $8 == $9 && $13 > 0) { print }' "$TMP/out")
+[ -z "$bad" ] && ok "bench: 0 < min <= median <= max, ns_per_rotation = median" || notok "bench spread: $bad"
+# zxzxz per vector: n(2n²+18n−14)/3 (Krivánek Sec. 3.1) + multiple angles 6(n−2)
+for n in 3 6; do
+    m=$(awk -F, -v n=$n '$4 == "zxzxz" && $5 == n && $7 == "per-rotation" { print $12 }' "$TMP/out")
+    want=$((n * (2 * n * n + 18 * n - 14) / 3 + 6 * (n - 2)))
+    close "$m" "$want" 0 && ok "bench zxzxz n=$n mults $m = paper + angles" || notok "bench zxzxz n=$n mults $m want $want"
+done
+grep -qi nan "$TMP/out" && notok "bench: NaN in output" || ok "bench: no NaN"
+expect_success "bench json" bench --methods zxzxz --order 4 --count 10 --repeat 2 --mode batched --format json --quiet
+grep -q '"convention":"cs"' "$TMP/out" && grep -q '"mode":"batched"' "$TMP/out" && ok "bench json fields" || notok "bench json: $(head -c 200 "$TMP/out")"
+
+# plan
+expect_usage_error "plan no tolerance" plan --order 4 --max-beta 0.1
+expect_usage_error "plan no max-beta" plan --order 4 --tolerance 1e-3
+expect_usage_error "plan no order" plan --max-beta 0.1 --tolerance 1e-3
+expect_usage_error "plan auto without exr" plan --order auto --max-beta 0.1 --tolerance 1e-3
+expect_usage_error "plan exr without auto" plan --order 4 --exr x.exr --max-beta 0.1 --tolerance 1e-3
+expect_usage_error "plan bad measure" plan --order 4 --max-beta 0.1 --tolerance 1e-3 --measure rms
+expect_usage_error "plan negative tolerance" plan --order 4 --max-beta 0.1 --tolerance -1
+expect_usage_error "plan beta > pi" plan --order 4 --max-beta 200 --degrees --tolerance 1e-3
+expect_usage_error "plan missing exr" plan --order auto --exr "$TMP/none.exr" --max-beta 0.1 --tolerance 1e-3
+expect_success "plan order 4" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --degrees --format json --quiet
+grep -q '"order":4' "$TMP/out" && grep -q '"convention":"cs"' "$TMP/out" && grep -q '"choice":{"method"' "$TMP/out" \
+    && grep -q '"runner_up":{"method"' "$TMP/out" && ok "plan json: order, convention, choice, runner_up" || notok "plan json: $(head -c 300 "$TMP/out")"
+"$SHLAB" plan --order 4 --max-beta 0.1 --tolerance 1e-30 --beta-step 0.05 --format json --quiet >"$TMP/out" 2>"$TMP/err"; rc=$?
+[ $rc = 1 ] && grep -q '"choice":null' "$TMP/out" && ok "plan: nothing meets 1e-30 -> exit 1, choice null" || notok "plan 1e-30 exit $rc"
+
+# --order auto: f = y_0^0 + 0.3 y_2^1 (Y image written by reconstruct).
+# Residual (Parseval) at orders 1, 2 = 0.3/√1.09 = 0.287, at order 3 ≈ 0.
+"$SHLAB" reconstruct --order 3 --coeffs 1,0,0,0,0,0,0,0.3,0 --out "$TMP/p.exr" --width 128 --format json >/dev/null 2>"$TMP/err" \
+    && ok "synthetic EXR written" || notok "reconstruct: $(cat "$TMP/err")"
+expect_success "plan auto tol 0.01" plan --order auto --exr "$TMP/p.exr" --tolerance 0.01 --max-beta 5 --degrees --beta-step 1 --degrees --format json --quiet
+grep -q '"order":3' "$TMP/out" && ok "plan auto: order 3 at 1e-2" || notok "plan auto: $(head -c 300 "$TMP/out")"
+r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
+close "$r" 0 1e-2 && ok "plan auto: residual at order 3 ~ 0 ($r; pixel quadrature)" || notok "residual $r"
+expect_success "plan auto tol 0.3" plan --order auto --exr "$TMP/p.exr" --tolerance 0.3 --max-beta 5 --degrees --beta-step 1 --degrees --format json --quiet
+r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
+grep -q '"order":1' "$TMP/out" && close "$r" 0.28734788556634538 2e-3 && ok "plan auto: order 1 at 0.3, residual $r = 0.3/sqrt(1.09)" || notok "plan auto 0.3: $(head -c 300 "$TMP/out")"
+expect_usage_error "plan auto: no order reaches 1e-9 below 2" plan --order auto --exr "$TMP/p.exr" --tolerance 1e-9 --max-order 2 --max-beta 0.1 --quiet

@@ -1,0 +1,261 @@
+/* test_bench.c — the speed library (rotation_bench.c) and the generic error
+ * and choice (rotation_choose.c).  No timing is asserted (speed belongs to
+ * `shlab bench`): the tests check the counted work against the paper's
+ * formula, the bookkeeping of the result, clean refusal of methods that are
+ * not built in, the error measures against an independent dense computation,
+ * and the order-for-image residuals against Parseval's closed form. */
+#include "testutil.h"
+
+#include <gsl/gsl_linalg.h>
+#include <string.h>
+#include <unistd.h>
+
+static sh_bench_opts quick(void)
+{
+    sh_bench_opts o = SH_BENCH_OPTS_DEFAULT;
+    o.count = 20;
+    o.repeat = 3;
+    o.batch = 4;
+    return o;
+}
+
+/* zxzxz apply counts the n(2n²+18n−14)/3 of Krivánek Sec. 3.1 plus the
+ * Chebyshev multiple angles 3·2(n−2); its set counts nothing. */
+START_TEST(test_counts_zxzxz)
+{
+    sh_bench_opts o = quick();
+    for (int n = 3; n <= 9; n += 3) {
+        sh_bench_result r;
+        ck_assert_int_eq(sh_rot_bench(n, SH_ROT_ZXZXZ, SH_PREC_DOUBLE, SH_BENCH_PER_ROTATION, &o, &r), SH_OK);
+        const double paper = n * (2.0 * n * n + 18 * n - 14) / 3 + 6.0 * (n - 2);
+        ck_close(r.mults, paper, 0, 1, "zxzxz mults n=%d", n);
+        ck_assert_uint_eq(r.set_mults, 0);
+        ck_assert(r.ns_min <= r.ns_median && r.ns_median <= r.ns_max && r.ns_min > 0);
+        ck_close(r.mults_per_ns, r.mults / r.ns_median, TOL0, 0, "mults/ns n=%d", n);
+        ck_assert_int_eq(r.count, 20);
+    }
+}
+END_TEST
+
+/* A matrix method: apply = n(4n²−1)/3 (the block non-zeros), batched mults
+ * = set/batch + apply, for every exact method built in. */
+START_TEST(test_counts_blocks)
+{
+    sh_bench_opts o = quick();
+    const int n = 5;
+    for (int m = 0; m < SH_ROT_NMETHODS; m++) {
+        if (m == SH_ROT_ZXZXZ || m == SH_ROT_REFERENCE || !sh_rot_method_is_exact((sh_rot_method)m)) continue;
+        sh_bench_result a, b;
+        ck_assert_int_eq(sh_rot_bench(n, (sh_rot_method)m, SH_PREC_DOUBLE, SH_BENCH_PER_ROTATION, &o, &a), SH_OK);
+        ck_assert_int_eq(sh_rot_bench(n, (sh_rot_method)m, SH_PREC_DOUBLE, SH_BENCH_BATCHED, &o, &b), SH_OK);
+        if (m != SH_ROT_Z) ck_close((double)a.apply_mults, n * (4.0 * n * n - 1) / 3, 0, 1, "%s apply", sh_rot_method_name(m));
+        ck_close(a.mults, (double)a.set_mults + a.apply_mults, TOL0, 1, "%s per-rotation", sh_rot_method_name(m));
+        ck_close(b.mults, (double)b.set_mults / 4 + b.apply_mults, TOL0, 1, "%s batched", sh_rot_method_name(m));
+        ck_assert(isfinite(a.checksum) && isfinite(b.checksum));
+    }
+}
+END_TEST
+
+/* Every method name parses; the ones not built in (e.g. the Taylor kernels
+ * before their merge) are refused cleanly by the plan and by the bench. */
+START_TEST(test_unregistered)
+{
+    sh_bench_opts o = quick();
+    for (int m = 0; m < SH_ROT_NMETHODS; m++) {
+        if (sh_rot_method_max_order((sh_rot_method)m) > 0) continue;
+        sh_rot_plan *p = (sh_rot_plan *)&o;
+        ck_assert_int_ne(sh_rot_plan_create(4, (sh_rot_method)m, SH_PREC_DOUBLE, SH_CS, &p), SH_OK);
+        ck_assert_ptr_null(p);
+        sh_bench_result r;
+        ck_assert_int_ne(sh_rot_bench(4, (sh_rot_method)m, SH_PREC_DOUBLE, SH_BENCH_PER_ROTATION, &o, &r), SH_OK);
+    }
+    sh_bench_result r;
+    o.repeat = 0;
+    ck_assert_int_eq(sh_rot_bench(4, SH_ROT_ZXZXZ, SH_PREC_DOUBLE, SH_BENCH_PER_ROTATION, &o, &r), SH_EINVAL);
+}
+END_TEST
+
+/* The measures of sh_rot_errws against a dense computation: the n²×n²
+ * difference matrix, its SVD (all singular values at once, not per band),
+ * and the lobe vector from sh_light_closed_form. */
+START_TEST(test_error_dense)
+{
+    const int n = 5, nn = n * n;
+    sh_rotation rot;
+    sh_rotation_from_euler(0.7, 0.4, -1.9, &rot);
+    sh_rot_errws *w;
+    ck_assert_int_eq(sh_rot_errws_create(n, 7, 1, &w), SH_OK);
+    ck_assert_int_eq(sh_rot_errws_set(w, &rot), SH_OK);
+    sh_rot_error e;
+    ck_assert_int_eq(sh_rot_errws_eval(w, SH_ROT_ZXZXZ, SH_PREC_FLOAT, &e), SH_OK);
+
+    double *bm = malloc(sh_rot_block_offset(n) * sizeof *bm), *be = malloc(sh_rot_block_offset(n) * sizeof *be);
+    double *Dm = malloc((size_t)nn * nn * sizeof *Dm), *De = malloc((size_t)nn * nn * sizeof *De);
+    sh_rot_plan *pm, *pe;
+    ck_assert_int_eq(sh_rot_plan_create(n, SH_ROT_ZXZXZ, SH_PREC_FLOAT, SH_CS, &pm), SH_OK);
+    ck_assert_int_eq(sh_rot_plan_create(n, SH_ROT_REFERENCE, SH_PREC_DOUBLE, SH_CS, &pe), SH_OK);
+    sh_rot_plan_set(pm, &rot);
+    sh_rot_plan_set(pe, &rot);
+    sh_rot_plan_blocks(pm, bm);
+    sh_rot_plan_blocks(pe, be);
+    sh_rot_blocks_to_dense(n, bm, Dm);
+    sh_rot_blocks_to_dense(n, be, De);
+    for (int i = 0; i < nn * nn; i++) Dm[i] -= De[i];
+    /* lobe: ‖D c‖ with c the normalised closed-form lobe coefficients */
+    sh_light L = {0};
+    L.kind = SH_LIGHT_LOBE;
+    L.p[0] = 7;
+    double c[25], cn = 0, lobe = 0;
+    ck_assert_int_eq(sh_light_closed_form(&L, n, SH_CS, c), SH_OK);
+    for (int i = 0; i < nn; i++) cn += c[i] * c[i];
+    for (int r = 0; r < nn; r++) {
+        double s = 0;
+        for (int k = 0; k < nn; k++) s += Dm[r * nn + k] * c[k];
+        lobe += s * s;
+    }
+    lobe = sqrt(lobe / cn);
+    gsl_matrix_view A = gsl_matrix_view_array(Dm, nn, nn);
+    gsl_matrix *V = gsl_matrix_alloc(nn, nn);
+    gsl_vector *S = gsl_vector_alloc(nn);
+    gsl_linalg_SV_decomp_jacobi(&A.matrix, V, S);
+    double smax = 0, ssum = 0;
+    for (int k = 0; k < nn; k++) {
+        smax = fmax(smax, gsl_vector_get(S, k));
+        ssum += gsl_vector_get(S, k);
+    }
+    ck_close(e.max, smax, 1e-6, 0, "max singular value");
+    ck_close(e.mean, ssum / nn, 1e-6, 0, "mean singular value");
+    ck_close(e.lobe, lobe, 1e-6, 0, "lobe error");
+    /* float rounding, not zero and not large; ‖Dc‖ ≤ σ_max ‖c‖; mean ≤ max */
+    ck_assert(e.max > 1e-9 && e.max < 1e-5);
+    ck_assert(e.lobe <= e.max * (1 + 1e-12) && e.mean <= e.max);
+    /* an exact double method sits at rounding error */
+    ck_assert_int_eq(sh_rot_errws_eval(w, SH_ROT_BLANCO, SH_PREC_DOUBLE, &e), SH_OK);
+    ck_assert(e.max < 1e-13 && e.lobe < 1e-13);
+    gsl_matrix_free(V);
+    gsl_vector_free(S);
+    sh_rot_plan_free(pm);
+    sh_rot_plan_free(pe);
+    free(bm); free(be); free(Dm); free(De);
+    sh_rot_errws_free(w);
+}
+END_TEST
+
+/* choose: every exact method qualifies at 1e-12; ranking by time; nothing
+ * qualifies at 1e-30; z is a candidate only at max β = 0. */
+START_TEST(test_choose)
+{
+    sh_rot_choose_opts o = {0};
+    o.order = 4;
+    o.max_beta = 0.2;
+    o.tolerance = 1e-12;
+    o.lobe_exp = 7;
+    o.beta_step = 0.05;
+    o.measure = SH_MEASURE_MAX;
+    o.target_ms = 0.3;
+    o.repeat = 3;
+    sh_rot_candidate c[SH_ROT_NMETHODS];
+    int nc, ch, ru;
+    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(ch, 0);
+    ck_assert_int_eq(ru, 1);
+    for (int k = 0; k < nc; k++) {
+        ck_assert(c[k].method != SH_ROT_Z && c[k].method != SH_ROT_REFERENCE);
+        if (c[k].exact) ck_assert(c[k].ok);
+        if (k && c[k].ok) ck_assert(c[k - 1].ns_per_rotation <= c[k].ns_per_rotation);
+        if (k && c[k].ok) ck_assert(c[k - 1].ok);
+    }
+    o.tolerance = 1e-30;
+    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(ch, -1);
+    ck_assert_int_eq(ru, -1);
+    o.max_beta = 0;
+    o.tolerance = 1e-12;
+    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    int have_z = 0;
+    for (int k = 0; k < nc; k++) have_z |= c[k].method == SH_ROT_Z;
+    ck_assert(have_z);
+}
+END_TEST
+
+/* f = y_0^0 + a·y_2^1 (R, B) and y_0^0 + b·y_3^{-2} (G): ‖f‖² and the
+ * residuals after each order are known in closed form (orthonormality):
+ *   order 1, 2: √((2a²+b²)/F), order 3: |b|/√F, order ≥ 4: 0; F = 3+2a²+b². */
+typedef struct { double a, b; } two;
+static double fn_y(const double d[3], double th, double ph, void *ctx)
+{
+    const two *t = ctx;
+    double y[16];
+    sh_eval(4, SH_CS, th, ph, y);
+    (void)d;
+    return y[0] + t->a * y[sh_index(2, 1)];
+}
+static double fn_g(const double d[3], double th, double ph, void *ctx)
+{
+    const two *t = ctx;
+    double y[16];
+    sh_eval(4, SH_CS, th, ph, y);
+    (void)d;
+    return y[0] + t->b * y[sh_index(3, -2)];
+}
+
+START_TEST(test_order_for_image)
+{
+    two t = {0.3, 0.1};
+    sh_image a = {0}, b = {0};
+    ck_assert_int_eq(sh_image_from_fn(SH_LAYOUT_LATLONG, 256, 128, fn_y, &t, &a), SH_OK);
+    ck_assert_int_eq(sh_image_from_fn(SH_LAYOUT_LATLONG, 256, 128, fn_g, &t, &b), SH_OK);
+    /* an RGB image R = B = f_a, G = f_b, written and read back as EXR */
+    const size_t np = 256 * 128;
+    sh_image img = {256, 128, 3, {"R", "G", "B"}, malloc(3 * np * sizeof(float))};
+    memcpy(img.data, a.data, np * sizeof(float));
+    memcpy(img.data + np, b.data, np * sizeof(float));
+    memcpy(img.data + 2 * np, a.data, np * sizeof(float));
+    char path[] = "/tmp/shlab_test_bench_XXXXXX";
+    int fd = mkstemp(path);
+    ck_assert_int_ge(fd, 0);
+    close(fd);
+    ck_assert_int_eq(sh_exr_write(path, &img), SH_OK);
+    sh_image in = {0};
+    ck_assert_int_eq(sh_exr_read(path, &in, NULL), SH_OK);
+    unlink(path);
+    double r[8];
+    int order;
+    ck_assert_int_eq(sh_order_for_image(&in, SH_LAYOUT_LATLONG, 0.05, 8, &order, r), SH_OK);
+    /* the three channels together: ‖f‖² = 3 + 2a² + b² */
+    const double f2 = 3 + 2 * t.a * t.a + t.b * t.b;
+    const double e12 = sqrt((2 * t.a * t.a + t.b * t.b) / f2), e3 = fabs(t.b) / sqrt(f2);
+    ck_close(r[0], e12, 2e-3, 0, "residual order 1");
+    ck_close(r[1], e12, 2e-3, 0, "residual order 2");
+    ck_close(r[2], e3, 2e-3, 0, "residual order 3");
+    ck_assert(r[3] < 2e-3 && r[7] <= r[3]);
+    ck_assert_int_eq(order, 4); /* e3 = 0.055 > 0.05 */
+    ck_assert_int_eq(sh_order_for_image(&in, SH_LAYOUT_LATLONG, 0.1, 8, &order, NULL), SH_OK);
+    ck_assert_int_eq(order, 3);
+    ck_assert_int_eq(sh_order_for_image(&in, SH_LAYOUT_LATLONG, 0.3, 8, &order, NULL), SH_OK);
+    ck_assert_int_eq(order, 1);
+    ck_assert_int_eq(sh_order_for_image(&in, SH_LAYOUT_LATLONG, 1e-9, 3, &order, NULL), SH_OK);
+    ck_assert_int_eq(order, -1);
+    sh_image_free(&a);
+    sh_image_free(&b);
+    sh_image_free(&img);
+    sh_image_free(&in);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("bench");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, test_counts_zxzxz);
+    tcase_add_test(tc, test_counts_blocks);
+    tcase_add_test(tc, test_unregistered);
+    tcase_add_test(tc, test_error_dense);
+    tcase_add_test(tc, test_choose);
+    tcase_add_test(tc, test_order_for_image);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+SHLAB_TEST_MAIN(suite)
