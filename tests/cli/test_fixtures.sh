@@ -1,0 +1,60 @@
+#!/bin/sh
+# Golden rotation fixtures (data/fixtures/rotation) and `shlab verify`:
+# every exact method matches every fixture it is accurate for (issue 3), the
+# methods whose high-band breakdown is measured fail exactly the l = 200
+# cases, and --diagnose names each simulated mistake.
+. tests/cli/lib.inc
+FX=data/fixtures/rotation
+
+expect_success "fixtures --help" fixtures --help
+expect_success "verify --help" verify --help
+expect_usage_error "verify no fixture" verify --method zxzxz
+expect_usage_error "verify both sources" verify --fixture $FX/orders_1_10.json --method zxzxz --candidate x.json
+expect_usage_error "verify missing fixture" verify --fixture "$TMP/none.json" --method zxzxz
+printf '{"format":"other"}' >"$TMP/bad.json"
+expect_usage_error "verify wrong format" verify --fixture "$TMP/bad.json" --method zxzxz
+printf '{"results":{}}' >"$TMP/empty.json"
+expect_usage_error "verify candidate missing cases" verify --fixture $FX/orders_1_10.json --candidate "$TMP/empty.json"
+expect_usage_error "verify bad simulate" verify --fixture $FX/orders_1_10.json --method zxzxz --emit-candidate "$TMP/c.json" --simulate nope
+expect_usage_error "fixtures no out" fixtures
+
+# every exact method, double and float, on the orders 1-10 file
+for m in ivanic zxzxz choi blanco wigner reference; do
+    for p in double float; do
+        expect_success "verify $m $p orders 1-10" verify --fixture $FX/orders_1_10.json --method $m --precision $p
+    done
+done
+# the stable methods at l = 50 and 200
+for m in zxzxz blanco; do
+    expect_success "verify $m bands 50, 200" verify --fixture $FX/bands_50_200.json --method $m
+done
+expect_success "verify zxzxz float bands 50, 200" verify --fixture $FX/bands_50_200.json --method zxzxz --precision float
+# the l-recursions fail at l = 200 and only there (stability experiment)
+for m in ivanic choi; do
+    "$SHLAB" verify --fixture $FX/bands_50_200.json --method $m --format csv >"$TMP/out" 2>/dev/null; rc=$?
+    failed=$(csv_value "$TMP/out" 1 5)
+    worst=$(csv_value "$TMP/out" 1 7)
+    case "$worst" in b200-*) at200=1 ;; *) at200=0 ;; esac
+    if [ "$rc" = 1 ] && [ "$at200" = 1 ]; then ok "$m fails the l=200 cases ($failed failed, worst $worst)"; else notok "$m: rc $rc, worst $worst"; fi
+done
+
+# --diagnose names each simulated mistake
+for t in convention inverse swap deg2rad rad2deg mdesc mdesc-out mdesc-in float; do
+    "$SHLAB" verify --fixture $FX/orders_1_10.json --method zxzxz --emit-candidate "$TMP/c.json" --simulate $t >/dev/null 2>&1
+    "$SHLAB" verify --fixture $FX/orders_1_10.json --candidate "$TMP/c.json" --diagnose --format json >"$TMP/d.json" 2>/dev/null; rc=$?
+    case $t in
+        convention) want="other CS-phase convention" ;;
+        inverse) want="inverse rotation" ;;
+        swap) want="alpha and gamma swapped" ;;
+        deg2rad) want="degrees taken as radians" ;;
+        rad2deg) want="radians taken as degrees" ;;
+        mdesc) want="m-descending order within each band (input and output)" ;;
+        mdesc-out) want="m-descending order of the output" ;;
+        mdesc-in) want="m-descending order of the input" ;;
+        float) want="float precision only" ;;
+    esac
+    if [ "$rc" = 1 ] && grep -q "\"diagnosis\":\"$want" "$TMP/d.json"; then ok "diagnose $t"; else notok "diagnose $t: rc $rc $(grep -o '"diagnosis":"[^"]*' "$TMP/d.json")"; fi
+done
+# a correct candidate passes with exit 0
+"$SHLAB" verify --fixture $FX/orders_1_10.json --method blanco --emit-candidate "$TMP/c.json" >/dev/null 2>&1
+expect_success "verify a correct candidate" verify --fixture $FX/orders_1_10.json --candidate "$TMP/c.json"
