@@ -85,8 +85,9 @@ check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>
 # → reports/<name>/*.dat → experiments/<name>/*.gp → reports/<name>/*.png
 EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
-               probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error rotation_speed rotation_frontier \
-               rotation_stability
+               probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
+               rotation_speed rotation_frontier rotation_stability rotation_conventions \
+               rotation_extremes rotation_cost
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
