@@ -259,12 +259,14 @@ int sh__rot_zxzxz_xplus_band(int l, double *X)
 
 /* y = M x, M dense nr × nc row-major: two rows at a time (two independent
  * accumulator chains; each row still summed left to right). */
-static inline void SH_R(zx_mv)(int nr, int nc, const sh_real *M, const sh_real *x, sh_real *y)
+static inline __attribute__((always_inline)) void SH_R(zx_mv)(int nr, int nc, const sh_real *M, const sh_real *x, sh_real *y)
 {
     int r = 0;
+#pragma GCC unroll 8
     for (; r + 2 <= nr; r += 2, M += 2 * nc) {
         const sh_real *M1 = M + nc;
         sh_real a0 = M[0] * x[0], a1 = M1[0] * x[0];
+#pragma GCC unroll 16
         for (int c = 1; c < nc; c++) {
             a0 += M[c] * x[c];
             a1 += M1[c] * x[c];
@@ -274,17 +276,19 @@ static inline void SH_R(zx_mv)(int nr, int nc, const sh_real *M, const sh_real *
     }
     if (r < nr) {
         sh_real a0 = M[0] * x[0];
+#pragma GCC unroll 16
         for (int c = 1; c < nc; c++) a0 += M[c] * x[c];
         y[r] = a0;
     }
 }
 
 /* t = X₊₉₀ u for band l, u and t split by class (A|B|C|D): four dense blocks. */
-static void SH_R(zx_xmul)(int l, const sh_real *X, const sh_real *u, sh_real *t)
+static inline __attribute__((always_inline)) void SH_R(zx_xmul)(int l, const sh_real *X, const sh_real *u, sh_real *t)
 {
     int n[4], o[4];
     zx_cls_n(l, n);
     o[0] = 0, o[1] = n[0], o[2] = n[0] + n[1], o[3] = o[2] + n[2];
+#pragma GCC unroll 4
     for (int K = 0; K < 4; K++) {
         const int C = zx_col(l, K);
         if (n[K] && n[C]) SH_R(zx_mv)(n[K], n[C], X, u + o[C], t + o[K]);
@@ -295,15 +299,17 @@ static void SH_R(zx_xmul)(int l, const sh_real *X, const sh_real *u, sh_real *t)
 /* Z(θ) on a class-split band in place:
  *   c_m ← cos(mθ) c_m − sin(mθ) c_{−m},  c_{−m} ← sin(mθ) c_m + cos(mθ) c_{−m}
  * for m = 2k (A_k, D_{k−1}) and m = 2k+1 (C_k, B_k). */
-static inline void SH_R(zx_zsplit)(int l, const sh_real *cs, sh_real *u)
+static inline __attribute__((always_inline)) void SH_R(zx_zsplit)(int l, const sh_real *cs, sh_real *u)
 {
     const int nA = l / 2 + 1, nB = (l + 1) / 2;
     sh_real *A = u, *B = u + nA, *C = B + nB, *D = C + nB;
+#pragma GCC unroll 16
     for (int k = 1; 2 * k <= l; k++) {
         const sh_real c = cs[4 * k], s = cs[4 * k + 1], a = A[k], b = D[k - 1];
         A[k] = c * a - s * b;
         D[k - 1] = s * a + c * b;
     }
+#pragma GCC unroll 16
     for (int k = 0; 2 * k + 1 <= l; k++) {
         const sh_real c = cs[4 * k + 2], s = cs[4 * k + 3], a = C[k], b = B[k];
         C[k] = c * a - s * b;
@@ -312,8 +318,11 @@ static inline void SH_R(zx_zsplit)(int l, const sh_real *cs, sh_real *u)
 }
 
 /* One band: out = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ) in (2l+1 values each, header);
- * u, t have 2l+1.  csa, csb carry the +π (set). */
-static void SH_R(zx_band)(int l, const sh_real *X, const sh_real *csa, const sh_real *csb,
+ * u, t have 2l+1.  csa, csb carry the +π (set).  Written once for any l;
+ * zx_band below instantiates it for each small l as a constant, so that the
+ * compiler lays the tiny loops out straight (the same operations in the same
+ * order, without the loop control that dominates at these sizes). */
+static inline __attribute__((always_inline)) void SH_R(zx_band_l)(int l, const sh_real *X, const sh_real *csa, const sh_real *csb,
                           const sh_real *csg, const sh_real *in, sh_real *out, sh_real *u,
                           sh_real *t)
 {
@@ -324,11 +333,13 @@ static void SH_R(zx_band)(int l, const sh_real *X, const sh_real *csa, const sh_
     {
         sh_real *A = u, *B = u + nA, *C = B + nB, *D = C + nB;
         A[0] = x[0];
+#pragma GCC unroll 16
         for (int k = 1; 2 * k <= l; k++) {
             const sh_real c = csg[4 * k], s = csg[4 * k + 1], a = x[2 * k], b = x[-2 * k];
             A[k] = c * a - s * b;
             D[k - 1] = s * a + c * b;
         }
+#pragma GCC unroll 16
         for (int k = 0; 2 * k + 1 <= l; k++) {
             const sh_real c = csg[4 * k + 2], s = csg[4 * k + 3], a = x[2 * k + 1], b = x[-2 * k - 1];
             C[k] = c * a - s * b;
@@ -342,16 +353,33 @@ static void SH_R(zx_band)(int l, const sh_real *X, const sh_real *csa, const sh_
     {
         const sh_real *A = u, *B = u + nA, *C = B + nB, *D = C + nB;
         y[0] = A[0];
+#pragma GCC unroll 16
         for (int k = 1; 2 * k <= l; k++) {
             const sh_real c = csa[4 * k], s = csa[4 * k + 1], a = A[k], b = D[k - 1];
             y[2 * k] = c * a - s * b;
             y[-2 * k] = s * a + c * b;
         }
+#pragma GCC unroll 16
         for (int k = 0; 2 * k + 1 <= l; k++) {
             const sh_real c = csa[4 * k + 2], s = csa[4 * k + 3], a = C[k], b = B[k];
             y[2 * k + 1] = c * a - s * b;
             y[-2 * k - 1] = s * a + c * b;
         }
+    }
+}
+
+#define ZX_SPECIAL 12 /* bands 0..11 (orders ≤ 12) get their own instance */
+static void SH_R(zx_band)(int l, const sh_real *X, const sh_real *csa, const sh_real *csb,
+                          const sh_real *csg, const sh_real *in, sh_real *out, sh_real *u,
+                          sh_real *t)
+{
+    switch (l) {
+#define ZX_CASE(L)                                                                                 \
+    case L: SH_R(zx_band_l)(L, X, csa, csb, csg, in, out, u, t); return;
+        ZX_CASE(0) ZX_CASE(1) ZX_CASE(2) ZX_CASE(3) ZX_CASE(4) ZX_CASE(5)
+        ZX_CASE(6) ZX_CASE(7) ZX_CASE(8) ZX_CASE(9) ZX_CASE(10) ZX_CASE(11)
+#undef ZX_CASE
+    default: SH_R(zx_band_l)(l, X, csa, csb, csg, in, out, u, t);
     }
 }
 
