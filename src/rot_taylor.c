@@ -99,36 +99,27 @@ int SH_R(sh__rot_taylor_tables_new)(int order, void **tables)
     return SH_OK;
 }
 
-/* y = T(β) x for band l; x has two zeros before x[0] and after x[w−1].
- * One loop per kind (no branch on the kind inside the band loop). */
-static void SH_R(ty_band1)(int l, const taylor_tables *T, sh_real beta, sh_real bb,
-                           const sh_real *x, sh_real *y)
-{
-    const int w = 2 * l + 1;
-    const sh_real *s = T->s + tab_off(l);
-    for (int j = 0; j < w; j++) y[j] = x[j] + beta * (s[j] * x[j - 1] - s[j + 1] * x[j + 1]);
-}
-static void SH_R(ty_band15)(int l, const taylor_tables *T, sh_real beta, sh_real bb,
-                            const sh_real *x, sh_real *y)
-{
-    const int w = 2 * l + 1;
-    const sh_real *s = T->s + tab_off(l), *d = T->d + tab_off(l);
-    for (int j = 0; j < w; j++)
-        y[j] = x[j] * (1 + bb * d[j]) + beta * (s[j] * x[j - 1] - s[j + 1] * x[j + 1]);
-}
-static void SH_R(ty_band2)(int l, const taylor_tables *T, sh_real beta, sh_real bb,
-                           const sh_real *x, sh_real *y)
+/* y = T(β) x for band l; x has two zeros before x[0] and after x[w−1]. */
+static inline __attribute__((always_inline)) void SH_R(ty_band)(int kind, int l,
+                                                                const taylor_tables *T,
+                                                                sh_real beta, sh_real bb,
+                                                                const sh_real *x, sh_real *y)
 {
     const int w = 2 * l + 1;
     const sh_real *s = T->s + tab_off(l), *d = T->d + tab_off(l), *q = T->q + tab_off(l);
-    for (int j = 0; j < w; j++)
-        y[j] = x[j] * (1 + bb * d[j]) + beta * (s[j] * x[j - 1] - s[j + 1] * x[j + 1]) +
-               bb * (q[j] * x[j - 2] + q[j + 2] * x[j + 2]);
-}
-typedef void (*ty_band_fn)(int, const taylor_tables *, sh_real, sh_real, const sh_real *, sh_real *);
-static ty_band_fn SH_R(ty_band_of)(int kind)
-{
-    return kind == 1 ? SH_R(ty_band1) : kind == 15 ? SH_R(ty_band15) : SH_R(ty_band2);
+    if (kind == 1) {
+#pragma GCC unroll 32
+        for (int j = 0; j < w; j++) y[j] = x[j] + beta * (s[j] * x[j - 1] - s[j + 1] * x[j + 1]);
+    } else if (kind == 15) {
+#pragma GCC unroll 32
+        for (int j = 0; j < w; j++)
+            y[j] = x[j] * (1 + bb * d[j]) + beta * (s[j] * x[j - 1] - s[j + 1] * x[j + 1]);
+    } else {
+#pragma GCC unroll 32
+        for (int j = 0; j < w; j++)
+            y[j] = x[j] * (1 + bb * d[j]) + beta * (s[j] * x[j - 1] - s[j + 1] * x[j + 1]) +
+                   bb * (q[j] * x[j - 2] + q[j + 2] * x[j + 2]);
+    }
 }
 
 static uint64_t ty_band_mults(int kind, int l)
@@ -138,11 +129,14 @@ static uint64_t ty_band_mults(int kind, int l)
 }
 
 /* One band through Z(γ), T(β), Z(α): in (w values) → out; pad has w + 4.
- * Z(γ) is applied while copying into the padded buffer:
- *   x_{+m} = cos(mγ) c_m − sin(mγ) c_{−m},  x_{−m} = sin(mγ) c_m + cos(mγ) c_{−m}. */
-static inline void SH_R(ty_pipeline)(ty_band_fn band, int l, const taylor_tables *T,
-                                     const sh_real *csa, const sh_real *csg, sh_real beta,
-                                     sh_real bb, const sh_real *in, sh_real *out, sh_real *pad)
+ * Z(γ) is applied while copying into the padded buffer, Z(α) in place:
+ *   x_{+m} = cos(mγ) c_m − sin(mγ) c_{−m},  x_{−m} = sin(mγ) c_m + cos(mγ) c_{−m}.
+ * Written once for any kind and l; ty_pipeline_K below instantiates it for
+ * each kind and each small l as constants (the same operations in the same
+ * order, the short loops laid out straight — as for zxzxz). */
+static inline __attribute__((always_inline)) void SH_R(ty_pipeline_l)(
+    int kind, int l, const taylor_tables *T, const sh_real *csa, const sh_real *csg, sh_real beta,
+    sh_real bb, const sh_real *in, sh_real *out, sh_real *pad)
 {
     const int w = 2 * l + 1;
     if (l == 0) {
@@ -152,13 +146,50 @@ static inline void SH_R(ty_pipeline)(ty_band_fn band, int l, const taylor_tables
     sh_real *x = pad + 2;
     pad[0] = pad[1] = x[w] = x[w + 1] = 0;
     x[l] = in[l];
+#pragma GCC unroll 16
     for (int m = 1; m <= l; m++) { /* Z(γ) */
         const sh_real cm = csg[2 * m], sm = csg[2 * m + 1], a = in[l + m], b = in[l - m];
         x[l + m] = cm * a - sm * b;
         x[l - m] = sm * a + cm * b;
     }
-    band(l, T, beta, bb, x, out);
-    SH_R(sh__rot_z_band)(l, csa, out, NULL); /* Z(α) */
+    SH_R(ty_band)(kind, l, T, beta, bb, x, out);
+#pragma GCC unroll 16
+    for (int m = 1; m <= l; m++) { /* Z(α) */
+        const sh_real cm = csa[2 * m], sm = csa[2 * m + 1], a = out[l + m], b = out[l - m];
+        out[l + m] = cm * a - sm * b;
+        out[l - m] = sm * a + cm * b;
+    }
+}
+#define TY_SPECIAL 12 /* bands 0..11 (orders ≤ 12) get their own instance */
+#define TY_PIPELINE(K)                                                                             \
+    static void SH_R(ty_pipeline_##K)(int l, const taylor_tables *T, const sh_real *csa,          \
+                                      const sh_real *csg, sh_real beta, sh_real bb,                \
+                                      const sh_real *in, sh_real *out, sh_real *pad)               \
+    {                                                                                              \
+        switch (l) {                                                                               \
+        case 0: SH_R(ty_pipeline_l)(K, 0, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 1: SH_R(ty_pipeline_l)(K, 1, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 2: SH_R(ty_pipeline_l)(K, 2, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 3: SH_R(ty_pipeline_l)(K, 3, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 4: SH_R(ty_pipeline_l)(K, 4, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 5: SH_R(ty_pipeline_l)(K, 5, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 6: SH_R(ty_pipeline_l)(K, 6, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 7: SH_R(ty_pipeline_l)(K, 7, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 8: SH_R(ty_pipeline_l)(K, 8, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 9: SH_R(ty_pipeline_l)(K, 9, T, csa, csg, beta, bb, in, out, pad); return;           \
+        case 10: SH_R(ty_pipeline_l)(K, 10, T, csa, csg, beta, bb, in, out, pad); return;         \
+        case 11: SH_R(ty_pipeline_l)(K, 11, T, csa, csg, beta, bb, in, out, pad); return;         \
+        default: SH_R(ty_pipeline_l)(K, l, T, csa, csg, beta, bb, in, out, pad);                  \
+        }                                                                                          \
+    }
+TY_PIPELINE(1)
+TY_PIPELINE(15)
+TY_PIPELINE(2)
+typedef void (*ty_pipe_fn)(int, const taylor_tables *, const sh_real *, const sh_real *, sh_real,
+                           sh_real, const sh_real *, sh_real *, sh_real *);
+static ty_pipe_fn SH_R(ty_pipe_of)(int kind)
+{
+    return kind == 1 ? SH_R(ty_pipeline_1) : kind == 15 ? SH_R(ty_pipeline_15) : SH_R(ty_pipeline_2);
 }
 
 /* The per-rotation state (set): β, bb = ½β², then the multiple angles of α
@@ -186,11 +217,10 @@ static void SH_R(ty_apply)(int kind, int order, const void *tables, const void *
     const ty_state_head *h = state;
     const sh_real *csa = (const sh_real *)((const char *)state + ty_head()), *csg = csa + 2 * order;
     sh_real *pad = work;
-    const ty_band_fn band = SH_R(ty_band_of)(kind);
+    const ty_pipe_fn pipe = SH_R(ty_pipe_of)(kind);
     uint64_t count = 0;
     for (int l = 0; l < order; l++) {
-        SH_R(ty_pipeline)(band, l, T, csa, csg, h->beta, h->bb, in + (size_t)l * l,
-                          out + (size_t)l * l, pad);
+        pipe(l, T, csa, csg, h->beta, h->bb, in + (size_t)l * l, out + (size_t)l * l, pad);
         count += ty_band_mults(kind, l);
     }
     if (mults) *mults += count;
@@ -207,7 +237,7 @@ static int SH_R(ty_blocks)(int kind, int order, const sh_rotation *rot, const vo
     const ty_state_head *h = state;
     const sh_real *csa = (const sh_real *)((const char *)state + ty_head()), *csg = csa + 2 * order;
     sh_real *pad = (sh_real *)csg + 2 * order, *e = pad + 2 * order + 3, *col = e + 2 * order;
-    const ty_band_fn band = SH_R(ty_band_of)(kind);
+    const ty_pipe_fn pipe = SH_R(ty_pipe_of)(kind);
     /* column j of band l's block = the band pipeline on the unit vector e_j */
     for (int l = 0; l < order; l++) {
         const int w = 2 * l + 1;
@@ -215,7 +245,7 @@ static int SH_R(ty_blocks)(int kind, int order, const sh_rotation *rot, const vo
         for (int j = 0; j < w; j++) {
             for (int i = 0; i < w; i++) e[i] = 0;
             e[j] = 1;
-            SH_R(ty_pipeline)(band, l, T, csa, csg, h->beta, h->bb, e, col, pad);
+            pipe(l, T, csa, csg, h->beta, h->bb, e, col, pad);
             for (int i = 0; i < w; i++) B[(size_t)i * w + j] = col[i];
             count += ty_band_mults(kind, l);
         }
