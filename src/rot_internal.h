@@ -10,7 +10,7 @@
  *        CS convention, bands 0..order-1; adds the multiplications it executed
  *        to *mults.  No allocation: `work` has work_bytes(order) bytes.
  * and optionally tables (built once per order by the plan) and a sparse
- * apply that replaces blocks × vector (ZXZXZ).
+ * set + apply that replaces blocks × vector (z, ZXZXZ, the Taylor kernels).
  */
 #ifndef SHLAB_ROT_INTERNAL_H
 #define SHLAB_ROT_INTERNAL_H
@@ -30,10 +30,21 @@ typedef struct {
                     void *work, uint64_t *mults);
     int (*blocks_f)(int order, const sh_rotation *rot, const void *tables, float *blocks,
                     void *work, uint64_t *mults);
-    /* sparse apply without a matrix (NULL: the plan multiplies by the blocks) */
-    void (*apply_d)(int order, const sh_rotation *rot, const void *tables, const double *in,
+    /* sparse apply without a matrix (NULL: the plan multiplies by the blocks).
+     * A sparse method has a per-rotation state: set_P fills `state`
+     * (state_bytes(order) bytes, owned by the plan, enough for either
+     * precision) once per sh_rot_plan_set — validating the rotation and
+     * doing the work that does not depend on the vector, e.g. the multiple
+     * angles — and adds its multiplications to *mults (the set's count);
+     * apply_P reads it, for any number of vectors. */
+    size_t (*state_bytes)(int order);
+    int (*set_d)(int order, const sh_rotation *rot, const void *tables, void *state,
+                 uint64_t *mults);
+    int (*set_f)(int order, const sh_rotation *rot, const void *tables, void *state,
+                 uint64_t *mults);
+    void (*apply_d)(int order, const void *tables, const void *state, const double *in,
                     double *out, void *work, uint64_t *mults);
-    void (*apply_f)(int order, const sh_rotation *rot, const void *tables, const float *in,
+    void (*apply_f)(int order, const void *tables, const void *state, const float *in,
                     float *out, void *work, uint64_t *mults);
     /* a single band without the lower ones (NULL: compute 0..band) */
     int (*band_d)(int band, const sh_rotation *rot, double *block, void *work);
@@ -88,10 +99,12 @@ void sh__rot_blocks_nocs_f(int order, float *blocks);
                                uint64_t *);                                                        \
     int sh__rot_##m##_blocks_f(int, const sh_rotation *, const void *, float *, void *, uint64_t *)
 #define SH__ROT_DECLARE_APPLY(m)                                                                   \
-    void sh__rot_##m##_apply_d(int, const sh_rotation *, const void *, const double *, double *,  \
-                               void *, uint64_t *);                                                \
-    void sh__rot_##m##_apply_f(int, const sh_rotation *, const void *, const float *, float *,    \
-                               void *, uint64_t *)
+    int sh__rot_##m##_set_d(int, const sh_rotation *, const void *, void *, uint64_t *);           \
+    int sh__rot_##m##_set_f(int, const sh_rotation *, const void *, void *, uint64_t *);           \
+    void sh__rot_##m##_apply_d(int, const void *, const void *, const double *, double *, void *, \
+                               uint64_t *);                                                        \
+    void sh__rot_##m##_apply_f(int, const void *, const void *, const float *, float *, void *,   \
+                               uint64_t *)
 #define SH__ROT_DECLARE_TABLES(m)                                                                  \
     int sh__rot_##m##_tables_new_d(int, void **);                                                  \
     int sh__rot_##m##_tables_new_f(int, void **)

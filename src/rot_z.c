@@ -23,14 +23,22 @@ static int z_angle(const sh_rotation *rot, double *theta)
     return SH_OK;
 }
 
-void SH_R(sh__rot_z_apply)(int order, const sh_rotation *rot, const void *tables, const sh_real *in,
-                           sh_real *out, void *work, uint64_t *mults)
+/* state: cos, sin of mθ, m = 0..order−1 (2·order values) */
+int SH_R(sh__rot_z_set)(int order, const sh_rotation *rot, const void *tables, void *state,
+                        uint64_t *mults)
 {
     double theta = 0;
-    if (z_angle(rot, &theta)) theta = 0; /* the plan has checked at set time */
-    sh_real *cs = work;
-    SH_R(sh__rot_multiple_angles)((sh_real)theta, order - 1, cs);
+    int st = z_angle(rot, &theta);
+    if (st) return st;
+    SH_R(sh__rot_multiple_angles)((sh_real)theta, order - 1, state);
     if (mults && order > 2) *mults += 2u * (uint64_t)(order - 2); /* recurrence, m ≥ 2 */
+    return SH_OK;
+}
+
+void SH_R(sh__rot_z_apply)(int order, const void *tables, const void *state, const sh_real *in,
+                           sh_real *out, void *work, uint64_t *mults)
+{
+    const sh_real *cs = state;
     if (out != in) memcpy(out, in, (size_t)order * order * sizeof *out);
     for (int l = 1; l < order; l++) SH_R(sh__rot_z_band)(l, cs, out + (size_t)l * l, mults);
 }
@@ -65,6 +73,9 @@ const sh__rot_ops sh__rot_z_ops = {
     .name = "z",
     .max_order = SHLAB_MAX_ORDER,
     .work_bytes = z_work,
+    .state_bytes = z_work,
+    .set_d = sh__rot_z_set_d,
+    .set_f = sh__rot_z_set_f,
     .blocks_d = sh__rot_z_blocks_d,
     .blocks_f = sh__rot_z_blocks_f,
     .apply_d = sh__rot_z_apply_d,

@@ -17,7 +17,14 @@
  * X₊₉₀ is generated, per band, from Rx(θ) = Rz(−90°) Ry(θ) Rz(+90°) (Rz(−90°)ŷ
  * = x̂): X₊₉₀ = Z(−90°) R_Y(π/2) Z(+90°), i.e. sh__rot_block_from_d with
  * d^l(π/2) and the exact multiple angles cos, sin(±m·90°) ∈ {0, ±1}.
- * X₋₉₀ = X₊₉₀⁻¹ = X₊₉₀ᵀ, applied as the transpose of the same table.
+ * X₋₉₀ = X₊₉₀⁻¹ = X₊₉₀ᵀ, but it is not applied as a transpose: since
+ * Rz(π) Rx(θ) Rz(π) = Rx(−θ) (Rz(π) = diag(−1, −1, 1) negates the x-y
+ * mixing entries), X₋₉₀ = Z(π) X₊₉₀ Z(π), and Z(π) = diag((−1)^m) commutes
+ * with every Z(θ), so
+ *   R_sh = Z(α) Z(π) X₊₉₀ Z(π) Z(β) X₊₉₀ Z(γ) = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ),
+ * with cos, sin(m(θ+π)) = (−1)^m cos, sin(mθ) — sign flips of the multiple
+ * angles, made once per rotation.  Both X products then read the one table
+ * row by row (a gather), and no second table is stored.
  *
  * d^l(π/2) (in long double, then rounded):
  *   d_{l,m} = (−1)^{l−m} √(C(2l, l+m)) / 2^l          ([3] with m' = l, one term)
@@ -41,18 +48,31 @@
  *   cos type, l+|m'| odd:  q = 1, s = −   (m = −1, −3, …)
  *   sin type, l+|m'| even: q = 1, s = +   (m = 1, 3, …)
  *   sin type, l+|m'| odd:  q = 2, s = −   (m = −2, −4, …)
- * which is l² + l + 1 of the (2l+1)² entries (about a quarter), stored row
- * by row with no index arrays.
+ * which is l² + l + 1 of the (2l+1)² entries (about a quarter).  The
+ * pattern is a permutation of four dense blocks: name the classes of m
+ *   A: m = 0, 2, 4, …   B: m = −1, −3, …   C: m = 1, 3, …   D: m = −2, −4, …
+ * (sizes ⌊l/2⌋+1, ⌊(l+1)/2⌋, ⌊(l+1)/2⌋, ⌊l/2⌋); every row of one class
+ * reads the columns of one class: for l even A←A, B←B, C←D, D←C, for l odd
+ * A←B, B←A, C←C, D←D (from the table above: the parity of l+|m'| is the
+ * same for a whole class).  The band's vector is therefore kept split by
+ * class (A|B|C|D, each in ascending |m|) between the z rotations, and X₊₉₀
+ * is stored as the four dense blocks, row-major, rows and columns in
+ * ascending |m| — the same left-to-right sums as the row-by-row gather.
+ * The z rotations pair m with −m: A_k with D_{k−1} (m = 2k), C_k with B_k
+ * (m = 2k+1); Z(γ) is fused into the split of the input, Z(α+π) into its
+ * merge into the output.
  *
  * Cost of one apply (counted in the loops): per band l, three z rotations
  * (4l each) and two X products (l² + l + 1 each) = the n(2n²+18n−14)/3 of
- * [2] summed over l < n, plus the multiple angles of α, β, γ by the
- * Chebyshev recurrence, 3·2(n−2) for n ≥ 3, which the paper's count omits.
+ * [2] summed over l < n.  The multiple angles of α, β, γ by the Chebyshev
+ * recurrence, 3·2(n−2) for n ≥ 3, which the paper's count omits, are done
+ * once per rotation by the plan's set (counted there, in the set's
+ * multiplications), not once per vector.
  * blocks (for rotmat) runs the band pipeline on each unit vector: O(l³) per
  * band, counted the same way.
  *
  * Memory.  A plan's tables hold Σ_{l<n} (l²+l+1) = n(n²+2)/3 values (X₋₉₀
- * shares them), ≈ 360 MB in double at order 512.  The single-band path
+ * uses them too), ≈ 360 MB in double at order 512.  The single-band path
  * (sh_rot_band) builds X₊₉₀ of that band only, O(l²) memory, so band 1000
  * takes ~3 s; hence max_order is SHLAB_MAX_ORDER and a large plan simply
  * fails with SH_ENOMEM if the tables do not fit.
@@ -72,20 +92,22 @@ SH__ROT_DECLARE_TABLES(zxzxz);
 /* Compact X₊₉₀ storage: band l's l²+l+1 non-zeros start at zx_off(l). */
 static inline size_t zx_off(int l) { return (size_t)l * ((size_t)l * l + 2) / 3; }
 
-/* The non-zero columns of row mp of band l: m = s·(q + 2k), k < cnt. */
-static inline int zx_row(int l, int mp, int *q, int *s)
+/* The classes of m (header): K = 0..3 for A, B, C, D; the k-th member
+ * (ascending |m|), the class sizes, and the column class read by row class K. */
+static inline int zx_cls_m(int K, int k)
 {
-    const int amp = mp < 0 ? -mp : mp;
-    const int cos_type = mp >= 0 ? !(amp & 1) : (amp & 1);
-    const int odd = (l + amp) & 1;
-    if (cos_type) {
-        *q = odd ? 1 : 0;
-        *s = odd ? -1 : 1;
-    } else {
-        *q = odd ? 2 : 1;
-        *s = odd ? -1 : 1;
-    }
-    return *q <= l ? (l - *q) / 2 + 1 : 0;
+    return K == 0 ? 2 * k : K == 1 ? -(2 * k + 1) : K == 2 ? 2 * k + 1 : -(2 * k + 2);
+}
+static inline void zx_cls_n(int l, int n[4])
+{
+    n[0] = l / 2 + 1;
+    n[1] = n[2] = (l + 1) / 2;
+    n[3] = l / 2;
+}
+static inline int zx_col(int l, int K)
+{
+    static const int even[4] = {0, 1, 3, 2}, odd[4] = {1, 0, 2, 3};
+    return (l & 1) ? odd[K] : even[K];
 }
 
 typedef struct {
@@ -150,40 +172,49 @@ static void zx_xplus_dense(int l, void *ws, double *X)
     sh__rot_block_from_d_d(l, d, csa, csg, X);
 }
 
-/* Build the compact tables; checks that every entry outside the structural
- * pattern is exactly zero (else SH_EINVAL: the pattern derivation is wrong). */
+/* Band l's compact X₊₉₀ (the four class blocks, header) from the dense X;
+ * checks that every entry outside the pattern is exactly zero (else
+ * SH_EINVAL: the pattern derivation is wrong).  `in` has (2l+1)² bytes. */
+static int zx_compact(int l, const double *X, unsigned char *in, double *xd, float *xf)
+{
+    const size_t w = 2 * (size_t)l + 1;
+    int n[4];
+    zx_cls_n(l, n);
+    memset(in, 0, w * w);
+    size_t k = 0;
+    for (int K = 0; K < 4; K++) {
+        const int C = zx_col(l, K);
+        for (int r = 0; r < n[K]; r++)
+            for (int c = 0; c < n[C]; c++) {
+                const size_t i = (size_t)(zx_cls_m(K, r) + l) * w + (size_t)(zx_cls_m(C, c) + l);
+                in[i] = 1;
+                if (xd) xd[k] = X[i];
+                if (xf) xf[k] = (float)X[i];
+                k++;
+            }
+    }
+    if (k != (size_t)l * l + l + 1)
+        return sh_error(SH_EINVAL, "zxzxz: band %d has %zu non-zeros, expected %d", l, k, l * l + l + 1);
+    for (size_t i = 0; i < w * w; i++)
+        if (!in[i] && X[i] != 0)
+            return sh_error(SH_EINVAL, "zxzxz: X+90 band %d entry (%d,%d) outside the zero pattern", l,
+                            (int)(i / w) - l, (int)(i % w) - l);
+    return SH_OK;
+}
+
+/* Build the compact tables of bands 0..order−1. */
 static int zx_tables_build(int order, double *xd, float *xf)
 {
     const int L = order - 1;
+    const size_t W = 2 * (size_t)L + 1;
     void *ws = malloc(zx_gen_work(L));
-    double *X = malloc((size_t)(2 * L + 1) * (2 * L + 1) * sizeof *X);
-    unsigned char *in = malloc((size_t)(2 * L + 1));
+    double *X = malloc(W * W * sizeof *X);
+    unsigned char *in = malloc(W * W);
     int st = SH_OK;
     if (!ws || !X || !in) st = sh_error(SH_ENOMEM, "zxzxz: out of memory (tables, order %d)", order);
     for (int l = 0; l < order && st == SH_OK; l++) {
-        const int w = 2 * l + 1;
         zx_xplus_dense(l, ws, X);
-        size_t k = zx_off(l);
-        for (int mp = -l; mp <= l; mp++) {
-            int q, s;
-            const int cnt = zx_row(l, mp, &q, &s);
-            memset(in, 0, (size_t)w);
-            for (int j = 0; j < cnt; j++) {
-                const int m = s * (q + 2 * j);
-                in[m + l] = 1;
-                const double v = X[(size_t)(mp + l) * w + (size_t)(m + l)];
-                if (xd) xd[k] = v;
-                if (xf) xf[k] = (float)v;
-                k++;
-            }
-            for (int m = -l; m <= l; m++)
-                if (!in[m + l] && X[(size_t)(mp + l) * w + (size_t)(m + l)] != 0)
-                    st = sh_error(SH_EINVAL, "zxzxz: X+90 band %d entry (%d,%d) outside the zero pattern",
-                                  l, mp, m);
-        }
-        if (st == SH_OK && k != zx_off(l + 1))
-            st = sh_error(SH_EINVAL, "zxzxz: band %d has %zu non-zeros, expected %d", l,
-                          k - zx_off(l), l * l + l + 1);
+        st = zx_compact(l, X, in, xd ? xd + zx_off(l) : NULL, xf ? xf + zx_off(l) : NULL);
     }
     free(ws);
     free(X);
@@ -226,75 +257,172 @@ int sh__rot_zxzxz_xplus_band(int l, double *X)
 }
 #endif
 
-/* y = X₊₉₀ x for band l (gather along each row's non-zeros). */
-static void SH_R(zx_xplus)(int l, const sh_real *X, const sh_real *x, sh_real *y)
+/* y = M x, M dense nr × nc row-major: two rows at a time (two independent
+ * accumulator chains; each row still summed left to right). */
+static inline __attribute__((always_inline)) void SH_R(zx_mv)(int nr, int nc, const sh_real *M, const sh_real *x, sh_real *y)
 {
-    for (int mp = -l; mp <= l; mp++) {
-        int q, s;
-        const int cnt = zx_row(l, mp, &q, &s);
-        sh_real acc = 0;
-        /* row m': Σ_k X[m', s(q+2k)] x[s(q+2k)] */
-        if (s > 0)
-            for (int k = 0; k < cnt; k++) acc += X[k] * x[l + q + 2 * k];
-        else
-            for (int k = 0; k < cnt; k++) acc += X[k] * x[l - q - 2 * k];
-        X += cnt;
-        y[mp + l] = acc;
+    int r = 0;
+#pragma GCC unroll 8
+    for (; r + 2 <= nr; r += 2, M += 2 * nc) {
+        const sh_real *M1 = M + nc;
+        sh_real a0 = M[0] * x[0], a1 = M1[0] * x[0];
+#pragma GCC unroll 16
+        for (int c = 1; c < nc; c++) {
+            a0 += M[c] * x[c];
+            a1 += M1[c] * x[c];
+        }
+        y[r] = a0;
+        y[r + 1] = a1;
+    }
+    if (r < nr) {
+        sh_real a0 = M[0] * x[0];
+#pragma GCC unroll 16
+        for (int c = 1; c < nc; c++) a0 += M[c] * x[c];
+        y[r] = a0;
     }
 }
 
-/* y = X₋₉₀ x = X₊₉₀ᵀ x for band l (scatter along each row's non-zeros). */
-static void SH_R(zx_xminus)(int l, const sh_real *X, const sh_real *x, sh_real *y)
+/* t = X₊₉₀ u for band l, u and t split by class (A|B|C|D): four dense blocks. */
+static inline __attribute__((always_inline)) void SH_R(zx_xmul)(int l, const sh_real *X, const sh_real *u, sh_real *t)
 {
-    for (int m = 0; m < 2 * l + 1; m++) y[m] = 0;
-    for (int mp = -l; mp <= l; mp++) {
-        int q, s;
-        const int cnt = zx_row(l, mp, &q, &s);
-        const sh_real xv = x[mp + l];
-        if (s > 0)
-            for (int k = 0; k < cnt; k++) y[l + q + 2 * k] += X[k] * xv;
-        else
-            for (int k = 0; k < cnt; k++) y[l - q - 2 * k] += X[k] * xv;
-        X += cnt;
+    int n[4], o[4];
+    zx_cls_n(l, n);
+    o[0] = 0, o[1] = n[0], o[2] = n[0] + n[1], o[3] = o[2] + n[2];
+#pragma GCC unroll 4
+    for (int K = 0; K < 4; K++) {
+        const int C = zx_col(l, K);
+        if (n[K] && n[C]) SH_R(zx_mv)(n[K], n[C], X, u + o[C], t + o[K]);
+        X += (size_t)n[K] * n[C];
     }
 }
 
-/* One band: c (2l+1 values, in place) ← Z(α) X₋ Z(β) X₊ Z(γ) c; tmp has 2l+1. */
+/* Z(θ) on a class-split band in place:
+ *   c_m ← cos(mθ) c_m − sin(mθ) c_{−m},  c_{−m} ← sin(mθ) c_m + cos(mθ) c_{−m}
+ * for m = 2k (A_k, D_{k−1}) and m = 2k+1 (C_k, B_k). */
+static inline __attribute__((always_inline)) void SH_R(zx_zsplit)(int l, const sh_real *cs, sh_real *u)
+{
+    const int nA = l / 2 + 1, nB = (l + 1) / 2;
+    sh_real *A = u, *B = u + nA, *C = B + nB, *D = C + nB;
+#pragma GCC unroll 16
+    for (int k = 1; 2 * k <= l; k++) {
+        const sh_real c = cs[4 * k], s = cs[4 * k + 1], a = A[k], b = D[k - 1];
+        A[k] = c * a - s * b;
+        D[k - 1] = s * a + c * b;
+    }
+#pragma GCC unroll 16
+    for (int k = 0; 2 * k + 1 <= l; k++) {
+        const sh_real c = cs[4 * k + 2], s = cs[4 * k + 3], a = C[k], b = B[k];
+        C[k] = c * a - s * b;
+        B[k] = s * a + c * b;
+    }
+}
+
+/* One band: out = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ) in (2l+1 values each, header);
+ * u, t have 2l+1.  csa, csb carry the +π (set).  Written once for any l;
+ * zx_band below instantiates it for each small l as a constant, so that the
+ * compiler lays the tiny loops out straight (the same operations in the same
+ * order, without the loop control that dominates at these sizes). */
+static inline __attribute__((always_inline)) void SH_R(zx_band_l)(int l, const sh_real *X, const sh_real *csa, const sh_real *csb,
+                          const sh_real *csg, const sh_real *in, sh_real *out, sh_real *u,
+                          sh_real *t)
+{
+    const int nA = l / 2 + 1, nB = (l + 1) / 2;
+    const sh_real *x = in + l; /* x[m], m = −l..l */
+    sh_real *y = out + l;
+    /* split + Z(γ): A_k = m 2k, D_{k−1} = m −2k, C_k = m 2k+1, B_k = m −(2k+1) */
+    {
+        sh_real *A = u, *B = u + nA, *C = B + nB, *D = C + nB;
+        A[0] = x[0];
+#pragma GCC unroll 16
+        for (int k = 1; 2 * k <= l; k++) {
+            const sh_real c = csg[4 * k], s = csg[4 * k + 1], a = x[2 * k], b = x[-2 * k];
+            A[k] = c * a - s * b;
+            D[k - 1] = s * a + c * b;
+        }
+#pragma GCC unroll 16
+        for (int k = 0; 2 * k + 1 <= l; k++) {
+            const sh_real c = csg[4 * k + 2], s = csg[4 * k + 3], a = x[2 * k + 1], b = x[-2 * k - 1];
+            C[k] = c * a - s * b;
+            B[k] = s * a + c * b;
+        }
+    }
+    SH_R(zx_xmul)(l, X, u, t);       /* X₊₉₀ */
+    SH_R(zx_zsplit)(l, csb, t);      /* Z(β+π) */
+    SH_R(zx_xmul)(l, X, t, u);       /* X₊₉₀ (with the Z(π)s: X₋₉₀) */
+    /* Z(α+π) + merge */
+    {
+        const sh_real *A = u, *B = u + nA, *C = B + nB, *D = C + nB;
+        y[0] = A[0];
+#pragma GCC unroll 16
+        for (int k = 1; 2 * k <= l; k++) {
+            const sh_real c = csa[4 * k], s = csa[4 * k + 1], a = A[k], b = D[k - 1];
+            y[2 * k] = c * a - s * b;
+            y[-2 * k] = s * a + c * b;
+        }
+#pragma GCC unroll 16
+        for (int k = 0; 2 * k + 1 <= l; k++) {
+            const sh_real c = csa[4 * k + 2], s = csa[4 * k + 3], a = C[k], b = B[k];
+            y[2 * k + 1] = c * a - s * b;
+            y[-2 * k - 1] = s * a + c * b;
+        }
+    }
+}
+
+#define ZX_SPECIAL 12 /* bands 0..11 (orders ≤ 12) get their own instance */
 static void SH_R(zx_band)(int l, const sh_real *X, const sh_real *csa, const sh_real *csb,
-                          const sh_real *csg, sh_real *c, sh_real *tmp)
+                          const sh_real *csg, const sh_real *in, sh_real *out, sh_real *u,
+                          sh_real *t)
 {
-    SH_R(sh__rot_z_band)(l, csg, c, NULL);   /* Z(γ) */
-    SH_R(zx_xplus)(l, X, c, tmp);            /* X₊₉₀ */
-    SH_R(sh__rot_z_band)(l, csb, tmp, NULL); /* Z(β) */
-    SH_R(zx_xminus)(l, X, tmp, c);           /* X₋₉₀ = X₊₉₀ᵀ */
-    SH_R(sh__rot_z_band)(l, csa, c, NULL);   /* Z(α) */
+    switch (l) {
+#define ZX_CASE(L)                                                                                 \
+    case L: SH_R(zx_band_l)(L, X, csa, csb, csg, in, out, u, t); return;
+        ZX_CASE(0) ZX_CASE(1) ZX_CASE(2) ZX_CASE(3) ZX_CASE(4) ZX_CASE(5)
+        ZX_CASE(6) ZX_CASE(7) ZX_CASE(8) ZX_CASE(9) ZX_CASE(10) ZX_CASE(11)
+#undef ZX_CASE
+    default: SH_R(zx_band_l)(l, X, csa, csb, csg, in, out, u, t);
+    }
 }
 
 /* multiplications of zx_band: 3 z rotations (4l) + 2 X products (l²+l+1) */
 static uint64_t zx_band_mults(int l) { return 12u * (uint64_t)l + 2u * ((uint64_t)l * l + l + 1); }
 
-/* work: csa, csb, csg (2(order+1) each), c, tmp (2·order−1 each) */
-static void SH_R(zx_angles)(int order, const sh_rotation *rot, sh_real *ws, uint64_t *count)
+/* The per-rotation state: multiple angles of α+π, β+π, γ (2·order values
+ * each; the +π is the sign (−1)^m, exact). */
+static size_t zx_na(int order) { return 2 * (size_t)order; }
+static void SH_R(zx_angles)(int order, const sh_rotation *rot, sh_real *st, uint64_t *count)
 {
-    sh_real *csa = ws, *csb = csa + 2 * (order + 1), *csg = csb + 2 * (order + 1);
+    const size_t na = zx_na(order);
+    sh_real *csa = st, *csb = csa + na, *csg = csb + na;
     SH_R(sh__rot_multiple_angles)((sh_real)rot->alpha, order - 1, csa);
     SH_R(sh__rot_multiple_angles)((sh_real)rot->beta, order - 1, csb);
     SH_R(sh__rot_multiple_angles)((sh_real)rot->gamma, order - 1, csg);
+    for (int m = 1; m < order; m += 2) {
+        csa[2 * m] = -csa[2 * m], csa[2 * m + 1] = -csa[2 * m + 1];
+        csb[2 * m] = -csb[2 * m], csb[2 * m + 1] = -csb[2 * m + 1];
+    }
     if (order > 2) *count += 3u * 2u * (uint64_t)(order - 2); /* recurrence, m ≥ 2 */
 }
 
-void SH_R(sh__rot_zxzxz_apply)(int order, const sh_rotation *rot, const void *tables,
+int SH_R(sh__rot_zxzxz_set)(int order, const sh_rotation *rot, const void *tables, void *state,
+                            uint64_t *mults)
+{
+    uint64_t count = 0;
+    SH_R(zx_angles)(order, rot, state, &count);
+    if (mults) *mults += count;
+    return SH_OK;
+}
+
+void SH_R(sh__rot_zxzxz_apply)(int order, const void *tables, const void *state,
                                const sh_real *in, sh_real *out, void *work, uint64_t *mults)
 {
     const zx_tables *T = tables;
-    sh_real *ws = work;
-    const size_t na = 2 * (size_t)(order + 1);
-    sh_real *csa = ws, *csb = csa + na, *csg = csb + na, *tmp = csg + na;
+    const size_t na = zx_na(order);
+    const sh_real *csa = state, *csb = csa + na, *csg = csb + na;
+    sh_real *u = work, *t = u + 2 * order;
     uint64_t count = 0;
-    SH_R(zx_angles)(order, rot, ws, &count);
-    if (out != in) memcpy(out, in, (size_t)order * order * sizeof *out);
     for (int l = 0; l < order; l++) {
-        SH_R(zx_band)(l, T->x + zx_off(l), csa, csb, csg, out + (size_t)l * l, tmp);
+        const size_t o = (size_t)l * l;
+        SH_R(zx_band)(l, T->x + zx_off(l), csa, csb, csg, in + o, out + o, u, t);
         count += zx_band_mults(l);
     }
     if (mults) *mults += count;
@@ -306,28 +434,25 @@ void SH_R(sh__rot_zxzxz_apply)(int order, const sh_rotation *rot, const void *ta
 static size_t zx_band_work(int l)
 {
     const size_t w = 2 * (size_t)l + 1, nnz = (size_t)l * l + l + 1;
-    return zx_gen_work(l) + (w * w + nnz + 6 * (size_t)(l + 1) + 2 * w) * sizeof(double);
+    return zx_gen_work(l) + (w * w + nnz + 6 * (size_t)(l + 1) + 4 * w) * sizeof(double) + w * w;
 }
 static int zx_band_double(int l, const sh_rotation *rot, double *block, void *work)
 {
     const int w = 2 * l + 1;
     double *X = (double *)((char *)work + zx_gen_work(l)), *xc = X + (size_t)w * w;
-    double *csa = xc + ((size_t)l * l + l + 1), *csb = csa + 2 * (l + 1), *csg = csb + 2 * (l + 1);
-    double *col = csg + 2 * (l + 1), *tmp = col + w;
+    double *ang = xc + ((size_t)l * l + l + 1), *e = ang + 6 * (size_t)(l + 1);
+    double *col = e + w, *u = col + w, *t = u + w;
+    unsigned char *in = (unsigned char *)(t + w);
     zx_xplus_dense(l, work, X);
-    size_t k = 0;
-    for (int mp = -l; mp <= l; mp++) {
-        int q, s;
-        const int cnt = zx_row(l, mp, &q, &s);
-        for (int j = 0; j < cnt; j++) xc[k++] = X[(size_t)(mp + l) * w + (size_t)(l + s * (q + 2 * j))];
-    }
-    sh__rot_multiple_angles_d(rot->alpha, l, csa);
-    sh__rot_multiple_angles_d(rot->beta, l, csb);
-    sh__rot_multiple_angles_d(rot->gamma, l, csg);
+    int st = zx_compact(l, X, in, xc, NULL);
+    if (st) return st;
+    uint64_t count = 0;
+    zx_angles_d(l + 1, rot, ang, &count);
+    const size_t na = zx_na(l + 1);
     for (int j = 0; j < w; j++) {
-        for (int i = 0; i < w; i++) col[i] = 0;
-        col[j] = 1;
-        zx_band_d(l, xc, csa, csb, csg, col, tmp);
+        for (int i = 0; i < w; i++) e[i] = 0;
+        e[j] = 1;
+        zx_band_d(l, xc, ang, ang + na, ang + 2 * na, e, col, u, t);
         for (int i = 0; i < w; i++) block[(size_t)i * w + j] = col[i];
     }
     return SH_OK;
@@ -339,19 +464,19 @@ int SH_R(sh__rot_zxzxz_blocks)(int order, const sh_rotation *rot, const void *ta
 {
     const zx_tables *T = tables;
     if (!T || T->order < order) return sh_error(SH_EINVAL, "zxzxz: tables missing or too small");
-    sh_real *ws = work;
-    const size_t na = 2 * (size_t)(order + 1);
-    sh_real *csa = ws, *csb = csa + na, *csg = csb + na, *tmp = csg + na, *col = tmp + 2 * order;
+    const size_t na = zx_na(order);
+    sh_real *csa = work, *csb = csa + na, *csg = csb + na, *e = csg + na, *col = e + 2 * order;
+    sh_real *u = col + 2 * order, *t = u + 2 * order;
     uint64_t count = 0;
-    SH_R(zx_angles)(order, rot, ws, &count);
+    SH_R(zx_angles)(order, rot, csa, &count);
     /* column j of band l's block = the band rotation of the unit vector e_j */
     for (int l = 0; l < order; l++) {
         const int w = 2 * l + 1;
         sh_real *B = blocks + sh_rot_block_offset(l);
         for (int j = 0; j < w; j++) {
-            for (int i = 0; i < w; i++) col[i] = 0;
-            col[j] = 1;
-            SH_R(zx_band)(l, T->x + zx_off(l), csa, csb, csg, col, tmp);
+            for (int i = 0; i < w; i++) e[i] = 0;
+            e[j] = 1;
+            SH_R(zx_band)(l, T->x + zx_off(l), csa, csb, csg, e, col, u, t);
             for (int i = 0; i < w; i++) B[(size_t)i * w + j] = col[i];
             count += zx_band_mults(l);
         }
@@ -367,10 +492,11 @@ static void zx_tables_free(void *tables)
     if (T) free(T->x);
     free(T);
 }
-static size_t zx_work(int order)
+static size_t zx_work(int order) /* blocks: angles, e, col, u, t; apply: u, t */
 {
-    return (6 * (size_t)(order + 1) + 4 * (size_t)order) * sizeof(double);
+    return (3 * zx_na(order) + 8 * (size_t)order) * sizeof(double);
 }
+static size_t zx_state(int order) { return 3 * zx_na(order) * sizeof(double); }
 const sh__rot_ops sh__rot_zxzxz_ops = {
     .name = "zxzxz",
     .max_order = ZX_MAX_ORDER,
@@ -378,6 +504,9 @@ const sh__rot_ops sh__rot_zxzxz_ops = {
     .tables_new_f = sh__rot_zxzxz_tables_new_f,
     .tables_free = zx_tables_free,
     .work_bytes = zx_work,
+    .state_bytes = zx_state,
+    .set_d = sh__rot_zxzxz_set_d,
+    .set_f = sh__rot_zxzxz_set_f,
     .blocks_d = sh__rot_zxzxz_blocks_d,
     .blocks_f = sh__rot_zxzxz_blocks_f,
     .apply_d = sh__rot_zxzxz_apply_d,

@@ -77,6 +77,7 @@ struct sh_rot_plan {
     const sh__rot_ops *ops;
     void *tables;
     void *work;
+    void *state;      /* sparse methods: the per-rotation state set_P fills */
     void *blocks;     /* double or float, sh_rot_block_offset(order) */
     void *vin, *vout; /* float plans: the vector in float */
     double *vtmp;     /* a copy of the input vector */
@@ -118,11 +119,12 @@ int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_co
     p->blocks = malloc(nb * esz);
     p->work = malloc((p->ops->work_bytes ? p->ops->work_bytes(order) : 0) + 64);
     p->vtmp = malloc(nc * sizeof(double));
+    if (p->ops->state_bytes) p->state = malloc(p->ops->state_bytes(order) + 64);
     if (prec == SH_PREC_FLOAT) {
         p->vin = malloc(nc * sizeof(float));
         p->vout = malloc(nc * sizeof(float));
     }
-    if (!p->blocks || !p->work || !p->vtmp || (prec == SH_PREC_FLOAT && (!p->vin || !p->vout))) {
+    if (!p->blocks || !p->work || !p->vtmp || (p->ops->state_bytes && !p->state) || (prec == SH_PREC_FLOAT && (!p->vin || !p->vout))) {
         sh_rot_plan_free(p);
         return sh_error(SH_ENOMEM, "rotation plan: out of memory (order %d)", order);
     }
@@ -141,6 +143,7 @@ void sh_rot_plan_free(sh_rot_plan *p)
     if (p->tables && p->ops->tables_free) p->ops->tables_free(p->tables);
     free(p->blocks);
     free(p->work);
+    free(p->state);
     free(p->vin);
     free(p->vout);
     free(p->vtmp);
@@ -168,14 +171,12 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
     p->set_mults = 0;
     int st = SH_OK;
     if (p->ops->apply_d) {
-        /* sparse methods check the rotation by building nothing: a dry run
-         * of blocks is too costly, so the method's apply validates itself;
-         * z refuses a tilted rotation here through its blocks routine at
-         * order 1 (cheap). */
-        if (p->method == SH_ROT_Z) {
-            double one[1];
-            st = p->ops->blocks_d(1, rot, p->tables, one, p->work, NULL);
-        }
+        /* sparse methods: the per-rotation state (validates the rotation;
+         * z refuses a tilted one here) */
+        if (p->prec == SH_PREC_FLOAT)
+            st = p->ops->set_f(p->order, rot, p->tables, p->state, &p->set_mults);
+        else
+            st = p->ops->set_d(p->order, rot, p->tables, p->state, &p->set_mults);
     } else {
         st = compute_blocks(p, &p->set_mults);
     }
@@ -210,7 +211,7 @@ int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
         for (size_t i = 0; i < nc; i++) x[i] = (float)in[i];
         if (p->ops->apply_f) { /* sparse: the kernel works in CS */
             if (p->conv == SH_NOCS) nocs_vec_f(p->order, x);
-            p->ops->apply_f(p->order, &p->rot, p->tables, x, y, p->work, &m);
+            p->ops->apply_f(p->order, p->tables, p->state, x, y, p->work, &m);
             if (p->conv == SH_NOCS) nocs_vec_f(p->order, y);
         } else {
             sh__rot_blocks_apply_f(p->order, p->blocks, x, y, &m);
@@ -226,7 +227,7 @@ int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
             if (sparse_nocs) nocs_vec_d(p->order, p->vtmp);
             x = p->vtmp;
         }
-        if (p->ops->apply_d) p->ops->apply_d(p->order, &p->rot, p->tables, x, out, p->work, &m);
+        if (p->ops->apply_d) p->ops->apply_d(p->order, p->tables, p->state, x, out, p->work, &m);
         else sh__rot_blocks_apply_d(p->order, p->blocks, x, out, &m);
         if (sparse_nocs) nocs_vec_d(p->order, out);
     }
