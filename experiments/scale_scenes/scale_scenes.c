@@ -109,7 +109,7 @@ int main(int argc, char **argv)
     const sh_scale_family occ_f[2] = {SH_SCALE_LINEAR, SH_SCALE_CONE}, mid_f[1] = {SH_SCALE_MIDRANGE};
 
     /* ---- sphere occluder ---- */
-    sh_scale_scene sph = {SH_SCENE_SPHERE, 0.5, 0, 0, NULL, NULL, NULL, 0};
+    sh_scale_scene sph = {SH_SCENE_SPHERE, 0.5, 0, 0, NULL, NULL, NULL, 0, {0, 0, 0}, 0};
     const int nks = 21;
     double ks[64];
     for (int q = 0; q < nks; q++) ks[q] = sh_scale_grid_point(SH_SPACING_GEOMETRIC, 0.55, 2.5, q, nks);
@@ -121,7 +121,7 @@ int main(int argc, char **argv)
     const int k07 = 3;
 
     /* ---- cone occluder ---- */
-    sh_scale_scene cone = {SH_SCENE_CONE, 0.5, M_PI / 4, 0.3, NULL, NULL, NULL, 0};
+    sh_scale_scene cone = {SH_SCENE_CONE, 0.5, M_PI / 4, 0.3, NULL, NULL, NULL, 0, {0, 0, 0}, 0};
     double kc[64];
     for (int q = 0; q < nks; q++) kc[q] = sh_scale_grid_point(SH_SPACING_GEOMETRIC, 0.7, 2.5, q, nks);
     f = exp_data("cone.dat", "cone occluder θ0 = 45°, rim r/2 (1 + 0.3 cosφ)",
@@ -130,7 +130,7 @@ int main(int argc, char **argv)
     fclose(f);
 
     /* ---- mid-range: analytic lobes ---- */
-    sh_scale_scene mid = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 160};
+    sh_scale_scene mid = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 160, {0, 0, 0}, 0};
     const int nkm = 19;
     double km[64];
     for (int q = 0; q < nkm; q++) km[q] = -0.9 + 1.8 * q / (nkm - 1);
@@ -154,7 +154,7 @@ int main(int argc, char **argv)
     f = exp_data("probe.dat", have_probe ? probe : "probe SKIPPED: none in PROBES_DIR or data/probes",
                  "k order family(0 midrange) energy err_scaled err_geom err_trunc; one block per order");
     if (have_probe) {
-        sh_scale_scene ps = {SH_SCENE_MIDRANGE, 0, 0, 0, NULL, NULL, &img, 256};
+        sh_scale_scene ps = {SH_SCENE_MIDRANGE, 0, 0, 0, NULL, NULL, &img, 256, {0, 0, 0}, 0};
         sweep(f, &ps, kp, nkp, mid_f, 1, 0, res_probe);
     } else {
         fprintf(stderr, "scale_scenes: no probe found; the probe scene is SKIPPED (run `make probes`)\n");

@@ -117,7 +117,7 @@ int main(int argc, char **argv)
 
     /* the scale of what interpolation error competes with: the truncation
      * error of scaling at order 4 (sphere occluder, rho = r/2, cone family) */
-    sh_scale_scene sph = {SH_SCENE_SPHERE, 0.5, 0, 0, NULL, NULL, NULL, 0};
+    sh_scale_scene sph = {SH_SCENE_SPHERE, 0.5, 0, 0, NULL, NULL, NULL, 0, {0, 0, 0}, 0};
     sh_scaling sc = {SH_SCALE_CONE, 1.5, acos(0.5), 0};
     sh_scale_scene_err e;
     exp_check(sh_scale_scene_errors(&sph, N, SH_CS, &sc, 1.5, NULL, &e, NULL), "scene");
