@@ -190,12 +190,15 @@ int main(int argc, char **argv)
         exp_check(sh_scale_scene_errors(&cone, NO, SH_CS, &s, kimg[q], Sr, &er, Sd), "cone scaled");
         snprintf(nm, sizeof nm, "img_cone_scaled_%d.dat", q);
         snprintf(t, sizeof t, "cone scene, order-8 reconstruction of cone-family plain scaling from k = 1 to %g", kimg[q]);
-        write_recon(nm, t, NO, Sd, W, NULL);
+        char ex[64];
+        snprintf(ex, sizeof ex, "cone_scaled_cone_k%g_order8.exr", kimg[q]);
+        write_recon(nm, t, NO, Sd, W, ex);
         s.family = SH_SCALE_LINEAR;
         exp_check(sh_scale_scene_errors(&cone, NO, SH_CS, &s, kimg[q], Sr, &er, Sd), "linear scaled");
         snprintf(nm, sizeof nm, "img_cone_linear_%d.dat", q);
         snprintf(t, sizeof t, "cone scene, order-8 reconstruction of linear-family plain scaling from k = 1 to %g", kimg[q]);
-        write_recon(nm, t, NO, Sd, W, NULL);
+        snprintf(ex, sizeof ex, "cone_scaled_linear_k%g_order8.exr", kimg[q]);
+        write_recon(nm, t, NO, Sd, W, ex);
     }
     const double kmi = 0.7;
     write_exact("img_mid_exact.dat", &mid, kmi, W);
@@ -334,7 +337,8 @@ int main(int argc, char **argv)
               "visibility at k = 0.75, 1.3, 2; middle, order-8 reconstruction of cone-family scaling of the capture "
               "at k = 1; bottom, the same with the linear family. Mid-range at k = 0.7 (Fig. 6/11 in spirit): exact "
               "radiance, order-8 projection of it, and plain and energy-preserving scaling of the centre capture "
-              "(EXR files of the last three beside this report; the tilted-axis ones as midrange_tilted_*.exr).",
+              "(EXR files of the last three beside this report; the tilted-axis ones as midrange_tilted_*.exr; the "
+              "cone-scene reconstructions as cone_scaled_*.exr).",
               ks[k2], res_sph[3][1][0][k2][1], res_sph[3][0][0][k2][1], fmax(worst_cone_geom, 1e-16),
               fmax(worst_mid_plain_geom, 1e-16), res_mid[1][0][0][q05][0], res_mid[1][0][1][q05][1],
               fmax(worst_tilt_plain_geom, 1e-16), res_tilt[1][0][0][q05][0], res_tilt[1][0][1][q05][0],
