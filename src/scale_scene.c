@@ -15,9 +15,14 @@
  *            cone surface: the cone family with the occluder's θ0 is exact
  *            geometry here ([1] Sec. 3.1, Fig. 4).
  *  midrange  an environment L(ω) emitted (with direction-independent
- *            radiance) from a sphere of radius R, seen from p = d ẑ, d = kR:
- *            the radiance arriving from direction s is L(P/R) with P = p + t s
- *            the ray-sphere hit, t = −d cosθ + √(R² − d² sin²θ) ([1] Sec. 3.2).
+ *            radiance) from a sphere of radius R, seen from p = d a, d = kR,
+ *            a the unit displacement direction (default ẑ): the radiance
+ *            arriving from direction s is L(P/R) with P = p + t s the
+ *            ray-sphere hit, t = −d (s·a) + √(R² − d² (1 − (s·a)²))
+ *            ([1] Sec. 3.2).  For a ≠ ẑ the capture is scaled about a by
+ *            sh_scale_apply_axis (rotate to the axis, scale, rotate back);
+ *            the untruncated reference F_r∘τ is evaluated about a directly
+ *            (3×3 matrix Q with Q a = ẑ), without SH rotations.
  *
  * Three errors, relative L2 over the coefficient vectors (Parseval: relative
  * L2 of the band-limited functions), against the exact projection E(k):
@@ -62,11 +67,46 @@ int sh_scale_scene_parse(const char *s, sh_scale_scene_kind *out)
 
 double sh_scale_scene_k_ref(const sh_scale_scene *sc) { return sc->kind == SH_SCENE_MIDRANGE ? 0.0 : 1.0; }
 
+static int dir_unset(const double d[3]) { return d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0; }
+
+int sh_scale_scene_dir(const sh_scale_scene *sc, double unit[3])
+{
+    if (!sc) return sh_error(SH_EINVAL, "no scene given");
+    if (dir_unset(sc->dir)) {
+        unit[0] = unit[1] = 0.0, unit[2] = 1.0;
+        return SH_OK;
+    }
+    return sh_scale_axis_unit(sc->dir, unit);
+}
+
+/* The rotation method of a scene (SH_ROT_Z, the zero default, = zxzxz). */
+static sh_rot_method scene_rotation(const sh_scale_scene *sc)
+{
+    return sc->rotation == SH_ROT_Z ? SH_ROT_ZXZXZ : sc->rotation;
+}
+
 static double rim(const sh_scale_scene *sc, double phi) { return sc->size * (1.0 + sc->wobble * cos(phi)); }
 
 int sh_scale_scene_check(const sh_scale_scene *sc, double k)
 {
     if (!sc) return sh_error(SH_EINVAL, "no scene given");
+    switch (sc->kind) {
+    case SH_SCENE_SPHERE:
+    case SH_SCENE_CONE:
+        if (!dir_unset(sc->dir) && !(sc->dir[0] == 0.0 && sc->dir[1] == 0.0 && sc->dir[2] > 0.0))
+            return sh_error(SH_EINVAL, "%s scene: the occluder lies along +z; a displacement direction applies "
+                                       "to the midrange scene only", sh_scale_scene_name(sc->kind));
+        break;
+    case SH_SCENE_MIDRANGE: {
+        double a[3];
+        if (sh_scale_scene_dir(sc, a)) return sh_error(SH_EINVAL, "midrange scene: %s", sh_last_error());
+        const sh_rot_method m = scene_rotation(sc);
+        if ((int)m < 0 || m >= SH_ROT_NMETHODS || !sh_rot_method_is_exact(m) || !sh_rot_method_max_order(m))
+            return sh_error(SH_EINVAL, "midrange scene: rotation method %s is not an exact method built in",
+                            (int)m >= 0 && m < SH_ROT_NMETHODS ? sh_rot_method_name(m) : "?");
+        break;
+    }
+    }
     switch (sc->kind) {
     case SH_SCENE_SPHERE:
         if (!(sc->size > 0.0 && sc->size < 1.0))
@@ -145,36 +185,65 @@ static double env(const sh_scale_scene *sc, const double d[3])
     return sc->light(d, th, ph, sc->light_ctx);
 }
 
-/* Radiance arriving at p = k ẑ (R = 1) from direction s(θ,φ): the ray
- * p + t s meets |x| = 1 where t² + 2k cosθ t + k² − 1 = 0, t > 0. */
-static void ray_hit(double k, const double s[3], double P[3])
+/* Radiance arriving at p = k a (R = 1, |a| = 1) from direction s: the ray
+ * p + t s meets |x| = 1 where t² + 2k (s·a) t + k² − 1 = 0, t > 0. */
+static void ray_hit(double k, const double a[3], const double s[3], double P[3])
 {
-    const double b = k * s[2], c = k * k - 1.0;
+    const double b = k * (s[0] * a[0] + s[1] * a[1] + s[2] * a[2]), c = k * k - 1.0;
     const double t = -b + sqrt(b * b - c);
-    P[0] = t * s[0];
-    P[1] = t * s[1];
-    P[2] = k + t * s[2];
+    for (int i = 0; i < 3; i++) P[i] = k * a[i] + t * s[i];
     const double n = sqrt(P[0] * P[0] + P[1] * P[1] + P[2] * P[2]);
     P[0] /= n, P[1] /= n, P[2] /= n;
 }
 
-typedef struct { const sh_scale_scene *sc; double k; const sh_scaling *s; } mid_ctx;
+/* a: the unit displacement direction; Q (row-major, proper) takes a to ẑ. */
+typedef struct {
+    const sh_scale_scene *sc;
+    double k;
+    const sh_scaling *s;
+    double a[3], Q[9];
+    int tilted;
+} mid_ctx;
+
+static int mid_ctx_init(mid_ctx *c, const sh_scale_scene *sc, double k, const sh_scaling *s)
+{
+    c->sc = sc, c->k = k, c->s = s;
+    int st = sh_scale_scene_dir(sc, c->a);
+    if (st) return st;
+    c->tilted = !sh_scale_axis_is_z(c->a);
+    sh_rotation q;
+    if ((st = sh_scale_axis_rotation(c->a, &q))) return st;
+    memcpy(c->Q, q.R, sizeof c->Q);
+    return SH_OK;
+}
 
 static double mid_exact_fn(const double dir[3], double theta, double phi, void *vctx)
 {
     const mid_ctx *c = vctx;
     double P[3];
-    ray_hit(c->k, dir, P);
+    ray_hit(c->k, c->a, dir, P);
     return env(c->sc, P);
 }
 
-/* F_r(τ(θ),φ) ψ(θ)/sinθ, F_r = the environment seen from the centre. */
+/* F_r(τ(θ),φ) ψ(θ)/sinθ, F_r = the environment seen from the centre; θ, φ
+ * about the displacement axis: (θ, φ) of Q s, and the source direction
+ * Qᵀ u(τ(θ), φ). */
 static double mid_scaled_fn(const double dir[3], double theta, double phi, void *vctx)
 {
     const mid_ctx *c = vctx;
     double t, dt, d[3];
+    if (c->tilted) {
+        double qs[3];
+        for (int i = 0; i < 3; i++) qs[i] = c->Q[3 * i] * dir[0] + c->Q[3 * i + 1] * dir[1] + c->Q[3 * i + 2] * dir[2];
+        sh_angles_from_dir(qs, &theta, &phi);
+    }
     sh_scale_tau(c->s, theta, &t, &dt);
     sh_dir_from_angles(t, phi, d);
+    if (c->tilted) {
+        double u[3];
+        for (int i = 0; i < 3; i++) u[i] = c->Q[i] * d[0] + c->Q[3 + i] * d[1] + c->Q[6 + i] * d[2];
+        memcpy(d, u, sizeof d);
+    }
     double f = env(c->sc, d);
     if (c->s->energy) {
         const double st = sin(theta);
@@ -187,7 +256,8 @@ static double mid_scaled_fn(const double dir[3], double theta, double phi, void 
 double sh_scale_scene_value(const sh_scale_scene *sc, double k, double theta, double phi)
 {
     if (sc->kind != SH_SCENE_MIDRANGE) return theta < occ_beta(sc, k, phi) ? 1.0 : 0.0;
-    mid_ctx c = {sc, k, NULL};
+    mid_ctx c;
+    if (mid_ctx_init(&c, sc, k, NULL)) return NAN;
     double d[3];
     sh_dir_from_angles(theta, phi, d);
     return mid_exact_fn(d, theta, phi, &c);
@@ -259,7 +329,8 @@ int sh_scale_scene_exact(const sh_scale_scene *sc, int order, sh_convention conv
         return st;
     }
     if (sc->kind == SH_SCENE_CONE) return region_project(sc, order, conv, k, NULL, c);
-    mid_ctx mc = {sc, k, NULL};
+    mid_ctx mc;
+    if ((st = mid_ctx_init(&mc, sc, k, NULL))) return st;
     return sh_project(order, conv, mid_exact_fn, &mc, SH_RULE_QUAD, sc->nodes, 0, c);
 }
 
@@ -271,7 +342,8 @@ int sh_scale_scene_scaled_exact(const sh_scale_scene *sc, int order, sh_conventi
     if ((st = sh_scale_scene_check(sc, sh_scale_scene_k_ref(sc)))) return st;
     if ((st = sh_scaling_check(s))) return st;
     if (sc->kind != SH_SCENE_MIDRANGE) return region_project(sc, order, conv, 0.0, s, c);
-    mid_ctx mc = {sc, 0.0, s};
+    mid_ctx mc;
+    if ((st = mid_ctx_init(&mc, sc, 0.0, s))) return st;
     return sh_project(order, conv, mid_scaled_fn, &mc, SH_RULE_QUAD, sc->nodes, 0, c);
 }
 
@@ -301,13 +373,20 @@ int sh_scale_scene_errors(const sh_scale_scene *sc, int order, sh_convention con
     if (!st) st = sh_scale_scene_exact(sc, order, conv, k, E);
     if (!st) st = sh_scale_matrix(order, s, M, NULL);
     if (!st) st = sh_scale_scene_scaled_exact(sc, order, conv, s, G);
-    if (!st) {
+    if (!st && sc->kind == SH_SCENE_MIDRANGE) {
+        /* S_d = R_sh(Q⁻¹) M R_sh(Q) S_r about the displacement axis (M alone for +z) */
+        double a[3];
+        st = sh_scale_scene_dir(sc, a);
+        if (!st) st = sh_scale_apply_axis(order, conv, M, a, scene_rotation(sc), Sr, Sd);
+    } else if (!st) {
         /* S_d = M S_r  ([1] eq. 5) */
         for (int i = 0; i < n; i++) {
             double v = 0.0;
             for (int j = 0; j < n; j++) v += M[(size_t)i * n + j] * Sr[j];
             Sd[i] = v;
         }
+    }
+    if (!st) {
         const double ne = l2(E, NULL, n);
         if (!(ne > 0.0)) st = sh_error(SH_ENUM, "scene: the exact projection is zero");
         else {

@@ -487,12 +487,27 @@ typedef struct { double max_error, rms_error, worst_k; } sh_scale_interp_result;
 int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
                           double kmin, double kmax, sh_scale_interp_kind interp, int dense,
                           sh_scale_interp_result *res);
+/* Scaling about an arbitrary axis a (scale_axis.c, [Wang Sec. 3.2]): rotate
+ * so that a becomes +z, scale, rotate back:
+ *   S_d = R_sh(Q⁻¹) M R_sh(Q) S_r,   Q a = ẑ,
+ * Q the shortest such rotation (about a × ẑ; π about x for a = −ẑ).  M is a
+ * +z scaling matrix (sh_scale_matrix); the result does not depend on the
+ * twist of Q about ẑ.  method: an exact general rotation method (not z, not
+ * the Taylor approximations).  a need not be normalised; a = +ẑ exactly
+ * applies M alone.  in and out have order² entries (in-place allowed). */
+int sh_scale_axis_unit(const double axis[3], double unit[3]);
+int sh_scale_axis_is_z(const double axis[3]);
+int sh_scale_axis_rotation(const double axis[3], sh_rotation *to_z);
+int sh_scale_apply_axis(int order, sh_convention conv, const double *M, const double axis[3], sh_rot_method method,
+                        const double *in, double *out);
 /* Scenes with ground truth for scaling (scale_scene.c): sphere occluder
  * (exact cap), cone occluder (non-zonal rim on a cone: the cone family is
  * exact geometry), mid-range environment on a sphere of radius R (ray-sphere
  * intersection).  k: d/r (occluders, reference sample at k = 1) or d/R
- * (midrange, reference at the centre k = 0).  Displacements along +z only:
- * an arbitrary direction is rotate → scale → rotate back. */
+ * (midrange, reference at the centre k = 0).  Occluders lie along +z; the
+ * midrange point moves to k·R·dir for any direction dir (all zero = +z),
+ * and a direction other than +z is scaled by sh_scale_apply_axis with the
+ * scene's rotation method. */
 typedef enum { SH_SCENE_SPHERE = 0, SH_SCENE_CONE, SH_SCENE_MIDRANGE } sh_scale_scene_kind;
 const char *sh_scale_scene_name(sh_scale_scene_kind k);
 int sh_scale_scene_parse(const char *s, sh_scale_scene_kind *out);
@@ -505,7 +520,11 @@ typedef struct {
     void *light_ctx;
     const sh_image *probe;     /* midrange: or a lat-long image (luminance, bilinear) */
     int nodes;                 /* midrange: θ nodes of the direct projections (QUAD rule) */
+    double dir[3];             /* midrange: displacement direction (need not be unit); 0,0,0 = +z */
+    sh_rot_method rotation;    /* midrange with dir ≠ +z: rotation method; SH_ROT_Z (0) = zxzxz */
 } sh_scale_scene;
+/* The scene's displacement direction as a unit vector (+z for 0,0,0). */
+int sh_scale_scene_dir(const sh_scale_scene *sc, double unit[3]);
 typedef struct { double err_scaled, err_geom, err_trunc; } sh_scale_scene_err;
 int sh_scale_scene_check(const sh_scale_scene *sc, double k);
 double sh_scale_scene_k_ref(const sh_scale_scene *sc);

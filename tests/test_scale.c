@@ -15,7 +15,15 @@
  *    (1 − cos kπ)/2;
  *  - the group law of the cone family τ_a∘τ_b = τ_ab;
  *  - scenes: the cone family on the cone occluder and the midrange family on
- *    the midrange scene are exact geometry (err_geom ~ 0). */
+ *    the midrange scene are exact geometry (err_geom ~ 0);
+ *  - displacement in any direction d (rotate to the axis, scale, rotate
+ *    back): the exact radiance against a ray-sphere intersection solved
+ *    here (R ≠ 1); the result equals the +z result of the environment
+ *    rotated by a Q' built here (rows e1, e2, d: a different twist than the
+ *    library's), rotated back by a second method (wigner); an environment
+ *    symmetric about d gives the +z zonal result placed on d by the
+ *    addition theorem (sh_eval only, no rotation code); displacement k
+ *    along −z = −k along +z; the rotation methods agree with each other. */
 #include "testutil.h"
 
 #include <gsl/gsl_errno.h>
@@ -375,7 +383,7 @@ START_TEST(test_scenes)
     const int N = 5;
     sh_scale_scene_err e;
     /* cone occluder, cone family with the occluder's θ0: exact geometry */
-    sh_scale_scene cone = {SH_SCENE_CONE, 0.4, M_PI / 5, 0.3, NULL, NULL, NULL, 0};
+    sh_scale_scene cone = {SH_SCENE_CONE, 0.4, M_PI / 5, 0.3, NULL, NULL, NULL, 0, {0, 0, 0}, 0};
     const double ks[] = {0.7, 1.4, 2.5};
     for (int q = 0; q < 3; q++) {
         sh_scaling s = {SH_SCALE_CONE, ks[q], M_PI / 5, 0};
@@ -387,7 +395,7 @@ START_TEST(test_scenes)
         ck_assert_msg(e.err_geom > 1e-3, "cone scene linear k=%g err_geom %g", ks[q], e.err_geom);
     }
     /* midrange plain: exact geometry; energy-preserving is not */
-    sh_scale_scene mid = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 120};
+    sh_scale_scene mid = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 120, {0, 0, 0}, 0};
     for (int e2 = 0; e2 < 2; e2++) {
         sh_scaling s = {SH_SCALE_MIDRANGE, -0.6, 0, e2};
         ck_assert_int_eq(sh_scale_scene_errors(&mid, N, SH_NOCS, &s, -0.6, NULL, &e, NULL), SH_OK);
@@ -395,12 +403,12 @@ START_TEST(test_scenes)
         else ck_assert_msg(e.err_geom > 1e-2, "midrange energy err_geom %g", e.err_geom);
     }
     /* sphere: scaling to k = 1 is the identity, the exact cap comes back */
-    sh_scale_scene sph = {SH_SCENE_SPHERE, 0.5, 0, 0, NULL, NULL, NULL, 0};
+    sh_scale_scene sph = {SH_SCENE_SPHERE, 0.5, 0, 0, NULL, NULL, NULL, 0, {0, 0, 0}, 0};
     sh_scaling s1 = {SH_SCALE_LINEAR, 1.0, 0, 0};
     ck_assert_int_eq(sh_scale_scene_errors(&sph, N, SH_CS, &s1, 1.0, NULL, &e, NULL), SH_OK);
     ck_assert_msg(e.err_scaled < 1e-13 && e.err_geom < 1e-13, "sphere k=1: %g %g", e.err_scaled, e.err_geom);
     /* the region quadrature of the sphere's cap against the closed form */
-    sh_scale_scene sphc = {SH_SCENE_CONE, 0.5, M_PI / 4, 0.0, NULL, NULL, NULL, 0};
+    sh_scale_scene sphc = {SH_SCENE_CONE, 0.5, M_PI / 4, 0.0, NULL, NULL, NULL, 0, {0, 0, 0}, 0};
     double c1[25], z[5];
     ck_assert_int_eq(sh_scale_scene_exact(&sphc, N, SH_CS, 1.3, c1), SH_OK);
     const double beta = atan2(0.5 * tan(M_PI / 4), 1.3 - 0.5);
@@ -411,6 +419,237 @@ START_TEST(test_scenes)
     /* scene errors */
     ck_assert_int_eq(sh_scale_scene_errors(&sph, N, SH_CS, &s1, 0.4, NULL, &e, NULL), SH_EINVAL);
     ck_assert_int_eq(sh_scale_scene_errors(&cone, N, SH_CS, &s1, 0.5, NULL, &e, NULL), SH_EINVAL);
+}
+END_TEST
+
+/* ---- displacement in any direction --------------------------------------- */
+
+static void unit3(double v[3])
+{
+    const double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    v[0] /= n, v[1] /= n, v[2] /= n;
+}
+
+/* A proper rotation with rows e1, e2, d (so Q d = ẑ), e1 ⟂ d from a fixed
+ * helper vector: not the library's shortest rotation. */
+static void frame_to_z(const double d[3], double Q[9])
+{
+    const double h[3] = {0.2, 0.9, -0.4};
+    double e1[3] = {h[1] * d[2] - h[2] * d[1], h[2] * d[0] - h[0] * d[2], h[0] * d[1] - h[1] * d[0]};
+    unit3(e1);
+    const double e2[3] = {d[1] * e1[2] - d[2] * e1[1], d[2] * e1[0] - d[0] * e1[2], d[0] * e1[1] - d[1] * e1[0]};
+    for (int j = 0; j < 3; j++) Q[j] = e1[j], Q[3 + j] = e2[j], Q[6 + j] = d[j];
+}
+
+/* The lobes environment rotated by Q: g(u) = f(Qᵀ u). */
+static double rotated_lobes(const double u[3], double theta, double phi, void *ctx)
+{
+    const double *Q = ctx;
+    double v[3], th, ph;
+    for (int i = 0; i < 3; i++) v[i] = Q[i] * u[0] + Q[3 + i] * u[1] + Q[6 + i] * u[2];
+    sh_angles_from_dir(v, &th, &ph);
+    return sh_scale_scene_lobes_fn(v, th, ph, NULL);
+}
+
+/* A zonal environment about the axis in ctx: h(u·a) = exp(6(u·a − 1)) + 0.3 (u·a)³. */
+static double zonal_about(const double u[3], double theta, double phi, void *ctx)
+{
+    const double *a = ctx, x = u[0] * a[0] + u[1] * a[1] + u[2] * a[2];
+    return exp(6.0 * (x - 1.0)) + 0.3 * x * x * x;
+}
+
+START_TEST(test_axis_rotation)
+{
+    const double axes[][3] = {{0, 0, 1}, {0, 0, -2}, {1, 1, 1}, {1e-9, 0, 1}, {-3e-12, 2e-12, -1}, {0.3, -0.5, 0.8},
+                              {1, 0, 0}, {0, -1e-200, 0}};
+    for (int a = 0; a < 8; a++) {
+        double u[3];
+        sh_rotation Q;
+        ck_assert_int_eq(sh_scale_axis_unit(axes[a], u), SH_OK);
+        ck_assert_int_eq(sh_scale_axis_rotation(axes[a], &Q), SH_OK);
+        for (int i = 0; i < 3; i++) {
+            const double qa = Q.R[3 * i] * u[0] + Q.R[3 * i + 1] * u[1] + Q.R[3 * i + 2] * u[2];
+            ck_close(qa, i == 2, TOL1, 1.0, "axis %d: (Q a)_%d", a, i);
+        }
+        const double det = Q.R[0] * (Q.R[4] * Q.R[8] - Q.R[5] * Q.R[7]) - Q.R[1] * (Q.R[3] * Q.R[8] - Q.R[5] * Q.R[6]) +
+                           Q.R[2] * (Q.R[3] * Q.R[7] - Q.R[4] * Q.R[6]);
+        ck_close(det, 1.0, TOL1, 1.0, "axis %d: det Q", a);
+    }
+    const double zero[3] = {0, 0, 0}, bad[3] = {NAN, 0, 1};
+    sh_rotation Q;
+    ck_assert_int_eq(sh_scale_axis_rotation(zero, &Q), SH_EINVAL);
+    ck_assert_int_eq(sh_scale_axis_rotation(bad, &Q), SH_EINVAL);
+}
+END_TEST
+
+START_TEST(test_midrange_dir_ray_geometry)
+{
+    /* environment on |x| = R, point p = k R d; the radiance from direction s
+     * is the environment at the ray's hit P/|P| (solved here for R = 2.5) */
+    const double R = 2.5, ks[] = {-0.85, 0.3, 0.9};
+    double d[3] = {0.3, -0.5, 0.8};
+    unit3(d);
+    sh_scale_scene sc = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 64, {d[0], d[1], d[2]}, 0};
+    for (int a = 0; a < 3; a++)
+        for (int q = 0; q < 60; q++) {
+            const double th = M_PI * (q + 0.5) / 60.0, ph = 0.7 + 2.3 * q;
+            const double s3[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
+            const double p[3] = {ks[a] * R * d[0], ks[a] * R * d[1], ks[a] * R * d[2]};
+            /* |p + t s|² = R²: t² + 2 (p·s) t + |p|² − R² = 0, the root t > 0 */
+            const double B = p[0] * s3[0] + p[1] * s3[1] + p[2] * s3[2];
+            const double C = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] - R * R, t = -B + sqrt(B * B - C);
+            const double P[3] = {(p[0] + t * s3[0]) / R, (p[1] + t * s3[1]) / R, (p[2] + t * s3[2]) / R};
+            double pt, pp;
+            sh_angles_from_dir(P, &pt, &pp);
+            const double want = sh_scale_scene_lobes_fn(P, pt, pp, NULL);
+            ck_close(sh_scale_scene_value(&sc, ks[a], th, ph), want, TOL3, 1e-3, "dir scene value k=%g th=%g",
+                     ks[a], th);
+        }
+}
+END_TEST
+
+/* |a − b| / |b| over n entries */
+static double rel_l2(const double *a, const double *b, int n)
+{
+    double s = 0, t = 0;
+    for (int i = 0; i < n; i++) s += (a[i] - b[i]) * (a[i] - b[i]), t += b[i] * b[i];
+    return sqrt(s / t);
+}
+
+START_TEST(test_midrange_dir_vs_rotated_env)
+{
+    /* scene along d with environment f  ==  R_sh(Q'ᵀ) · (scene along +z with
+     * environment f(Q'ᵀ ·)), Q' d = ẑ built in frame_to_z; R_sh by the
+     * wigner method (the library rotates with zxzxz / blanco) */
+    const int N = 6, n = 36;
+    double d[3] = {0.3, -0.5, 0.8}, Q[9], Qt[9];
+    unit3(d);
+    frame_to_z(d, Q);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) Qt[3 * i + j] = Q[3 * j + i];
+    sh_rotation back;
+    ck_assert_int_eq(sh_rotation_from_matrix(Qt, 0, &back), SH_OK);
+    sh_rot_plan *plan;
+    ck_assert_int_eq(sh_rot_plan_create(N, SH_ROT_WIGNER, SH_PREC_DOUBLE, SH_CS, &plan), SH_OK);
+    ck_assert_int_eq(sh_rot_plan_set(plan, &back), SH_OK);
+    sh_scale_scene zs = {SH_SCENE_MIDRANGE, 0, 0, 0, rotated_lobes, Q, NULL, 160, {0, 0, 0}, 0};
+    const sh_rot_method methods[2] = {SH_ROT_ZXZXZ, SH_ROT_BLANCO};
+    const double ks[] = {-0.7, 0.5, 0.9};
+    for (int q = 0; q < 3; q++)
+        for (int e = 0; e < 2; e++) {
+            sh_scaling s = {SH_SCALE_MIDRANGE, ks[q], 0, e};
+            double Ez[36], Sz[36], Ed[36], Sd[36], Ezr[36], Szr[36];
+            sh_scale_scene_err ez, ed;
+            ck_assert_int_eq(sh_scale_scene_exact(&zs, N, SH_CS, ks[q], Ez), SH_OK);
+            ck_assert_int_eq(sh_scale_scene_errors(&zs, N, SH_CS, &s, ks[q], NULL, &ez, Sz), SH_OK);
+            ck_assert_int_eq(sh_rot_plan_apply(plan, Ez, Ezr), SH_OK);
+            ck_assert_int_eq(sh_rot_plan_apply(plan, Sz, Szr), SH_OK);
+            for (int m = 0; m < 2; m++) {
+                sh_scale_scene ds = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 160,
+                                     {3 * d[0], 3 * d[1], 3 * d[2]}, methods[m]};
+                ck_assert_int_eq(sh_scale_scene_exact(&ds, N, SH_CS, ks[q], Ed), SH_OK);
+                ck_assert_int_eq(sh_scale_scene_errors(&ds, N, SH_CS, &s, ks[q], NULL, &ed, Sd), SH_OK);
+                const double dE = rel_l2(Ed, Ezr, n), dS = rel_l2(Sd, Szr, n);
+                ck_assert_msg(dE < 1e-12 && dS < 1e-12, "k=%g e=%d method %s: exact %.3g scaled %.3g", ks[q], e,
+                              sh_rot_method_name(methods[m]), dE, dS);
+                /* and the three errors are the same numbers */
+                ck_close(ed.err_scaled, ez.err_scaled, 1e-10, 1e-2, "err_scaled k=%g e=%d", ks[q], e);
+                ck_close(ed.err_geom, ez.err_geom, 1e-10, 1e-2, "err_geom k=%g e=%d", ks[q], e);
+                ck_close(ed.err_trunc, ez.err_trunc, 1e-10, 1e-2, "err_trunc k=%g e=%d", ks[q], e);
+                if (!e) ck_assert_msg(ed.err_geom < 1e-12, "plain about d is exact geometry: %g", ed.err_geom);
+            }
+        }
+    sh_rot_plan_free(plan);
+}
+END_TEST
+
+START_TEST(test_midrange_dir_zonal_env)
+{
+    /* h(u·d) displaced along d: the +z result of h(u_z) is zonal (z_l), and
+     * a function zonal about d with zonal coefficients z_l has coefficients
+     * z_l √(4π/(2l+1)) y_lm(d) (addition theorem) — no rotation code used */
+    const int N = 7, n = 49;
+    double d[3] = {-0.6, 0.2, -0.5}, zax[3] = {0, 0, 1}, td, pd, yd[49];
+    unit3(d);
+    sh_angles_from_dir(d, &td, &pd);
+    for (int c = 0; c < 2; c++) {
+        const sh_convention conv = c ? SH_NOCS : SH_CS;
+        ck_assert_int_eq(sh_eval(N, conv, td, pd, yd), SH_OK);
+        sh_scale_scene zs = {SH_SCENE_MIDRANGE, 0, 0, 0, zonal_about, zax, NULL, 160, {0, 0, 0}, 0};
+        sh_scale_scene ds = {SH_SCENE_MIDRANGE, 0, 0, 0, zonal_about, d, NULL, 160, {d[0], d[1], d[2]}, SH_ROT_IVANIC};
+        const double ks[] = {-0.8, 0.6};
+        for (int q = 0; q < 2; q++)
+            for (int e = 0; e < 2; e++) {
+                sh_scaling s = {SH_SCALE_MIDRANGE, ks[q], 0, e};
+                double Sz[49], Sd[49], want[49], Ez[49], Ed[49], wantE[49];
+                sh_scale_scene_err er;
+                ck_assert_int_eq(sh_scale_scene_errors(&zs, N, conv, &s, ks[q], NULL, &er, Sz), SH_OK);
+                ck_assert_int_eq(sh_scale_scene_errors(&ds, N, conv, &s, ks[q], NULL, &er, Sd), SH_OK);
+                ck_assert_int_eq(sh_scale_scene_exact(&zs, N, conv, ks[q], Ez), SH_OK);
+                ck_assert_int_eq(sh_scale_scene_exact(&ds, N, conv, ks[q], Ed), SH_OK);
+                for (int l = 0; l < N; l++)
+                    for (int m = -l; m <= l; m++) {
+                        const double f = sqrt(4 * M_PI / (2 * l + 1)) * yd[sh_index(l, m)];
+                        want[sh_index(l, m)] = Sz[sh_index(l, 0)] * f;
+                        wantE[sh_index(l, m)] = Ez[sh_index(l, 0)] * f;
+                        if (m) ck_assert_msg(fabs(Sz[sh_index(l, m)]) < 1e-14, "+z result not zonal (%d,%d)", l, m);
+                    }
+                const double dS = rel_l2(Sd, want, n), dE = rel_l2(Ed, wantE, n);
+                ck_assert_msg(dS < 1e-12 && dE < 1e-12, "zonal about d, conv %d k=%g e=%d: scaled %.3g exact %.3g", c,
+                              ks[q], e, dS, dE);
+            }
+    }
+}
+END_TEST
+
+START_TEST(test_apply_axis)
+{
+    const int N = 6, n = 36;
+    double M[1296], Mm[1296], in[36], a[36], b[36], c[36];
+    for (int i = 0; i < n; i++) in[i] = sin(1.3 * i + 0.2) / (1 + i);
+    for (int e = 0; e < 2; e++) {
+        sh_scaling s = {SH_SCALE_MIDRANGE, 0.65, 0, e}, sm = s;
+        sm.k = -0.65;
+        ck_assert_int_eq(sh_scale_matrix(N, &s, M, NULL), SH_OK);
+        ck_assert_int_eq(sh_scale_matrix(N, &sm, Mm, NULL), SH_OK);
+        /* +z exactly: M alone, bit for bit */
+        const double z[3] = {0, 0, 5}, mz[3] = {0, 0, -1}, t[3] = {0.4, 0.1, -0.9};
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, z, SH_ROT_ZXZXZ, in, a), SH_OK);
+        for (int i = 0; i < n; i++) {
+            double v = 0;
+            for (int j = 0; j < n; j++) v += M[i * n + j] * in[j];
+            ck_assert(a[i] == v);
+        }
+        /* k along −z = −k along +z */
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_NOCS, M, mz, SH_ROT_BLANCO, in, b), SH_OK);
+        for (int i = 0; i < n; i++) {
+            double v = 0;
+            for (int j = 0; j < n; j++) v += Mm[i * n + j] * in[j];
+            ck_close(b[i], v, 1e-13, 1.0, "e=%d -z vs -k (%d)", e, i);
+        }
+        /* the rotation methods agree; in place allowed */
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, t, SH_ROT_ZXZXZ, in, a), SH_OK);
+        memcpy(c, in, sizeof c);
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, t, SH_ROT_IVANIC, c, c), SH_OK);
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, t, SH_ROT_REFERENCE, in, b), SH_OK);
+        for (int i = 0; i < n; i++) {
+            ck_close(a[i], b[i], 1e-13, 1.0, "zxzxz vs reference (%d)", i);
+            ck_close(c[i], b[i], 1e-13, 1.0, "ivanic vs reference (%d)", i);
+        }
+        /* refusals */
+        const double zero[3] = {0, 0, 0};
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, zero, SH_ROT_ZXZXZ, in, a), SH_EINVAL);
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, t, SH_ROT_Z, in, a), SH_EINVAL);
+        ck_assert_int_eq(sh_scale_apply_axis(N, SH_CS, M, t, SH_ROT_TAYLOR15, in, a), SH_EINVAL);
+    }
+    /* a direction on an occluder scene is refused */
+    sh_scale_scene cone = {SH_SCENE_CONE, 0.4, M_PI / 5, 0.3, NULL, NULL, NULL, 0, {1, 0, 0}, 0};
+    ck_assert_int_eq(sh_scale_scene_check(&cone, 1.5), SH_EINVAL);
+    sh_scale_scene mid = {SH_SCENE_MIDRANGE, 0, 0, 0, sh_scale_scene_lobes_fn, NULL, NULL, 64, {0, NAN, 1}, 0};
+    ck_assert_int_eq(sh_scale_scene_check(&mid, 0.5), SH_EINVAL);
+    mid.dir[1] = 0;
+    mid.rotation = SH_ROT_TAYLOR1;
+    ck_assert_int_eq(sh_scale_scene_check(&mid, 0.5), SH_EINVAL);
 }
 END_TEST
 
@@ -432,6 +671,11 @@ static Suite *suite(void)
     tcase_add_test(t, test_errors);
     tcase_add_test(t, test_interp);
     tcase_add_test(t, test_scenes);
+    tcase_add_test(t, test_axis_rotation);
+    tcase_add_test(t, test_midrange_dir_ray_geometry);
+    tcase_add_test(t, test_midrange_dir_vs_rotated_env);
+    tcase_add_test(t, test_midrange_dir_zonal_env);
+    tcase_add_test(t, test_apply_axis);
     suite_add_tcase(s, t);
     return s;
 }

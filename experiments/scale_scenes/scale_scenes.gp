@@ -29,12 +29,12 @@ do for [sc in "sphere cone"] {
   set xtics autofreq
 }
 
-probes = system("grep -qi skipped ".outdir."/probe.dat && echo midrange || echo 'midrange probe'")
+probes = system("grep -qi skipped ".outdir."/probe.dat && echo midrange midrange_tilted || echo 'midrange midrange_tilted probe'")
 do for [sc in probes] {
   set output outdir.'/scale_scenes_'.sc.'.png'
   f = outdir.'/'.sc.'.dat'
   set terminal pngcairo size 1000,420 enhanced font ",10"
-  set multiplot layout 1,2 title (sc eq "midrange" ? "Mid-range lighting (two lobes on a sphere of radius R), centre → d = kR" : "Mid-range lighting from an HDR probe, centre → d = kR")
+  set multiplot layout 1,2 title (sc eq "midrange" ? "Mid-range lighting (two lobes on a sphere of radius R), centre → d = kR along +z" : sc eq "midrange_tilted" ? "The same lobes, centre → d = kR along (θ,φ) = (60°,135°): rotate to the axis, scale, rotate back" : "Mid-range lighting from an HDR probe, centre → d = kR")
   set yrange [1e-17:10]
   set autoscale xfix
   set title "plain (ψ = sin θ)"
@@ -79,4 +79,17 @@ set title "plain scaling of centre capture"
 plot outdir.'/img_mid_plain.dat' matrix with image
 set title "energy-preserving scaling"
 plot outdir.'/img_mid_energy.dat' matrix with image
+unset multiplot
+
+set output outdir.'/scale_scenes_tilted_images.png'
+set terminal pngcairo size 1200,220 enhanced font ",9"
+set multiplot layout 1,4 title "mid-range k = 0.7 along (θ,φ) = (60°,135°), order 8 (lat-long, θ down)"
+set title "exact"
+plot outdir.'/img_tilt_exact.dat' matrix with image
+set title "exact, order-8 projection"
+plot outdir.'/img_tilt_exact_proj.dat' matrix with image
+set title "plain: rotate, scale, rotate back"
+plot outdir.'/img_tilt_plain.dat' matrix with image
+set title "energy-preserving"
+plot outdir.'/img_tilt_energy.dat' matrix with image
 unset multiplot

@@ -23,7 +23,7 @@
 typedef struct {
     const char *label;
     sh_scaling s;
-    int rule; /* 0 none known, 1 preservation only, 2 midrange, 3 symmetric τ (parity) */
+    int rule; /* 0 none known, 1 preservation only, 2 midrange, 3 symmetric τ (parity), 4 linear k = 2 */
 } scase;
 
 /* Structural zero predicted for (l_i, l_j) with m_i = m_j (|m| <= min). */
@@ -46,6 +46,11 @@ static int predicted_zero(const scase *c, int li, int lj)
         if (s->energy && (li & 1) && li > 2 * lj + 1) z = 1;
     }
     if (c->rule == 3 && ((li + lj) & 1)) z = 1; /* τ(π−θ) = π − τ(θ): parity */
+    /* linear k = 2, plain: F = y_j∘τ is y_j(2θ, φ) — a polynomial P_j of degree
+     * 2 l_j in s, even under s → −s — on the upper hemisphere and the pole
+     * value c on the lower one, so its even part (F(s) + F(−s))/2 = (P_j + c)/2
+     * is a polynomial of degree 2 l_j everywhere: M_ij = 0 for even l_i > 2 l_j */
+    if (c->rule == 4 && !s->energy && !(li & 1) && li > 2 * lj) z = 1;
     return z;
 }
 
@@ -74,7 +79,7 @@ int main(int argc, char **argv)
         {"midrange k=-0.5 energy", {SH_SCALE_MIDRANGE, -0.5, 0, 1}, 2},
         {"cone θ0=90° k=0.6 plain", {SH_SCALE_CONE, 0.6, M_PI / 2, 0}, 3},
         {"linear k=0.5 plain", {SH_SCALE_LINEAR, 0.5, 0, 0}, 0},
-        {"linear k=2 plain", {SH_SCALE_LINEAR, 2.0, 0, 0}, 0},
+        {"linear k=2 plain", {SH_SCALE_LINEAR, 2.0, 0, 0}, 4},
     };
     const int nc = (int)(sizeof cases / sizeof *cases), NMAX = 16;
     FILE *f = exp_data("sparsity.dat", "non-zero entries of the scaling matrix (|M_ij| > 1e-12 max|M|)",
@@ -85,8 +90,15 @@ int main(int argc, char **argv)
     double worst_off = 0.0, worst_acc = 0.0;
     int mismatch = 0, generic_eq_bound = 0, generic_total = 0;
     char table[8192];
-    int tl = snprintf(table, sizeof table, "| case | N=2 | N=4 | N=8 | N=16 | predicted = measured for N=1..16 |\n|---|---|---|---|---|---|\n");
+    int tl = snprintf(table, sizeof table,
+                      "| case | N=2 | N=4 | N=8 | N=16 | predicted = measured for N=1..16 | largest zero | smallest non-zero |\n"
+                      "|---|---|---|---|---|---|---|---|\n");
+    double worst_gap_zero = 0.0, worst_gap_nz = INFINITY;
     long meas[16][17];
+    /* structural, not threshold: the largest entry counted as zero and the
+     * smallest counted as non-zero, relative to max|M|, over N = 1..16 */
+    double big_zero[17], small_nz[17];
+    for (int c = 0; c < 17; c++) big_zero[c] = 0.0, small_nz[c] = INFINITY;
     for (int N = 1; N <= NMAX; N++) {
         const int n = N * N;
         double *M = malloc(sizeof(double) * n * n), *Q = malloc(sizeof(double) * n * n);
@@ -112,9 +124,19 @@ int main(int argc, char **argv)
                 if (N <= 8)
                     for (int q = 0; q < n * n; q++) worst_acc = fmax(worst_acc, fabs(M[q] - Q[q]));
             }
+            for (int i = 0; i < n; i++)
+                for (int j = 0; j < n; j++) {
+                    int li, mi, lj, mj;
+                    sh_index_lm(i, &li, &mi);
+                    sh_index_lm(j, &lj, &mj);
+                    if (mi != mj) continue;
+                    const double v = fabs(M[i * n + j]) / mx;
+                    if (v > 1e-12) small_nz[c] = fmin(small_nz[c], v);
+                    else big_zero[c] = fmax(big_zero[c], v);
+                }
             const long nz = sh_scale_nonzeros(N, M, 1e-12);
             const long pr = cases[c].rule ? predicted_count(&cases[c], N) : -1;
-            if (pr >= 0 && pr != nz) mismatch++;
+            if (pr >= 0 && pr != nz && cases[c].rule != 4) mismatch++; /* rule 4 is partial: reported below */
             if (cases[c].rule == 1 && N > 1) {
                 generic_total++;
                 generic_eq_bound += nz == sh_scale_pattern_bound(N);
@@ -129,17 +151,27 @@ int main(int argc, char **argv)
     fclose(f);
     for (int c = 0; c < nc; c++) {
         int agree = 1;
+        long extra = 0;
         if (cases[c].rule)
-            for (int N = 1; N <= NMAX; N++) agree &= predicted_count(&cases[c], N) == meas[N - 1][c];
-        tl += snprintf(table + tl, sizeof table - tl, "| %s | %ld | %ld | %ld | %ld | %s |\n", cases[c].label,
-                       meas[1][c], meas[3][c], meas[7][c], meas[15][c],
-                       cases[c].rule ? (agree ? "yes" : "**no**") : "no rule (measured only)");
+            for (int N = 1; N <= NMAX; N++) {
+                agree &= predicted_count(&cases[c], N) == meas[N - 1][c];
+                extra = predicted_count(&cases[c], N) - meas[N - 1][c];
+            }
+        char verdict[96];
+        if (!cases[c].rule) snprintf(verdict, sizeof verdict, "no rule (measured only)");
+        else if (agree) snprintf(verdict, sizeof verdict, "yes");
+        else snprintf(verdict, sizeof verdict, "**no**: %ld more zeros than predicted at N=16", extra);
+        worst_gap_zero = fmax(worst_gap_zero, big_zero[c]);
+        if (big_zero[c] > 0) worst_gap_nz = fmin(worst_gap_nz, small_nz[c]);
+        tl += snprintf(table + tl, sizeof table - tl, "| %s | %ld | %ld | %ld | %ld | %s | %.1e | %.1e |\n",
+                       cases[c].label, meas[1][c], meas[3][c], meas[7][c], meas[15][c], verdict, big_zero[c],
+                       small_nz[c]);
     }
-    tl += snprintf(table + tl, sizeof table - tl, "| bound N(2N²+1)/3 | %ld | %ld | %ld | %ld | |\n",
+    tl += snprintf(table + tl, sizeof table - tl, "| bound N(2N²+1)/3 | %ld | %ld | %ld | %ld | | | |\n",
                    sh_scale_pattern_bound(2), sh_scale_pattern_bound(4), sh_scale_pattern_bound(8),
                    sh_scale_pattern_bound(16));
 
-    char me[512];
+    char me[1024];
     snprintf(me, sizeof me, "largest off-pattern entry / max|M| = %.1e (independent 2-D rule, N = 1..16, 4 cases)", worst_off);
     exp_claim("wang-scaling-pattern", "Wang et al. 2006, Sec. 2.2 and Appendix",
               "the non-zero entries of M lie at m_i = m_j, independently of τ and of energy preservation",
@@ -152,9 +184,12 @@ int main(int argc, char **argv)
     snprintf(me, sizeof me,
              "N = 4: linear/cone plain %ld, energy (τ onto [0,π]) %ld, linear k<1 energy %ld, midrange %ld/%ld, "
              "cone θ0=90° %ld, linear k=1/2 plain %ld (bound 44); only linear k<1 energy reaches the bound "
-             "(%d of %d preservation-rule cases with N>1); structural prediction = measured in all ruled cases: %s",
+             "(%d of %d preservation-rule cases with N>1); structural prediction = measured in all fully ruled cases: "
+             "%s; linear k=2 plain: rule even l_i > 2l_j predicts %ld at N=8, measured %ld; zeros are exact, not a "
+             "threshold effect: largest entry counted zero %.1e, smallest counted non-zero %.1e of max|M|",
              meas[3][0], meas[3][3], meas[3][1], meas[3][6], meas[3][7], meas[3][8], meas[3][9], generic_eq_bound,
-             generic_total, mismatch ? "no" : "yes");
+             generic_total, mismatch ? "no" : "yes", predicted_count(&cases[10], 8), meas[7][10], worst_gap_zero,
+             worst_gap_nz);
     exp_claim("wang-scaling-count", "Wang et al. 2006, Sec. 2.2",
               "regardless of whether energy is preserved, exactly N(2N²+1)/3 of the N⁴ elements of M are non-zero",
               "N(2N²+1)/3 (44 for N = 4)", me, "exact count", "differs",
@@ -184,11 +219,20 @@ int main(int argc, char **argv)
               "D = |s − kẑ|: an exterior multipole (bands ≥ l_i) times, for odd l_i, a polynomial of degree "
               "(l_i+1)/2 in cos α, so M_ij = 0 for odd l_i > 2l_j + 1.\n"
               "* *Symmetric τ* (cone with θ0 = 90°: τ(π−θ) = π − τ(θ)): entries with l_i + l_j odd vanish by parity.\n"
-              "* *Special k*: linear k = 1/2 (and k = 2) has many more zeros: with u = cos(θ/2), P_l(cos(θ/2)) for "
-              "even l is a polynomial of degree l/2 in cosθ, and the odd parts become half-range integrals "
-              "∫₀¹ P_a(2u²−1) P_b(u) u du that vanish by parity (measured only; no closed count here).\n"
+              "* *Linear k = 2* (plain): y_j(2θ, φ) is a polynomial P_j of degree 2l_j in s, even under s → −s, on "
+              "the upper hemisphere and the pole value c on the lower one, so the even part of F = y_j∘τ is "
+              "(P_j + c)/2 everywhere, a polynomial of degree 2l_j: M_ij = 0 for even l_i > 2l_j (the mid-range "
+              "plain rule). This explains all but %ld of its zeros at N = 16 (the first extra pair is "
+              "(l_i, l_j, m) = (6, 4, ±2), zero to 7e-17): not derived here.\n"
+              "* *Linear k = 1/2* (plain): cos(θ/2) = √((1+cos θ)/2), so for m = 0 and even l_j, y_j∘τ is a "
+              "polynomial of degree l_j/2 in cos θ (zero against l_i > l_j/2), and further zeros come from "
+              "half-range parity; measured only, no closed count here.\n"
+              "* None of these is a threshold effect: over all cases and N = 1..16 the largest entry counted as "
+              "zero is %.1e of max|M| and the smallest counted as non-zero %.1e (the last two table columns), "
+              "so any threshold between 1e-15 and the latter gives the same counts (the mid-range matrices have the smallest true entries, k^l-small).\n"
               "* Identity (k = 1): N² non-zeros.\n\n"
               "The paper's \"less than one fifth\" holds for the bound from N = 4 on (44/256 = 0.17; N = 3 gives 19/81 = 0.23).",
-              worst_off, worst_acc, table);
+              worst_off, worst_acc, table, predicted_count(&cases[10], 16) - meas[15][10], worst_gap_zero,
+              worst_gap_nz);
     return 0;
 }

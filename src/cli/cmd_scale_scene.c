@@ -30,11 +30,14 @@ static const char help[] =
     "  cone      solid cone, apex at the centre, half-angle --occluder-angle (π/4),\n"
     "            rim at height SIZE·r·(1 + WOBBLE cosφ); k = d/r beyond the rim;\n"
     "            families linear and cone (θ0 = the occluder's: exact geometry)\n"
-    "  midrange  environment on a sphere of radius R seen from d ẑ, k = d/R in\n"
-    "            [−0.999, 0.999], reference at the centre; family midrange.\n"
-    "            Exact radiance by ray-sphere intersection; projections by the\n"
-    "            Gauss-Legendre × uniform-φ rule with --nodes θ nodes.\n"
-    "Displacements are along +z; another direction is rotate → scale → rotate back.\n"
+    "  midrange  environment on a sphere of radius R seen from d·DIR (DIR = +z\n"
+    "            unless --dir), k = d/R in [−0.999, 0.999], reference at the\n"
+    "            centre; family midrange.  Exact radiance by ray-sphere\n"
+    "            intersection; projections by the Gauss-Legendre × uniform-φ rule\n"
+    "            with --nodes θ nodes.  For DIR ≠ +z the centre capture is\n"
+    "            rotated so that DIR becomes +z, scaled, and rotated back\n"
+    "            (--rotation-method); err_geom is then computed about DIR\n"
+    "            directly, without SH rotations.\n"
     "\n"
     "  --scene S            sphere | cone | midrange\n"
     "  --order N            number of bands (1..16)\n"
@@ -48,17 +51,23 @@ static const char help[] =
     "                       non-zonal lobes) or an analytic light as in shlab project\n"
     "  --probe FILE         midrange environment from a lat-long EXR (luminance)\n"
     "  --nodes S            midrange quadrature θ nodes (default 200; 8..4096)\n"
+    "  --dir X,Y,Z          midrange displacement direction (default 0,0,1;\n"
+    "                       normalised; finite and non-zero)\n"
+    "  --rotation-method M  midrange, DIR ≠ +z: exact rotation method of the\n"
+    "                       rotate → scale → rotate back (default zxzxz; ivanic,\n"
+    "                       choi, blanco, wigner, reference)\n"
     "  --degrees            angles in degrees\n"
     "  --convention cs|nocs basis of the projections\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"scene\",\"order\",\"convention\",...,\"rows\":[{\"k\",\"family\",\"energy\",\n"
+    "JSON: {\"scene\",\"order\",\"convention\",...[midrange: \"dir_x\",\"dir_y\",\"dir_z\" (unit),\n"
+    "       \"rotation_method\" (\"none\" for +z)],\"rows\":[{\"k\",\"family\",\"energy\",\n"
     "       \"err_scaled\",\"err_geom\",\"err_trunc\"}]}\n";
 
 static int run(int argc, char **argv)
 {
-    enum { O_SCENE = 0x201, O_K, O_FAMILY, O_SIZE, O_WOBBLE, O_OCC, O_CONE, O_LIGHT, O_PROBE, O_NODES };
+    enum { O_SCENE = 0x201, O_K, O_FAMILY, O_SIZE, O_WOBBLE, O_OCC, O_CONE, O_LIGHT, O_PROBE, O_NODES, O_DIR, O_ROTM };
     static const struct option opts[] = {
         CLI_LONGOPTS_BASE,
         CLI_LONGOPT_ORDER,
@@ -72,13 +81,17 @@ static int run(int argc, char **argv)
         {"light", required_argument, 0, O_LIGHT},
         {"probe", required_argument, 0, O_PROBE},
         {"nodes", required_argument, 0, O_NODES},
+        {"dir", required_argument, 0, O_DIR},
+        {"rotation-method", required_argument, 0, O_ROTM},
         CLI_LONGOPT_DEGREES,
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *scene = NULL, *klist = NULL, *family = NULL, *light = NULL, *probe = NULL;
     double size = 0.5, wobble = 0.3, occ = -1, cone = -1;
-    int nodes = SCENE_DEFAULT_NODES;
+    int nodes = SCENE_DEFAULT_NODES, have_dir = 0;
+    double dir[3] = {0.0, 0.0, 0.0};
+    const char *rotm = NULL;
     opterr = 0;
     optind = 1;
     int o;
@@ -94,6 +107,8 @@ static int run(int argc, char **argv)
         case O_LIGHT: light = optarg; break;
         case O_PROBE: probe = optarg; break;
         case O_NODES: if (cli_int("--nodes", optarg, &nodes)) return CLI_EXIT_USAGE; break;
+        case O_DIR: if (cli_vec3("--dir", optarg, dir)) return CLI_EXIT_USAGE; have_dir = 1; break;
+        case O_ROTM: rotm = optarg; break;
         default: {
             const int r = cli_common_opt(&cmd_scale_scene, o, argv, &com);
             if (r >= 0) return r;
@@ -114,6 +129,25 @@ static int run(int argc, char **argv)
     if ((light || probe) && sc.kind != SH_SCENE_MIDRANGE)
         return cli_fail("scale-scene: --light/--probe apply to --scene midrange");
     if (light && probe) return cli_fail("scale-scene: give --light or --probe, not both");
+    if ((have_dir || rotm) && sc.kind != SH_SCENE_MIDRANGE)
+        return cli_fail("scale-scene: --dir/--rotation-method apply to --scene midrange (occluders lie along +z)");
+    double unit[3] = {0.0, 0.0, 1.0};
+    if (have_dir) {
+        if (sh_scale_axis_unit(dir, unit)) return cli_fail("--dir: %s", sh_last_error());
+        memcpy(sc.dir, unit, sizeof unit);
+    }
+    sc.rotation = SH_ROT_ZXZXZ;
+    if (rotm) {
+        if (cli_method(rotm, &sc.rotation)) return CLI_EXIT_USAGE;
+        if (!sh_rot_method_is_exact(sc.rotation) || sc.rotation == SH_ROT_Z)
+            return cli_fail("--rotation-method: %s is not an exact general rotation (zxzxz, ivanic, choi, blanco, "
+                            "wigner, reference)", rotm);
+        if (!sh_rot_method_max_order(sc.rotation))
+            return cli_fail("--rotation-method: %s is not built in", rotm);
+        if (order > sh_rot_method_max_order(sc.rotation))
+            return cli_fail("--rotation-method: %s accepts orders up to %d", rotm, sh_rot_method_max_order(sc.rotation));
+    }
+    const int tilted = !sh_scale_axis_is_z(unit);
     sc.size = size;
     sc.wobble = sc.kind == SH_SCENE_CONE ? wobble : 0.0;
     sc.cone_angle = occ >= 0 ? occ * deg : M_PI / 4.0;
@@ -203,6 +237,10 @@ static int run(int argc, char **argv)
     if (sc.kind == SH_SCENE_MIDRANGE) {
         root = cli_put(root, "environment", json_string(probe ? probe : light ? light : "lobes"));
         root = cli_put(root, "nodes", json_integer(nodes));
+        root = cli_put(root, "dir_x", json_real(unit[0]));
+        root = cli_put(root, "dir_y", json_real(unit[1]));
+        root = cli_put(root, "dir_z", json_real(unit[2]));
+        root = cli_put(root, "rotation_method", json_string(tilted ? sh_rot_method_name(sc.rotation) : "none"));
     }
     root = cli_put(root, "rows", rows);
     rc = cli_emit(root, com.fmt);

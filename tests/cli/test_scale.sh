@@ -79,7 +79,34 @@ bad=$(awk -F, 'NR > 1 && $10 == "cone" && $11 == "false" && $13 + 0 > 1e-12 { pr
 nrows=$(awk -F, 'NR > 1 && $10 == "cone"' "$TMP/out" | wc -l)
 [ -z "$bad" ] && [ "$nrows" = 4 ] && ok "cone family is exact geometry on the cone occluder" || notok "cone geometry error: $bad ($nrows rows)"
 expect_success "scale-scene midrange" scale-scene --scene midrange --order 4 --k -0.6,0.6 --nodes 100 --format csv
-# header: scene,order,convention,method,environment,nodes,k,family,energy,err_scaled,err_geom,err_trunc
-bad=$(awk -F, 'NR > 1 && $9 == "false" && $11 + 0 > 1e-12 { print $7, $11 }' "$TMP/out")
-nplain=$(awk -F, 'NR > 1 && $9 == "false"' "$TMP/out" | wc -l)
+# header: scene,order,convention,method,environment,nodes,dir_x,dir_y,dir_z,rotation_method,k,family,energy,err_scaled,err_geom,err_trunc
+head -1 "$TMP/out" | grep -q '^scene,order,convention,method,environment,nodes,dir_x,dir_y,dir_z,rotation_method,k,family,energy,err_scaled,err_geom,err_trunc$' \
+    && ok "midrange CSV columns" || notok "midrange CSV header: $(head -1 "$TMP/out")"
+bad=$(awk -F, 'NR > 1 && $13 == "false" && $15 + 0 > 1e-12 { print $11, $15 }' "$TMP/out")
+nplain=$(awk -F, 'NR > 1 && $13 == "false"' "$TMP/out" | wc -l)
 [ -z "$bad" ] && [ "$nplain" = 2 ] && ok "midrange family is exact geometry for plain scaling" || notok "midrange plain geometry error: $bad"
+awk -F, 'NR > 1 && ($7 != 0 || $8 != 0 || $9 != 1 || $10 != "none") { bad = 1 } END { exit bad }' "$TMP/out" \
+    && ok "midrange default direction +z, no rotation" || notok "midrange default direction"
+cp "$TMP/out" "$TMP/zplus"
+
+# displacement in any direction: rotate to the axis, scale, rotate back
+expect_usage_error "scale-scene --dir zero" scale-scene --scene midrange --order 4 --k 0.5 --dir 0,0,0
+expect_usage_error "scale-scene --dir two numbers" scale-scene --scene midrange --order 4 --k 0.5 --dir 1,2
+expect_usage_error "scale-scene --dir NaN" scale-scene --scene midrange --order 4 --k 0.5 --dir nan,0,1
+expect_usage_error "scale-scene --dir on sphere" scale-scene --scene sphere --order 4 --k 2 --dir 1,0,0
+expect_usage_error "scale-scene --rotation-method on cone" scale-scene --scene cone --order 4 --k 2 --rotation-method blanco
+expect_usage_error "scale-scene --rotation-method taylor1.5" scale-scene --scene midrange --order 4 --k 0.5 --dir 1,0,0 --rotation-method taylor1.5
+expect_usage_error "scale-scene --rotation-method z" scale-scene --scene midrange --order 4 --k 0.5 --dir 1,0,0 --rotation-method z
+expect_usage_error "scale-scene --rotation-method bogus" scale-scene --scene midrange --order 4 --k 0.5 --dir 1,0,0 --rotation-method spin
+# k along −z is −k along +z (same errors as the +z run above, in reverse k order)
+expect_success "scale-scene midrange --dir 0,0,-1" scale-scene --scene midrange --order 4 --k 0.6,-0.6 --nodes 100 --dir 0,0,-1 --format csv
+paste -d, "$TMP/zplus" "$TMP/out" | awk -F, 'NR > 1 { for (c = 14; c <= 16; c++) { d = $c - $(c + 16); if (d < 0) d = -d; if (d > 1e-12 * ($c + 1e-3)) bad = 1 } } END { exit bad }' \
+    && awk -F, 'NR > 1 && $10 != "zxzxz" { bad = 1 } END { exit bad }' "$TMP/out" \
+    && ok "--dir 0,0,-1 with k = ±0.6 gives the +z errors of k = ∓0.6" || notok "-z vs +z: $(cat "$TMP/out")"
+# a tilted axis: plain mid-range scaling is still exact geometry (err_geom is computed about the axis without SH rotations)
+for m in zxzxz blanco ivanic; do
+    expect_success "scale-scene midrange --dir 1,-2,0.5 ($m)" scale-scene --scene midrange --order 5 --k -0.7,0.8 --nodes 100 --dir 1,-2,0.5 --rotation-method $m --format json
+    ng=$(grep -o '"energy":false,"err_scaled":[-0-9.eE+]*,"err_geom":[-0-9.eE+]*' "$TMP/out" | sed 's/.*"err_geom"://' | awk '$1 + 0 < 1e-12' | wc -l)
+    [ "$ng" = 2 ] && ok "tilted axis ($m): plain err_geom < 1e-12" || notok "tilted axis ($m): $(cat "$TMP/out")"
+done
+grep -q '"rotation_method":"ivanic"' "$TMP/out" && grep -q '"dir_y":-0.8728715609439' "$TMP/out" && ok "tilted JSON tags (unit dir, method)" || notok "tilted JSON tags"
