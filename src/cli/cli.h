@@ -83,12 +83,15 @@ enum { CLI_OPT_FORMAT = 0x101, CLI_OPT_ORDER, CLI_OPT_CONVENTION, CLI_OPT_DEGREE
 #define CLI_LONGOPT_DEGREES {"degrees", no_argument, 0, CLI_OPT_DEGREES}
 
 typedef struct {
-    cli_format fmt;     /* --format (default table) */
-    int order;          /* --order (0 = not given) */
-    sh_convention conv; /* --convention (default cs) */
-    int degrees;        /* --degrees */
+    cli_format fmt;       /* --format (default table) */
+    int order;            /* --order (0 = not given) */
+    sh_convention conv;   /* --convention (default cs) */
+    int degrees;          /* --degrees */
+    sh_rot_method method; /* --method of the rotation commands (default ivanic) */
+    int have_method;      /* --method was given */
+    sh_precision prec;    /* --precision (default double) */
 } cli_common;
-#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0}
+#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE}
 
 /* Handle getopt_long's result o for command cmd: --help (prints the help),
  * the shared options, and unknown options or missing values (one error

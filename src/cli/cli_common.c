@@ -45,6 +45,11 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
     case CLI_OPT_ORDER: return cli_order("--order", optarg, &c->order) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_DEGREES: c->degrees = 1; return -1;
+    case CLI_OPT_METHOD:
+        if (cli_method(optarg, &c->method)) return CLI_EXIT_USAGE;
+        c->have_method = 1;
+        return -1;
+    case CLI_OPT_PRECISION: return cli_precision(optarg, &c->prec) ? CLI_EXIT_USAGE : -1;
     default: return cli_fail_getopt(cmd->name, argv, optind, optopt);
     }
 }

@@ -105,9 +105,6 @@ static int run(int argc, char **argv)
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case CLI_OPT_PRECISION:
-            if (cli_precision(optarg, &prec)) return CLI_EXIT_USAGE;
-            break;
         case 'o': {
             double *v = NULL;
             int n = 0;
@@ -168,6 +165,8 @@ static int run(int argc, char **argv)
         }
         }
     }
+    /* --method and --precision are kept by cli_common_opt */
+    prec = com.prec;
     if (optind < argc) return cli_fail("bench: unexpected argument '%s'", argv[optind]);
     if (have_beta) {
         const double b = com.degrees ? max_beta * M_PI / 180 : max_beta;

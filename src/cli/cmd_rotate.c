@@ -53,12 +53,6 @@ static int run(int argc, char **argv)
         if (r > 0) return r;
         if (r == 0) continue;
         switch (o) {
-        case CLI_OPT_METHOD:
-            if (cli_method(optarg, &method)) return CLI_EXIT_USAGE;
-            break;
-        case CLI_OPT_PRECISION:
-            if (cli_precision(optarg, &prec)) return CLI_EXIT_USAGE;
-            break;
         case 'k':
             if (coeff_arg) return cli_fail("rotate: --coeffs given twice");
             coeff_arg = optarg;
@@ -73,6 +67,9 @@ static int run(int argc, char **argv)
         }
         }
     }
+    /* --method and --precision are kept by cli_common_opt */
+    method = com.method;
+    prec = com.prec;
     if (optind < argc) return cli_fail("rotate: unexpected argument '%s'", argv[optind]);
     if (!coeff_arg == !in) return cli_fail("rotate: give exactly one of --coeffs and --in");
     sh_rotation rot;

@@ -62,13 +62,6 @@ static int run(int argc, char **argv)
         if (r > 0) return r;
         if (r == 0) continue;
         switch (o) {
-        case CLI_OPT_METHOD:
-            if (cli_method(optarg, &method)) return CLI_EXIT_USAGE;
-            have_method = 1;
-            break;
-        case CLI_OPT_PRECISION:
-            if (cli_precision(optarg, &prec)) return CLI_EXIT_USAGE;
-            break;
         case 'b':
             if (cli_int("--band", optarg, &band)) return CLI_EXIT_USAGE;
             if (band < 0 || band > 1000) return cli_fail("--band: %d out of range 0..1000", band);
@@ -79,6 +72,10 @@ static int run(int argc, char **argv)
         }
         }
     }
+    /* --method and --precision are kept by cli_common_opt */
+    method = com.method;
+    prec = com.prec;
+    have_method = com.have_method;
     if (optind < argc) return cli_fail("rotmat: unexpected argument '%s'", argv[optind]);
     (void)have_method;
     if (band >= 0 && com.order) return cli_fail("rotmat: give --order or --band, not both");

@@ -86,13 +86,6 @@ static int run(int argc, char **argv)
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case CLI_OPT_METHOD:
-            if (cli_method(optarg, &method)) return CLI_EXIT_USAGE;
-            have_method = 1;
-            break;
-        case CLI_OPT_PRECISION:
-            if (cli_precision(optarg, &prec)) return CLI_EXIT_USAGE;
-            break;
         case 'L':
             if (cli_int("--lmax", optarg, &lmax)) return CLI_EXIT_USAGE;
             if (lmax < 0 || lmax > 1000) return cli_fail("--lmax: %d out of range 0..1000", lmax);
@@ -132,6 +125,10 @@ static int run(int argc, char **argv)
         }
         }
     }
+    /* --method and --precision are kept by cli_common_opt */
+    method = com.method;
+    prec = com.prec;
+    have_method = com.have_method;
     if (optind < argc) { free(bands); return cli_fail("stability: unexpected argument '%s'", argv[optind]); }
     if (!have_method) { free(bands); return cli_fail("stability: --method is required"); }
     if (bands && lmax >= 0) { free(bands); return cli_fail("stability: give --lmax or --bands, not both"); }

@@ -211,19 +211,16 @@ static int run(int argc, char **argv)
                 return cli_fail("--simulate: unknown mistake '%s' (convention, inverse, swap, beta, "
                                 "deg2rad, rad2deg, mdesc, mdesc-out, mdesc-in, float, none)", optarg);
             break;
-        case CLI_OPT_METHOD:
-            if (cli_method(optarg, &method)) return CLI_EXIT_USAGE;
-            have_method = 1;
-            break;
-        case CLI_OPT_PRECISION:
-            if (cli_precision(optarg, &prec)) return CLI_EXIT_USAGE;
-            break;
         default: {
             const int e = cli_common_opt(&cmd_verify, o, argv, &com);
             if (e >= 0) return e;
         }
         }
     }
+    /* --method and --precision are kept by cli_common_opt */
+    method = com.method;
+    prec = com.prec;
+    have_method = com.have_method;
     if (optind < argc) return cli_fail("verify: unexpected argument '%s'", argv[optind]);
     if (!fixture) return cli_fail("verify: --fixture F is required");
     if (!cand == !have_method) return cli_fail("verify: give exactly one of --candidate and --method");
