@@ -259,33 +259,13 @@ void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *appl
 int sh_rot_band(int band, sh_rot_method method, sh_precision prec, sh_convention conv,
                 const sh_rotation *rot, double *block)
 {
-    int st = check_args(band + 1, method, prec, conv);
+    /* the band iterator picks the cheapest path: the method's single-band
+     * routine, its band-by-band stream, or (bounded in memory) a plan */
+    sh_rot_bands *it;
+    int st = sh_rot_bands_create(method, prec, conv, band, rot, &it);
     if (st) return st;
-    const sh__rot_ops *ops = methods[method];
-    const int w = 2 * band + 1;
-    if (ops->band_d && prec == SH_PREC_DOUBLE) {
-        void *work = malloc((ops->band_work_bytes ? ops->band_work_bytes(band) : 0) + 64);
-        if (!work) return sh_error(SH_ENOMEM, "rotation: out of memory");
-        st = ops->band_d(band, rot, block, work);
-        free(work);
-        if (st) return st;
-        if (conv == SH_NOCS)
-            for (int mp = -band; mp <= band; mp++)
-                for (int m = -band; m <= band; m++)
-                    if ((mp ^ m) & 1) block[(size_t)(mp + band) * w + (m + band)] *= -1;
-        return SH_OK;
-    }
-    sh_rot_plan *p;
-    if ((st = sh_rot_plan_create(band + 1, method, prec, conv, &p))) return st;
-    double *all = malloc(sh_rot_block_offset(band + 1) * sizeof *all);
-    if (!all) {
-        sh_rot_plan_free(p);
-        return sh_error(SH_ENOMEM, "rotation: out of memory");
-    }
-    if (!(st = sh_rot_plan_set(p, rot)) && !(st = sh_rot_plan_blocks(p, all)))
-        memcpy(block, all + sh_rot_block_offset(band), (size_t)w * w * sizeof *block);
-    free(all);
-    sh_rot_plan_free(p);
+    st = sh_rot_bands_get(it, band, block);
+    sh_rot_bands_free(it);
     return st;
 }
 
@@ -314,7 +294,9 @@ struct sh_rot_bands {
     float *fblock; /* float streams */
 };
 
-#define BANDS_PLAN_LIMIT ((size_t)2 << 30)
+/* A method without a single-band or streaming path needs all blocks 0..L:
+ * refused above 1 GiB (band ~ 400) rather than exhausting the machine. */
+#define BANDS_PLAN_LIMIT ((size_t)1 << 30)
 
 int sh_rot_bands_create(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
                         const sh_rotation *rot, sh_rot_bands **out)
@@ -348,7 +330,9 @@ int sh_rot_bands_create(sh_rot_method method, sh_precision prec, sh_convention c
         if (bytes > BANDS_PLAN_LIMIT) {
             free(it);
             return sh_error(SH_ENOTSUP,
-                            "method %s (%s) has no band-by-band path; bands to %d would need %.1f GB",
+                            "method %s (%s) computes every band 0..%d to get the last one (%.1f GB of "
+                            "blocks, limit 1.1 GB); for high bands use blanco or zxzxz (single band) "
+                            "or ivanic (streams)",
                             method_names[method], sh_precision_name(prec), lmax, bytes / 1e9);
         }
         it->state = malloc(bytes);

@@ -52,6 +52,8 @@ int cli_rotation_finish(const char *cmd, const cli_rotation_args *r, int degrees
 {
     const double k = degrees ? M_PI / 180 : 1;
     int st;
+    if (degrees && r->form && strcmp(r->form, "euler") != 0)
+        return cli_fail("%s: --degrees applies to angles (--euler, --angle), not to --%s", cmd, r->form);
     if (r->have_axis || r->have_angle) {
         if (r->form) return cli_fail("%s: give one rotation (--%s and --axis/--angle both given)",
                                      cmd, r->form);

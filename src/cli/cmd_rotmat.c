@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <getopt.h>
+#include <math.h>
 #include <stdlib.h>
 
 extern const cli_command cmd_rotmat;
@@ -30,8 +31,10 @@ static const char help[] =
     "  --degrees            angles in degrees\n"
     "\n"
     "  --order N            bands 0..N-1 (1..32 for the printed matrix)\n"
-    "  --band L             one band only (0..1000); methods blanco, wigner and\n"
-    "                       reference compute it without the lower bands\n"
+    "  --band L             one band only (0..1000; below --order if both are given);\n"
+    "                       blanco, zxzxz, wigner and reference compute it without\n"
+    "                       the lower bands, ivanic streams through them, the others\n"
+    "                       need all lower blocks in memory (refused above 1.1 GB)\n"
     "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
     "                       (exact; default ivanic) or taylor1 | taylor1.5 |\n"
     "                       taylor2 (Krivánek et al.'s approximations)\n"
@@ -40,7 +43,55 @@ static const char help[] =
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],\"matrix\":[[...]]}\n";
+    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],\n"
+    "       \"orthogonality_error\",\"matrix\":[[...]]}\n"
+    "orthogonality_error is max|R Rᵀ - I| (for --band: the two-probe estimate\n"
+    "max|Rᵀ(R v) - v|); an exact method above 1e-8 (float: 1e-3) gets a warning\n"
+    "on stderr: it has broken down at that band.\n";
+
+/* max|Bᵀ(B v) − v| over two seeded unit vectors: an O(w²) lower bound of
+ * max|BᵀB − I| for one band (exact would be O(w³): 8e9 operations at l = 1000). */
+static double orthogonality_probe(const double *B, int w)
+{
+    double *v = malloc(2 * (size_t)w * sizeof *v), worst = 0;
+    if (!v) return 0;
+    double *y = v + w;
+    unsigned long x = 12345;
+    for (int probe = 0; probe < 2; probe++) {
+        double nn = 0;
+        for (int i = 0; i < w; i++) {
+            x = x * 6364136223846793005UL + 1442695040888963407UL;
+            v[i] = (double)(x >> 11) / 9007199254740992.0 - 0.5;
+            nn += v[i] * v[i];
+        }
+        nn = sqrt(nn);
+        for (int i = 0; i < w; i++) v[i] /= nn;
+        for (int i = 0; i < w; i++) {
+            double t = 0;
+            for (int j = 0; j < w; j++) t += B[(size_t)i * w + j] * v[j];
+            y[i] = t;
+        }
+        for (int j = 0; j < w; j++) {
+            double t = 0;
+            for (int i = 0; i < w; i++) t += B[(size_t)i * w + j] * y[i];
+            worst = fmax(worst, fabs(t - v[j]));
+        }
+    }
+    free(v);
+    return worst;
+}
+
+/* An exact method whose result is far from orthogonal has broken down
+ * (the l-recursions do past l ≈ 100): say so instead of printing it silently. */
+static void warn_if_inaccurate(sh_rot_method m, sh_precision p, int band, double orth)
+{
+    const double limit = p == SH_PREC_FLOAT ? 1e-3 : 1e-8;
+    if (sh_rot_method_is_exact(m) && !(orth <= limit))
+        fprintf(stderr,
+                "shlab: warning: method %s is inaccurate here: orthogonality error %.2g at band %d "
+                "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)\n",
+                sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
+}
 
 static int run(int argc, char **argv)
 {
@@ -78,13 +129,14 @@ static int run(int argc, char **argv)
     have_method = com.have_method;
     if (optind < argc) return cli_fail("rotmat: unexpected argument '%s'", argv[optind]);
     (void)have_method;
-    if (band >= 0 && com.order) return cli_fail("rotmat: give --order or --band, not both");
+    if (band >= 0 && com.order && band >= com.order)
+        return cli_fail("rotmat: --band %d is not below --order %d", band, com.order);
     if (band < 0 && !com.order) return cli_fail("rotmat: --order (or --band) is required");
     if (band < 0 && com.order > ROTMAT_MAX_ORDER)
         return cli_fail("rotmat: --order %d too large for a printed N²×N² matrix (max %d; use --band)",
                         com.order, ROTMAT_MAX_ORDER);
-    const int order = band >= 0 ? band + 1 : com.order;
-    if (order > sh_rot_method_max_order(method))
+    const int order = com.order ? com.order : band + 1;
+    if ((band >= 0 ? band + 1 : order) > sh_rot_method_max_order(method))
         return cli_fail("rotmat: method %s is limited to order %d", sh_rot_method_name(method),
                         sh_rot_method_max_order(method));
     sh_rotation rot;
@@ -103,9 +155,12 @@ static int run(int argc, char **argv)
         if (!B) { json_decref(root); return cli_fail("out of memory"); }
         st = sh_rot_band(band, method, prec, com.conv, &rot, B);
         if (st) { free(B); json_decref(root); return cli_fail_status(st); }
+        const double orth = orthogonality_probe(B, (int)w);
         root = cli_put(root, "band", json_integer(band));
+        root = cli_put(root, "orthogonality_error", json_real(orth));
         root = cli_put(root, "matrix", cli_json_matrix(B, w, w));
         free(B);
+        warn_if_inaccurate(method, prec, band, orth);
     } else {
         const size_t n = (size_t)order * order;
         double *blocks = malloc(sh_rot_block_offset(order) * sizeof *blocks);
@@ -118,11 +173,24 @@ static int run(int argc, char **argv)
         sh_rot_plan_free(p);
         if (st) { free(blocks); free(M); json_decref(root); return cli_fail_status(st); }
         sh_rot_blocks_to_dense(order, blocks, M);
+        double orth = 0;
+        for (int l = 0; l < order; l++) {
+            const int w = 2 * l + 1;
+            const double *B = blocks + sh_rot_block_offset(l);
+            for (int i = 0; i < w; i++)
+                for (int j = 0; j < w; j++) {
+                    double t = 0;
+                    for (int q = 0; q < w; q++) t += B[i * w + q] * B[j * w + q];
+                    orth = fmax(orth, fabs(t - (i == j)));
+                }
+        }
+        root = cli_put(root, "orthogonality_error", json_real(orth));
         root = cli_put(root, "matrix", cli_json_matrix(M, n, n));
+        warn_if_inaccurate(method, prec, order - 1, orth);
         free(blocks);
         free(M);
     }
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_rotmat = {"rotmat", run, "SH rotation matrix of a rotation (7 methods)", help};
+const cli_command cmd_rotmat = {"rotmat", run, "SH rotation matrix of a rotation (exact methods and Taylor approximations)", help};
