@@ -31,6 +31,9 @@ static const char help[] =
     "tolerances.  Files are written to temporary names and renamed.\n"
     "\n"
     "  --out DIR            output directory (must exist)\n"
+    "  --method M           expected outputs from shlab's method M in double instead\n"
+    "                       of the MPFR reference, for a kernel that implements M\n"
+    "                       (e.g. taylor1.5): writes orders_1_10_M.json only\n"
     "  --quiet              no progress on stderr\n"
     "  --format table|csv|json   (the summary)\n"
     "  --help               this text\n";
@@ -48,9 +51,9 @@ static const char help[] =
 #define TOL_D_B200 1e-13
 #define TOL_F_B200 7e-6
 
-static json_t *case_json(const char *id, int order, int band, sh_convention conv, const char *rname,
-                         const sh_rotation *rot, const double *in, int n, double tol_d, double tol_f,
-                         int *st)
+static json_t *case_json(sh_rot_method method, const char *id, int order, int band, sh_convention conv,
+                         const char *rname, const sh_rotation *rot, const double *in, int n, double tol_d,
+                         double tol_f, int *st)
 {
     double *exp = malloc((size_t)n * sizeof *exp), *expf = malloc((size_t)n * sizeof *expf);
     long double *B = NULL;
@@ -58,7 +61,17 @@ static json_t *case_json(const char *id, int order, int band, sh_convention conv
     const int l0 = band >= 0 ? band : 0, l1 = band >= 0 ? band : order - 1;
     B = malloc((size_t)(2 * l1 + 1) * (2 * l1 + 1) * sizeof *B);
     if (!B) { *st = SH_ENOMEM; goto fail; }
-    for (int l = l0; l <= l1; l++) {
+    if (method != SH_ROT_REFERENCE) {
+        /* expected = what method M computes (in double): fixtures for a kernel
+         * that implements an approximation (taylor1.5) or a given method */
+        sh_rot_plan *p;
+        if ((*st = sh_rot_plan_create(order, method, SH_PREC_DOUBLE, conv, &p))) goto fail;
+        if (!(*st = sh_rot_plan_set(p, rot))) *st = sh_rot_plan_apply(p, in, exp);
+        sh_rot_plan_free(p);
+        if (*st) goto fail;
+        for (int i = 0; i < n; i++) expf[i] = (double)(float)exp[i];
+    }
+    for (int l = l0; method == SH_ROT_REFERENCE && l <= l1; l++) {
         const int w = 2 * l + 1, off = band >= 0 ? 0 : l * l;
         if ((*st = sh_rot_reference_band(l, conv, rot, 32, NULL, B))) goto fail;
         for (int i = 0; i < w; i++) {
@@ -74,12 +87,17 @@ static json_t *case_json(const char *id, int order, int band, sh_convention conv
     c = cli_put(c, "order", json_integer(order));
     if (band >= 0) c = cli_put(c, "band", json_integer(band));
     c = cli_put(c, "convention", json_string(sh_convention_name(conv)));
+    c = cli_put(c, "method", json_string(sh_rot_method_name(method)));
     c = cli_put(c, "rotation_name", json_string(rname));
     c = cli_put(c, "rotation", cli_rotation_json(rot));
     c = cli_put(c, "input", cli_json_array(in, (size_t)n));
     c = cli_put(c, "expected", cli_json_array(exp, (size_t)n));
     c = cli_put(c, "expected_float32", cli_json_array(expf, (size_t)n));
-    c = cli_put(c, "tolerance", json_pack("{s:f,s:f}", "double", tol_d, "float32", tol_f));
+    /* an approximation (Taylor) is not orthogonal: its outputs can exceed the
+     * unit input by orders of magnitude, and the tolerances scale with them */
+    double big = 1;
+    for (int i = 0; i < n; i++) big = fmax(big, fabs(exp[i]));
+    c = cli_put(c, "tolerance", json_pack("{s:f,s:f}", "double", tol_d * big, "float32", tol_f * big));
     free(exp);
     free(expf);
     if (!c) *st = SH_ENOMEM;
@@ -137,7 +155,8 @@ static int write_file(const char *path, const char *description, json_t *cases)
 
 static int run(int argc, char **argv)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE, {"out", required_argument, 0, 'o'},
+    static const struct option opts[] = {CLI_LONGOPTS_BASE, CLI_LONGOPT_METHOD,
+                                         {"out", required_argument, 0, 'o'},
                                          {"quiet", no_argument, 0, 'q'}, {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *dir = NULL;
@@ -155,6 +174,8 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("fixtures: unexpected argument '%s'", argv[optind]);
     if (!dir || !*dir) return cli_fail("fixtures: --out DIR is required");
+    const sh_rot_method method = com.have_method ? com.method : SH_ROT_REFERENCE;
+    if (method == SH_ROT_Z) return cli_fail("fixtures: method z rotates about z only");
 
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
@@ -172,20 +193,20 @@ static int run(int argc, char **argv)
                 const int n = order * order;
                 unit_vector(rng, in, n);
                 snprintf(id, sizeof id, "o%d-%s-%s", order, names[k], sh_convention_name(cv));
-                json_t *c = case_json(id, order, -1, cv, names[k], &set[k], in, n, TOL_D_LOW,
+                json_t *c = case_json(method, id, order, -1, cv, names[k], &set[k], in, n, TOL_D_LOW,
                                       TOL_F_LOW, &st);
                 if (c) { json_array_append_new(low, c); ncase++; }
             }
     const int pick[3] = {2, 3, 8}; /* β = π/2, π − 1e-9, random1 */
     const int bands[2] = {50, 200};
-    for (int b = 0; b < 2 && !st; b++)
+    for (int b = 0; b < 2 && !st && method == SH_ROT_REFERENCE; b++)
         for (int q = 0; q < 3 && !st; q++)
             for (int cv = 0; cv < 2 && !st; cv++) {
                 const int l = bands[b], n = 2 * l + 1;
                 if (!quiet) fprintf(stderr, "fixtures: band %d, %s, %s\n", l, names[pick[q]], sh_convention_name(cv));
                 unit_vector(rng, in, n);
                 snprintf(id, sizeof id, "b%d-%s-%s", l, names[pick[q]], sh_convention_name(cv));
-                json_t *c = case_json(id, l + 1, l, cv, names[pick[q]], &set[pick[q]], in, n,
+                json_t *c = case_json(method, id, l + 1, l, cv, names[pick[q]], &set[pick[q]], in, n,
                                       b ? TOL_D_B200 : TOL_D_B50, b ? TOL_F_B200 : TOL_F_B50, &st);
                 if (c) { json_array_append_new(high, c); ncase++; }
             }
@@ -193,17 +214,32 @@ static int run(int argc, char **argv)
     size_t len = strlen(dir) + 32;
     char *p1 = malloc(len), *p2 = malloc(len);
     if (!p1 || !p2) { free(p1); free(p2); st = SH_ENOMEM; goto done; }
-    snprintf(p1, len, "%s/orders_1_10.json", dir);
+    size_t len2 = len + 32;
+    char desc[512];
+    free(p1);
+    p1 = malloc(len2);
+    if (!p1) { free(p2); st = SH_ENOMEM; goto done; }
+    if (method == SH_ROT_REFERENCE) {
+        snprintf(p1, len2, "%s/orders_1_10.json", dir);
+        snprintf(desc, sizeof desc, "shlab golden SH rotation fixtures: orders 1-10, 10 rotations (extremes "
+                                    "included), cs and nocs; expected = MPFR reference. See README.md.");
+    } else {
+        snprintf(p1, len2, "%s/orders_1_10_%s.json", dir, sh_rot_method_name(method));
+        snprintf(desc, sizeof desc, "shlab SH rotation fixtures for kernels implementing method %s: orders "
+                                    "1-10, 10 rotations, cs and nocs; expected = shlab's %s in double%s. "
+                                    "See README.md.", sh_rot_method_name(method), sh_rot_method_name(method),
+                 sh_rot_method_is_exact(method) ? "" : " (an approximation, not the exact rotation)");
+    }
     snprintf(p2, len, "%s/bands_50_200.json", dir);
-    rc = write_file(p1, "shlab golden SH rotation fixtures: orders 1-10, 10 rotations (extremes "
-                        "included), cs and nocs; expected = MPFR reference. See README.md.", low);
-    if (!rc)
+    rc = write_file(p1, desc, low);
+    if (!rc && method == SH_ROT_REFERENCE)
         rc = write_file(p2, "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
                             "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
     if (!rc) {
         root = json_object();
         root = cli_put(root, "out", json_string(dir));
-        root = cli_put(root, "files", json_pack("[s,s]", p1, p2));
+        root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
+        root = cli_put(root, "files", method == SH_ROT_REFERENCE ? json_pack("[s,s]", p1, p2) : json_pack("[s]", p1));
         root = cli_put(root, "cases", json_integer(ncase));
     }
     free(p1);
