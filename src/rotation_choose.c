@@ -210,6 +210,7 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
                 cand[k].worst_beta = beta;
             }
         }
+        if (o->progress && !st) o->progress(o->progress_ctx, j + 1, nbeta + 1 + nm, "steps (measuring on the β grid)");
     }
     sh_rot_errws_free(w);
     if (st) return st;
@@ -223,6 +224,7 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
         if ((st = sh_rot_bench(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &r))) return st;
         cand[k].ns_per_rotation = r.ns_median;
         cand[k].mults = r.mults;
+        if (o->progress) o->progress(o->progress_ctx, nbeta + 2 + k, nbeta + 1 + nm, "steps (timing the methods)");
     }
     qsort(cand, (size_t)nm, sizeof *cand, cand_cmp);
     *ncand = nm;

@@ -487,6 +487,14 @@ typedef struct { double max_error, rms_error, worst_k; } sh_scale_interp_result;
 int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
                           double kmin, double kmax, sh_scale_interp_kind interp, int dense,
                           sh_scale_interp_result *res);
+/* Progress of a long computation: called after each of `total` steps
+ * (`done` of them finished), `what` naming the phase.  Never required. */
+typedef void (*sh_progress_fn)(void *ctx, int done, int total, const char *what);
+/* sh_scale_interp_error with progress (samples + dense steps); fn may be NULL. */
+int sh_scale_interp_error_progress(int order, const sh_scaling *base, int samples,
+                                   sh_scale_spacing spacing, double kmin, double kmax,
+                                   sh_scale_interp_kind interp, int dense,
+                                   sh_scale_interp_result *res, sh_progress_fn fn, void *ctx);
 /* Scaling about an arbitrary axis a (scale_axis.c, [Wang Sec. 3.2]): rotate
  * so that a becomes +z, scale, rotate back:
  *   S_d = R_sh(Q⁻¹) M R_sh(Q) S_r,   Q a = ẑ,
@@ -664,6 +672,8 @@ typedef struct {
     sh_precision prec;
     double target_ms; /* timing per repeat (0: 2 ms) */
     int repeat;       /* 0: 5 */
+    sh_progress_fn progress; /* optional: after each β of the grid, then each method timed */
+    void *progress_ctx;
 } sh_rot_choose_opts;
 /* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
  * time first, then the others by error); *ncand their count; *choice and

@@ -42,7 +42,7 @@ static const char help[] =
     "  --exr FILE           environment image (with --order auto)\n"
     "  --layout L           latlong (default) | probe\n"
     "  --max-order M        largest order tried by auto (default 32)\n"
-    "  --quiet              no progress on stderr\n"
+    "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -202,6 +202,10 @@ static int run(int argc, char **argv)
         img_json = cli_put(img_json, "layout", json_string(layout == SH_LAYOUT_LATLONG ? "latlong" : "probe"));
     }
     if (!quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
+    cli_progress prog;
+    cli_progress_start(&prog, "plan", quiet);
+    co.progress = cli_progress_step;
+    co.progress_ctx = &prog;
     sh_rot_candidate cand[SH_ROT_NMETHODS];
     int nc = 0, choice = -1, runner = -1;
     int st = sh_rot_choose(&co, cand, &nc, &choice, &runner);
