@@ -608,8 +608,9 @@ typedef struct {
     double max_beta;  /* the random rotations have β uniform in [0, max_beta] (the
                          z method is always timed at β = 0, its only domain) */
     uint64_t seed;    /* rotations and vectors (deterministic) */
+    sh_convention conv; /* convention of the plans timed (default SH_CS) */
 } sh_bench_opts;
-#define SH_BENCH_OPTS_DEFAULT {0, 11, 16, 5.0, 3.14159265358979323846, 12345u}
+#define SH_BENCH_OPTS_DEFAULT {0, 11, 16, 5.0, 3.14159265358979323846, 12345u, SH_CS}
 typedef struct {
     double ns_median, ns_min, ns_max; /* ns per rotated vector, over the repeats */
     double mults;        /* counted multiplications per rotated vector:
@@ -642,6 +643,10 @@ double sh_rot_bench_setup_ns(const sh_bench_opts *opts);
 typedef struct { double max, mean, lobe; } sh_rot_error;
 typedef struct sh_rot_errws sh_rot_errws;
 int sh_rot_errws_create(int order, double lobe_exp, int use_reference, sh_rot_errws **out);
+/* The same with every plan (truth and methods) in convention conv (the
+ * above: SH_CS).  The measures do not depend on it. */
+int sh_rot_errws_create_conv(int order, double lobe_exp, int use_reference, sh_convention conv,
+                             sh_rot_errws **out);
 /* Set the rotation: computes the exact blocks once. */
 int sh_rot_errws_set(sh_rot_errws *w, const sh_rotation *rot);
 /* Error of a method (plans are created on first use and kept). */
@@ -674,6 +679,7 @@ typedef struct {
     int repeat;       /* 0: 5 */
     sh_progress_fn progress; /* optional: after each β of the grid, then each method timed */
     void *progress_ctx;
+    sh_convention conv;      /* convention of the plans measured and timed (0: SH_CS) */
 } sh_rot_choose_opts;
 /* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
  * time first, then the others by error); *ncand their count; *choice and

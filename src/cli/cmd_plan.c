@@ -39,6 +39,7 @@ static const char help[] =
     "  --beta-step S        largest grid step (default 0.25°)\n"
     "  --degrees            --max-beta and --beta-step in degrees\n"
     "  --precision P        double (default) | float\n"
+    "  --convention C       cs (default) | nocs: convention of the plans measured and timed\n"
     "  --exr FILE           environment image (with --order auto)\n"
     "  --layout L           latlong (default) | probe\n"
     "  --max-order M        largest order tried by auto (default 32)\n"
@@ -77,6 +78,7 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_PRECISION,
                                          CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPT_CONVENTION,
                                          {"order", required_argument, 0, 'o'},
                                          {"max-beta", required_argument, 0, 'B'},
                                          {"tolerance", required_argument, 0, 'e'},
@@ -167,6 +169,7 @@ static int run(int argc, char **argv)
     if (!order_auto && (exr || have_layout || have_max_order))
         return cli_fail("plan: --exr, --layout and --max-order apply to --order auto only");
     if (!order_auto && rot_tol > 0) return cli_fail("plan: --rot-tolerance applies to --order auto only");
+    co.conv = com.conv;
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;
     if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
