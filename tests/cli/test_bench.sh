@@ -78,4 +78,14 @@ close "$r" 0 1e-2 && ok "plan auto: residual at order 3 ~ 0 ($r; pixel quadratur
 expect_success "plan auto tol 0.3" plan --order auto --exr "$TMP/p.exr" --tolerance 0.3 --max-beta 5 --degrees --beta-step 1 --degrees --format json --quiet
 r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
 grep -q '"order":1' "$TMP/out" && close "$r" 0.28734788556634538 2e-3 && ok "plan auto: order 1 at 0.3, residual $r = 0.3/sqrt(1.09)" || notok "plan auto 0.3: $(head -c 300 "$TMP/out")"
-expect_usage_error "plan auto: no order reaches 1e-9 below 2" plan --order auto --exr "$TMP/p.exr" --tolerance 1e-9 --max-order 2 --max-beta 0.1 --quiet
+# no order <= 2 reaches 1e-9: a failed check (exit 1, one stderr line), the
+# result still printed, with the residual at order 2 = 0.3/sqrt(1.09)
+"$SHLAB" plan --order auto --exr "$TMP/p.exr" --tolerance 1e-9 --max-order 2 --max-beta 0.1 --quiet --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
+[ $rc = 1 ] && [ "$(wc -l <"$TMP/err")" = 1 ] && grep -q '"order":null' "$TMP/out" && grep -q '"choice":null' "$TMP/out" \
+    && grep -q '"max_order":2' "$TMP/out" && close "$r" 0.28734788556634538 2e-3 \
+    && ok "plan auto: no order reaches 1e-9 below 2 -> exit 1, result printed (residual $r)" \
+    || notok "plan auto 1e-9: exit $rc, $(head -c 300 "$TMP/out") / $(cat "$TMP/err")"
+"$SHLAB" plan --order auto --exr "$TMP/p.exr" --tolerance 1e-9 --max-order 2 --max-beta 0.1 --quiet >"$TMP/out" 2>"$TMP/err"; rc=$?
+[ $rc = 1 ] && grep -q '^order: $' "$TMP/out" && grep -q '^image\.width: 128$' "$TMP/out" \
+    && ok "plan auto table: exit 1, order empty, image.width 128" || notok "plan auto table: exit $rc, $(head -c 300 "$TMP/out")"
