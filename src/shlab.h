@@ -557,10 +557,13 @@ double sh_scale_scene_lobes_fn(const double d[3], double theta, double phi, void
  * approximations (rotation_deriv.c, taylor_error.c, rot_taylor.c).  Blocks use
  * the layout of sh_rot_block_offset; J = dR_Y/dβ at β = 0 (CONVENTIONS.md). */
 #define SH_DERIV_MAX_ORDER 64 /* the Ivanic-Ruedenberg recursion loses digits above */
-#define SH_DERIV_MAX_K 32
 /* d^k R_Y/dβ^k at β, bands 0..order-1, by Krivánek's Appendix A: the Leibniz
  * rule carried through the Ivanic-Ruedenberg recursion (derivation in
- * rotation_deriv.c).  blocks: sh_rot_block_offset(order) doubles. */
+ * rotation_deriv.c).  blocks: sh_rot_block_offset(order) doubles.  Any
+ * k ≥ 0 and any finite β (reduced modulo 2π with remainder()); SH_EINVAL
+ * when an entry would overflow (entries grow like (order−1)^k; for order
+ * ≤ 2 they never do).  Cost and memory grow with k (the recursion carries
+ * every derivative 0..k: O(k²) per entry). */
 int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, double *blocks);
 /* The same by the generator: R_Y(β)·J^k, R_Y(β) from the zxzxz method and J
  * from its closed form (sh_rot_deriv_J_band). */
