@@ -230,10 +230,15 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
     bo.conv = o->conv;
     for (int k = 0; k < nm; k++) {
         cand[k].ok = cand[k].max_error <= o->tolerance;
-        sh_bench_result r;
-        if ((st = sh_rot_bench(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &r))) return st;
-        cand[k].ns_per_rotation = r.ns_median;
-        cand[k].mults = r.mults;
+        if (o->cost) {
+            cand[k].ns_per_rotation = o->cost(o->cost_ctx, ms[k], o->order);
+            cand[k].mults = 0;
+        } else {
+            sh_bench_result r;
+            if ((st = sh_rot_bench(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &r))) return st;
+            cand[k].ns_per_rotation = r.ns_median;
+            cand[k].mults = r.mults;
+        }
         if (o->progress) o->progress(o->progress_ctx, nbeta + 2 + k, nbeta + 1 + nm, "steps (timing the methods)");
     }
     qsort(cand, (size_t)nm, sizeof *cand, cand_cmp);

@@ -683,6 +683,10 @@ typedef struct {
     sh_progress_fn progress; /* optional: after each β of the grid, then each method timed */
     void *progress_ctx;
     sh_convention conv;      /* convention of the plans measured and timed (0: SH_CS) */
+    /* optional: the cost of a method instead of timing it (ns per rotation;
+     * tests use it to be deterministic); mults are then not counted (0) */
+    double (*cost)(void *ctx, sh_rot_method m, int order);
+    void *cost_ctx;
 } sh_rot_choose_opts;
 /* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
  * time first, then the others by error); *ncand their count; *choice and
