@@ -23,7 +23,7 @@ json_t *cli_json_array(const double *v, size_t n)
     json_t *a = json_array();
     if (!a) return NULL;
     for (size_t i = 0; i < n; i++) {
-        json_t *x = json_real(v[i]); /* NULL for NaN/Inf */
+        json_t *x = json_real(v[i] + 0.0); /* −0 → 0; NULL for NaN/Inf */
         if (!x || json_array_append_new(a, x)) { json_decref(a); return NULL; }
     }
     return a;

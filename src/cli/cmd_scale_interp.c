@@ -5,6 +5,7 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 extern const cli_command cmd_scale_interp;
 
@@ -105,7 +106,11 @@ static int run(int argc, char **argv)
     cli_progress_start(&prog, "scale-interp", quiet);
     const int st = sh_scale_interp_error_progress(order, &s, samples, sp, kmin, kmax, ik, dense, &r,
                                                   cli_progress_step, &prog);
-    if (st) return cli_fail("scale-interp: %s", sh_last_error());
+    if (st) { /* the library's message may already name the command */
+        const char *why = sh_last_error();
+        if (!why || !*why) why = sh_strerror(st);
+        return cli_fail(strncmp(why, "scale-interp: ", 14) ? "scale-interp: %s" : "%s", why);
+    }
     json_t *root = json_object();
     root = cli_put(root, "order", json_integer(order));
     root = cli_put(root, "family", json_string(sh_scale_family_name(s.family)));
