@@ -138,7 +138,8 @@ int sh_rot_bench(int order, sh_rot_method method, sh_precision prec, sh_bench_mo
     memset(res, 0, sizeof *res);
     bench_ctx b = {order, order * order, mode == SH_BENCH_BATCHED ? o->batch : 1, mode, NULL, NULL,
                    NULL, NULL, 0};
-    int st = sh_rot_plan_create(order, method, prec, SH_CS, &b.p);
+    if (o->conv != SH_CS && o->conv != SH_NOCS) return sh_error(SH_EINVAL, "bench: unknown convention");
+    int st = sh_rot_plan_create(order, method, prec, o->conv, &b.p);
     if (st) return st;
     double *t = malloc((size_t)o->repeat * sizeof *t);
     if (!t) st = sh_error(SH_ENOMEM, "bench: out of memory");

@@ -32,6 +32,7 @@
 
 struct sh_rot_errws {
     int order, use_reference;
+    sh_convention conv;
     double *exact, *blocks; /* sh_rot_block_offset(order) each */
     double *c;              /* lobe zonal coefficients c_l (unit vector) */
     double *A, *V, *S;
@@ -43,14 +44,22 @@ struct sh_rot_errws {
 
 int sh_rot_errws_create(int order, double lobe_exp, int use_reference, sh_rot_errws **out)
 {
+    return sh_rot_errws_create_conv(order, lobe_exp, use_reference, SH_CS, out);
+}
+
+int sh_rot_errws_create_conv(int order, double lobe_exp, int use_reference, sh_convention conv,
+                             sh_rot_errws **out)
+{
     *out = NULL;
     int st = sh_check_order(order);
     if (st) return st;
+    if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "rotation error: unknown convention");
     if (order > 200) return sh_error(SH_EINVAL, "rotation error: order %d > 200", order);
     sh_rot_errws *w = calloc(1, sizeof *w);
     if (!w) return sh_error(SH_ENOMEM, "rotation error: out of memory");
     w->order = order;
     w->use_reference = use_reference;
+    w->conv = conv;
     const size_t nb = sh_rot_block_offset(order), W = 2 * (size_t)order - 1;
     w->exact = malloc(nb * sizeof *w->exact);
     w->blocks = malloc(nb * sizeof *w->blocks);
@@ -68,7 +77,7 @@ int sh_rot_errws_create(int order, double lobe_exp, int use_reference, sh_rot_er
     nrm = sqrt(nrm);
     for (int l = 0; l < order; l++) w->c[l] /= nrm;
     if ((st = sh_rot_plan_create(order, use_reference ? SH_ROT_REFERENCE : SH_ROT_ZXZXZ, SH_PREC_DOUBLE,
-                                 SH_CS, &w->truth))) {
+                                 conv, &w->truth))) {
         sh_rot_errws_free(w);
         return st;
     }
@@ -104,7 +113,7 @@ int sh_rot_errws_eval(sh_rot_errws *w, sh_rot_method method, sh_precision prec, 
         return sh_error(SH_EINVAL, "rotation error: bad method or precision");
     sh_rot_plan **pp = &w->plans[method][prec == SH_PREC_FLOAT];
     int st;
-    if (!*pp && (st = sh_rot_plan_create(w->order, method, prec, SH_CS, pp))) return st;
+    if (!*pp && (st = sh_rot_plan_create(w->order, method, prec, w->conv, pp))) return st;
     if ((st = sh_rot_plan_set(*pp, &w->rot)) || (st = sh_rot_plan_blocks(*pp, w->blocks))) return st;
     double smax = 0, ssum = 0, lobe2 = 0;
     for (int l = 0; l < w->order; l++) {
@@ -189,7 +198,7 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
     /* truth: the MPFR reference (every exact method is then measured, not
      * taken as the truth) up to order 32, zxzxz above */
     sh_rot_errws *w;
-    if ((st = sh_rot_errws_create(o->order, o->lobe_exp, o->order <= 32, &w))) return st;
+    if ((st = sh_rot_errws_create_conv(o->order, o->lobe_exp, o->order <= 32, o->conv, &w))) return st;
     const int nbeta = o->max_beta > 0 ? (int)ceil(o->max_beta / o->beta_step - 1e-9) : 0;
     for (int k = 0; k < nm; k++) {
         cand[k] = (sh_rot_candidate){ms[k], sh_rot_method_is_exact(ms[k]), 0, 0, 0, 0, 0};
@@ -210,6 +219,7 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
                 cand[k].worst_beta = beta;
             }
         }
+        if (o->progress && !st) o->progress(o->progress_ctx, j + 1, nbeta + 1 + nm, "steps (measuring on the β grid)");
     }
     sh_rot_errws_free(w);
     if (st) return st;
@@ -217,12 +227,19 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
     bo.target_ms = o->target_ms > 0 ? o->target_ms : 2.0;
     bo.repeat = o->repeat > 0 ? o->repeat : 5;
     bo.max_beta = o->max_beta; /* rotations of the scene's range */
+    bo.conv = o->conv;
     for (int k = 0; k < nm; k++) {
         cand[k].ok = cand[k].max_error <= o->tolerance;
-        sh_bench_result r;
-        if ((st = sh_rot_bench(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &r))) return st;
-        cand[k].ns_per_rotation = r.ns_median;
-        cand[k].mults = r.mults;
+        if (o->cost) {
+            cand[k].ns_per_rotation = o->cost(o->cost_ctx, ms[k], o->order);
+            cand[k].mults = 0;
+        } else {
+            sh_bench_result r;
+            if ((st = sh_rot_bench(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &r))) return st;
+            cand[k].ns_per_rotation = r.ns_median;
+            cand[k].mults = r.mults;
+        }
+        if (o->progress) o->progress(o->progress_ctx, nbeta + 2 + k, nbeta + 1 + nm, "steps (timing the methods)");
     }
     qsort(cand, (size_t)nm, sizeof *cand, cand_cmp);
     *ncand = nm;

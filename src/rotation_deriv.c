@@ -51,6 +51,7 @@
  */
 #include "rot_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,15 +86,45 @@ int sh_rot_deriv_J_band(int l, sh_convention conv, double *block)
     return SH_OK;
 }
 
-static int deriv_check(int order, int k, double beta, sh_convention conv)
+/* Checks the arguments and brings (k, β) to an equivalent pair:
+ *  - β modulo 2π (R_Y is 2π-periodic, so are its derivatives): remainder()
+ *    is exact, β' ∈ [−π, π] differs from β by a multiple of the double 2π;
+ *  - for order ≤ 2 (bands 0, 1 only) J is 0 (band 0) and J³ = −J (band 1,
+ *    eigenvalues 0, ±i), so J^k, k ≥ 1, repeats with period 4: k → (k−1) mod 4 + 1.
+ * k is refused only when the result must overflow: J is normal with largest
+ * eigenvalue modulus l = order − 1 in the top band, so ‖R_Y J^k‖₂ = l^k and
+ * some entry is ≥ l^k / (2l+1) (‖A‖₂ ≤ w·max|a_ij| for a w×w matrix). */
+static int deriv_check(int order, int *k, double *beta, sh_convention conv)
 {
     int st = sh_check_order(order);
     if (st) return st;
     if (order > SH_DERIV_MAX_ORDER)
         return sh_error(SH_EINVAL, "deriv: order %d exceeds %d", order, SH_DERIV_MAX_ORDER);
-    if (k < 0 || k > SH_DERIV_MAX_K) return sh_error(SH_EINVAL, "deriv: k = %d out of range 0..%d", k, SH_DERIV_MAX_K);
-    if (!isfinite(beta)) return sh_error(SH_EINVAL, "deriv: beta must be finite");
+    if (*k < 0) return sh_error(SH_EINVAL, "deriv: k = %d must be >= 0", *k);
+    if (!isfinite(*beta)) return sh_error(SH_EINVAL, "deriv: beta must be finite");
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "deriv: unknown convention");
+    *beta = remainder(*beta, 2.0 * M_PI);
+    if (order <= 2) {
+        if (*k > 4) *k = (*k - 1) % 4 + 1;
+    } else {
+        const int l = order - 1;
+        if ((double)*k * log((double)l) - log(2.0 * l + 1) > log(DBL_MAX))
+            return sh_error(SH_EINVAL,
+                            "deriv: k = %d overflows a double at order %d (band %d has an entry >= %d^k/%d > "
+                            "1.8e308; k <= %d at most)",
+                            *k, order, l, 2 * l + 1, l, (int)floor((log(DBL_MAX) + log(2.0 * l + 1)) / log((double)l)));
+    }
+    return SH_OK;
+}
+
+/* An entry overflowed on the way (the bound above is only a lower one). */
+static int deriv_finite(int order, int k, const double *blocks)
+{
+    const size_t nb = sh_rot_block_offset(order);
+    for (size_t i = 0; i < nb; i++)
+        if (!isfinite(blocks[i]))
+            return sh_error(SH_EINVAL, "deriv: k = %d overflows at order %d (an entry is not finite in double)",
+                            k, order);
     return SH_OK;
 }
 
@@ -153,7 +184,8 @@ static double dP(const rec_ctx *c, int k, int i, int a, int n)
 
 int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, double *blocks)
 {
-    int st = deriv_check(order, k, beta, conv);
+    const int k_asked = k;
+    int st = deriv_check(order, &k, &beta, conv);
     if (st) return st;
     const int K = k;
     const size_t nb = sh_rot_block_offset(order);
@@ -227,14 +259,15 @@ int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, do
     memcpy(blocks, all + (size_t)K * nb, nb * sizeof *blocks);
     free(all), free(R1), free(binom);
     if (conv == SH_CS) flip_parity(order, blocks); /* the recursion works in nocs */
-    return SH_OK;
+    return deriv_finite(order, k_asked, blocks);
 }
 
 /* ------------------------------------------------ (2) the generator */
 
 int sh_rot_deriv_generator(int order, int k, double beta, sh_convention conv, double *blocks)
 {
-    int st = deriv_check(order, k, beta, conv);
+    const int k_asked = k;
+    int st = deriv_check(order, &k, &beta, conv);
     if (st) return st;
     sh_rotation rot;
     if ((st = sh_rotation_from_euler(0, beta, 0, &rot))) return st;
@@ -267,5 +300,5 @@ int sh_rot_deriv_generator(int order, int k, double beta, sh_convention conv, do
     if (k > 0) blocks[0] = 0;
     free(s), free(row);
     if (conv == SH_NOCS) flip_parity(order, blocks);
-    return SH_OK;
+    return deriv_finite(order, k_asked, blocks);
 }

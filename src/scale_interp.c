@@ -56,6 +56,15 @@ int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_sca
                           double kmin, double kmax, sh_scale_interp_kind interp, int dense,
                           sh_scale_interp_result *res)
 {
+    return sh_scale_interp_error_progress(order, base, samples, spacing, kmin, kmax, interp, dense, res,
+                                          NULL, NULL);
+}
+
+int sh_scale_interp_error_progress(int order, const sh_scaling *base, int samples,
+                                   sh_scale_spacing spacing, double kmin, double kmax,
+                                   sh_scale_interp_kind interp, int dense,
+                                   sh_scale_interp_result *res, sh_progress_fn fn, void *ctx)
+{
     int st = sh_check_order(order);
     if (st) return st;
     if (order > SH_SCALE_MAX_ORDER) return sh_error(SH_EINVAL, "scale-interp: order %d is above %d", order, SH_SCALE_MAX_ORDER);
@@ -98,6 +107,7 @@ int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_sca
         const int nb = sh_scale_breaks(&s, br);
         st = sh_scale_integrals_tau(order, sh_scale_family_tau, &s, s.energy, br, nb, I, work);
         for (size_t p = 0; p < P; p++) tab[p * samples + q] = 2.0 * M_PI * I[p];
+        if (fn && !st) fn(ctx, q + 1, samples + dense, "steps (tabulating the sampled k)");
     }
     if (st) goto done;
     /* error on the dense grid: each integral of block m > 0 stands for the
@@ -129,6 +139,7 @@ int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_sca
                 wsum += wgt;
             }
         }
+        if (fn && !st) fn(ctx, samples + d + 1, samples + dense, "steps (checking the dense k grid)");
     }
     gsl_set_error_handler(old);
     if (!st) {

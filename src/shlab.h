@@ -487,6 +487,14 @@ typedef struct { double max_error, rms_error, worst_k; } sh_scale_interp_result;
 int sh_scale_interp_error(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
                           double kmin, double kmax, sh_scale_interp_kind interp, int dense,
                           sh_scale_interp_result *res);
+/* Progress of a long computation: called after each of `total` steps
+ * (`done` of them finished), `what` naming the phase.  Never required. */
+typedef void (*sh_progress_fn)(void *ctx, int done, int total, const char *what);
+/* sh_scale_interp_error with progress (samples + dense steps); fn may be NULL. */
+int sh_scale_interp_error_progress(int order, const sh_scaling *base, int samples,
+                                   sh_scale_spacing spacing, double kmin, double kmax,
+                                   sh_scale_interp_kind interp, int dense,
+                                   sh_scale_interp_result *res, sh_progress_fn fn, void *ctx);
 /* Scaling about an arbitrary axis a (scale_axis.c, [Wang Sec. 3.2]): rotate
  * so that a becomes +z, scale, rotate back:
  *   S_d = R_sh(Q⁻¹) M R_sh(Q) S_r,   Q a = ẑ,
@@ -549,10 +557,13 @@ double sh_scale_scene_lobes_fn(const double d[3], double theta, double phi, void
  * approximations (rotation_deriv.c, taylor_error.c, rot_taylor.c).  Blocks use
  * the layout of sh_rot_block_offset; J = dR_Y/dβ at β = 0 (CONVENTIONS.md). */
 #define SH_DERIV_MAX_ORDER 64 /* the Ivanic-Ruedenberg recursion loses digits above */
-#define SH_DERIV_MAX_K 32
 /* d^k R_Y/dβ^k at β, bands 0..order-1, by Krivánek's Appendix A: the Leibniz
  * rule carried through the Ivanic-Ruedenberg recursion (derivation in
- * rotation_deriv.c).  blocks: sh_rot_block_offset(order) doubles. */
+ * rotation_deriv.c).  blocks: sh_rot_block_offset(order) doubles.  Any
+ * k ≥ 0 and any finite β (reduced modulo 2π with remainder()); SH_EINVAL
+ * when an entry would overflow (entries grow like (order−1)^k; for order
+ * ≤ 2 they never do).  Cost and memory grow with k (the recursion carries
+ * every derivative 0..k: O(k²) per entry). */
 int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, double *blocks);
 /* The same by the generator: R_Y(β)·J^k, R_Y(β) from the zxzxz method and J
  * from its closed form (sh_rot_deriv_J_band). */
@@ -600,8 +611,9 @@ typedef struct {
     double max_beta;  /* the random rotations have β uniform in [0, max_beta] (the
                          z method is always timed at β = 0, its only domain) */
     uint64_t seed;    /* rotations and vectors (deterministic) */
+    sh_convention conv; /* convention of the plans timed (default SH_CS) */
 } sh_bench_opts;
-#define SH_BENCH_OPTS_DEFAULT {0, 11, 16, 5.0, 3.14159265358979323846, 12345u}
+#define SH_BENCH_OPTS_DEFAULT {0, 11, 16, 5.0, 3.14159265358979323846, 12345u, SH_CS}
 typedef struct {
     double ns_median, ns_min, ns_max; /* ns per rotated vector, over the repeats */
     double mults;        /* counted multiplications per rotated vector:
@@ -634,6 +646,10 @@ double sh_rot_bench_setup_ns(const sh_bench_opts *opts);
 typedef struct { double max, mean, lobe; } sh_rot_error;
 typedef struct sh_rot_errws sh_rot_errws;
 int sh_rot_errws_create(int order, double lobe_exp, int use_reference, sh_rot_errws **out);
+/* The same with every plan (truth and methods) in convention conv (the
+ * above: SH_CS).  The measures do not depend on it. */
+int sh_rot_errws_create_conv(int order, double lobe_exp, int use_reference, sh_convention conv,
+                             sh_rot_errws **out);
 /* Set the rotation: computes the exact blocks once. */
 int sh_rot_errws_set(sh_rot_errws *w, const sh_rotation *rot);
 /* Error of a method (plans are created on first use and kept). */
@@ -664,6 +680,13 @@ typedef struct {
     sh_precision prec;
     double target_ms; /* timing per repeat (0: 2 ms) */
     int repeat;       /* 0: 5 */
+    sh_progress_fn progress; /* optional: after each β of the grid, then each method timed */
+    void *progress_ctx;
+    sh_convention conv;      /* convention of the plans measured and timed (0: SH_CS) */
+    /* optional: the cost of a method instead of timing it (ns per rotation;
+     * tests use it to be deterministic); mults are then not counted (0) */
+    double (*cost)(void *ctx, sh_rot_method m, int order);
+    void *cost_ctx;
 } sh_rot_choose_opts;
 /* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
  * time first, then the others by error); *ncand their count; *choice and

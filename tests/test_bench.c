@@ -144,8 +144,35 @@ END_TEST
 
 /* choose: every exact method qualifies at 1e-12; ranking by time; nothing
  * qualifies at 1e-30; z is a candidate only at max β = 0. */
+/* Costs injected instead of timings, so the ranking is deterministic: the
+ * choice must be the cheapest method whose error meets the budget, whatever
+ * this machine's speed.  Exact methods meet 1e-12 (MPFR truth); the Taylor
+ * approximations, at β up to 0.2, do not (error O(β²) or more). */
+static double fake_cost(void *ctx, sh_rot_method m, int order)
+{
+    (void)order;
+    const double *c = ctx;
+    return c[m];
+}
+
+typedef struct { int calls, last, total; } prog_count;
+static void count_progress(void *ctx, int done, int total, const char *what)
+{
+    prog_count *p = ctx;
+    ck_assert_int_eq(done, p->last + 1);
+    ck_assert(what != NULL);
+    p->calls++;
+    p->last = done;
+    p->total = total;
+}
+
 START_TEST(test_choose)
 {
+    double cost[SH_ROT_NMETHODS];
+    for (int m = 0; m < SH_ROT_NMETHODS; m++) cost[m] = 1000 + 10 * m;
+    cost[SH_ROT_TAYLOR15] = 1;  /* cheapest, but not accurate enough */
+    cost[SH_ROT_WIGNER] = 50;   /* cheapest exact one */
+    cost[SH_ROT_BLANCO] = 60;   /* runner-up */
     sh_rot_choose_opts o = {0};
     o.order = 4;
     o.max_beta = 0.2;
@@ -153,23 +180,44 @@ START_TEST(test_choose)
     o.lobe_exp = 7;
     o.beta_step = 0.05;
     o.measure = SH_MEASURE_MAX;
-    o.target_ms = 0.3;
-    o.repeat = 3;
+    o.cost = fake_cost;
+    o.cost_ctx = cost;
+    prog_count pc = {0, 0, 0};
+    o.progress = count_progress;
+    o.progress_ctx = &pc;
     sh_rot_candidate c[SH_ROT_NMETHODS];
     int nc, ch, ru;
     ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
     ck_assert_int_eq(ch, 0);
     ck_assert_int_eq(ru, 1);
+    ck_assert_int_eq(c[ch].method, SH_ROT_WIGNER);
+    ck_assert_int_eq(c[ru].method, SH_ROT_BLANCO);
+    ck_assert_int_eq(pc.total, 5 + nc); /* β grid 0, 0.05, ..., 0.2, then each method */
+    ck_assert_int_eq(pc.last, pc.total);
+    int have_t15 = 0;
     for (int k = 0; k < nc; k++) {
         ck_assert(c[k].method != SH_ROT_Z && c[k].method != SH_ROT_REFERENCE);
-        if (c[k].exact) ck_assert(c[k].ok);
-        if (k && c[k].ok) ck_assert(c[k - 1].ns_per_rotation <= c[k].ns_per_rotation);
-        if (k && c[k].ok) ck_assert(c[k - 1].ok);
+        ck_assert(c[k].ns_per_rotation == cost[c[k].method]);
+        if (c[k].exact) ck_assert_msg(c[k].ok, "%s error %g", sh_rot_method_name(c[k].method), c[k].max_error);
+        if (c[k].method == SH_ROT_TAYLOR15) {
+            have_t15 = 1;
+            ck_assert(!c[k].ok && c[k].max_error > 1e-6);
+        }
+        if (k && c[k].ok) ck_assert(c[k - 1].ok && c[k - 1].ns_per_rotation <= c[k].ns_per_rotation);
+        if (k && !c[k].ok && !c[k - 1].ok) ck_assert(c[k - 1].max_error <= c[k].max_error);
     }
+    ck_assert(have_t15);
+    /* a loose budget admits the approximation, which is then the cheapest */
+    o.tolerance = 0.5;
+    o.progress = NULL;
+    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(c[ch].method, SH_ROT_TAYLOR15);
+    /* nothing meets 1e-30 */
     o.tolerance = 1e-30;
     ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
     ck_assert_int_eq(ch, -1);
     ck_assert_int_eq(ru, -1);
+    /* β = 0: the z method joins */
     o.max_beta = 0;
     o.tolerance = 1e-12;
     ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);

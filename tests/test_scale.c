@@ -356,6 +356,16 @@ END_TEST
 
 /* ---- interpolation and scenes ------------------------------------------------ */
 
+typedef struct { int calls, last, total, monotone; } prog_count;
+static void count_progress(void *ctx, int done, int total, const char *what)
+{
+    prog_count *p = ctx;
+    if (done != p->last + 1 || !what) p->monotone = 0;
+    p->calls++;
+    p->last = done;
+    p->total = total;
+}
+
 START_TEST(test_interp)
 {
     sh_scaling s = {SH_SCALE_CONE, 1, 0, 0};
@@ -367,6 +377,16 @@ START_TEST(test_interp)
     ck_assert_msg(r40.max_error < r10.max_error / 8, "40 samples %g vs 10 samples %g", r40.max_error, r10.max_error);
     ck_assert_msg(c40.rms_error < r40.rms_error, "cubic %g vs linear %g", c40.rms_error, r40.rms_error);
     ck_assert(r40.rms_error <= r40.max_error);
+    /* the progress variant: same numbers, one call per sampled and per dense k */
+    sh_scale_interp_result p40;
+    prog_count pc = {0, 0, 0, 1};
+    ck_assert_int_eq(sh_scale_interp_error_progress(4, &s, 40, SH_SPACING_GEOMETRIC, 0.5, 2, SH_INTERP_LINEAR,
+                                                    101, &p40, count_progress, &pc), SH_OK);
+    ck_assert(p40.max_error == r40.max_error && p40.rms_error == r40.rms_error);
+    ck_assert_int_eq(pc.calls, 40 + 101);
+    ck_assert_int_eq(pc.total, 40 + 101);
+    ck_assert_int_eq(pc.last, 40 + 101);
+    ck_assert(pc.monotone);
     /* the dense grid contains the samples when it is the same grid: zero error */
     sh_scale_interp_result same;
     ck_assert_int_eq(sh_scale_interp_error(3, &s, 11, SH_SPACING_UNIFORM, 0.5, 1.5, SH_INTERP_LINEAR, 11, &same), SH_OK);

@@ -62,6 +62,85 @@ START_TEST(test_deriv_two_ways)
 END_TEST
 
 /* 5-point central differences of blanco's R_Y: first and second derivative */
+/* Large k and large β (issue 5: any k ≥ 0, any β).  Truth for k = 40 at
+ * order 3: J of bands 1, 2 has eigenvalues 0, ±i (, ±2i), so it satisfies
+ * J⁵ = −5J³ − 4J (minimal polynomial x(x²+1)(x²+4)); J^40 is built here from
+ * the closed-form J and its powers 2..4 (dense products) by that recurrence,
+ * and R_Y(β) from blanco (which neither derivative uses). */
+static void matmul(int w, const double *A, const double *B, double *C)
+{
+    for (int i = 0; i < w; i++)
+        for (int j = 0; j < w; j++) {
+            double a = 0;
+            for (int q = 0; q < w; q++) a += A[i * w + q] * B[q * w + j];
+            C[i * w + j] = a;
+        }
+}
+
+START_TEST(test_deriv_large_k_beta)
+{
+    const int order = 3, K = 40;
+    const double beta = 0.7;
+    for (int cv = 0; cv < 2; cv++) {
+        const sh_convention conv = cv ? SH_NOCS : SH_CS;
+        double R[NB(3)], want[NB(3)], rec[NB(3)], gen[NB(3)];
+        exact_y(order, SH_ROT_BLANCO, beta, conv, R);
+        want[0] = 0; /* band 0: J = 0 */
+        for (int l = 1; l < order; l++) {
+            const int w = 2 * l + 1;
+            double P[41][25];
+            ck_assert_int_eq(sh_rot_deriv_J_band(l, conv, P[1]), SH_OK);
+            for (int q = 2; q <= 4; q++) matmul(w, P[q - 1], P[1], P[q]);
+            for (int q = 5; q <= K; q++)
+                for (int i = 0; i < w * w; i++) P[q][i] = -5 * P[q - 2][i] - 4 * P[q - 4][i];
+            matmul(w, R + NB(l), P[K], want + NB(l));
+        }
+        ck_assert_int_eq(sh_rot_deriv_recursion(order, K, beta, conv, rec), SH_OK);
+        ck_assert_int_eq(sh_rot_deriv_generator(order, K, beta, conv, gen), SH_OK);
+        const double scale = maxabs(want, NB(3)); /* ~ 2^40 */
+        ck_assert_msg(scale > 1e11, "J^40 scale %g", scale);
+        double er = 0, eg = 0;
+        for (size_t i = 0; i < NB(3); i++) {
+            er = fmax(er, fabs(rec[i] - want[i]));
+            eg = fmax(eg, fabs(gen[i] - want[i]));
+        }
+        ck_assert_msg(er <= 1e-12 * scale && eg <= 1e-12 * scale, "k=40 %s: recursion %g, generator %g (scale %g)",
+                      cv ? "nocs" : "cs", er / scale, eg / scale, scale);
+    }
+    /* β and β + 2π·1000 give the same derivative (R_Y is 2π-periodic); the
+     * shift is known to ~1e-12 in double, so agreement to 1e-9 relative */
+    {
+        const int n = 5;
+        double a[NB(5)], b[NB(5)];
+        for (int way = 0; way < 2; way++)
+            for (int k = 0; k <= 3; k++) {
+                int (*f)(int, int, double, sh_convention, double *) = way ? sh_rot_deriv_generator : sh_rot_deriv_recursion;
+                ck_assert_int_eq(f(n, k, 0.4, SH_CS, a), SH_OK);
+                ck_assert_int_eq(f(n, k, 0.4 + 2 * M_PI * 1000, SH_CS, b), SH_OK);
+                double d = 0;
+                for (size_t i = 0; i < NB(5); i++) d = fmax(d, fabs(a[i] - b[i]));
+                ck_assert_msg(d <= 1e-9 * fmax(1, maxabs(a, NB(5))), "way %d k %d: beta vs beta+2000pi differ by %g", way, k, d);
+                /* and a huge β: finite, and still an orthogonal R_Y at k = 0 */
+                ck_assert_int_eq(f(n, k, 1e300, SH_CS, b), SH_OK);
+                for (size_t i = 0; i < NB(5); i++) ck_assert(isfinite(b[i]));
+            }
+    }
+    /* order 2: J³ = −J exactly, so no k overflows: k = 4001 equals k = 1 */
+    {
+        double a[NB(2)], b[NB(2)];
+        ck_assert_int_eq(sh_rot_deriv_generator(2, 1, 0.3, SH_CS, a), SH_OK);
+        ck_assert_int_eq(sh_rot_deriv_recursion(2, 4001, 0.3, SH_CS, b), SH_OK);
+        for (size_t i = 0; i < NB(2); i++) ck_assert_double_eq_tol(a[i], b[i], 1e-15);
+    }
+    /* overflow is refused, not returned as Inf: order 3 entries ≥ 2^k/5 */
+    double big[NB(32)];
+    ck_assert_int_eq(sh_rot_deriv_recursion(3, 2000, 0.1, SH_CS, big), SH_EINVAL);
+    ck_assert_int_eq(sh_rot_deriv_generator(3, 2000, 0.1, SH_CS, big), SH_EINVAL);
+    ck_assert_int_eq(sh_rot_deriv_generator(32, 400, 0.1, SH_CS, big), SH_EINVAL);
+    ck_assert_int_eq(sh_rot_deriv_generator(3, -1, 0.1, SH_CS, big), SH_EINVAL);
+}
+END_TEST
+
 START_TEST(test_deriv_finite_differences)
 {
     const int order = 6;
@@ -444,6 +523,7 @@ static Suite *suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_deriv_two_ways);
     tcase_add_test(tc, test_deriv_finite_differences);
+    tcase_add_test(tc, test_deriv_large_k_beta);
     tcase_add_test(tc, test_J_structure);
     tcase_add_test(tc, test_J_exponential);
     tcase_add_test(tc, test_figure2);

@@ -63,6 +63,18 @@ json_t *cli_put(json_t *root, const char *key, json_t *val);
  * json_real returns NULL, so builders report failure via NULL as well). */
 int cli_json_bad(const json_t *v);
 
+/* Progress on stderr for long runs: nothing during the first second, then
+ * at most one line a second ("cmd: done of total what, T s"), and a last
+ * line when the work ends if any line was printed.  quiet: never. */
+typedef struct {
+    const char *cmd;
+    int quiet, printed;
+    double t0, last;
+} cli_progress;
+void cli_progress_start(cli_progress *p, const char *cmd, int quiet);
+/* An sh_progress_fn (ctx: cli_progress *). */
+void cli_progress_step(void *ctx, int done, int total, const char *what);
+
 /* Render `root` in `fmt` on stdout and release it. Returns an exit code. */
 int cli_emit(json_t *root, cli_format fmt);
 

@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 int cli_fail(const char *fmt, ...)
 {
@@ -20,6 +21,33 @@ int cli_fail(const char *fmt, ...)
     fputc('\n', stderr);
     va_end(ap);
     return CLI_EXIT_USAGE;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void cli_progress_start(cli_progress *p, const char *cmd, int quiet)
+{
+    p->cmd = cmd;
+    p->quiet = quiet;
+    p->printed = 0;
+    p->t0 = p->last = now_s();
+}
+
+void cli_progress_step(void *ctx, int done, int total, const char *what)
+{
+    cli_progress *p = ctx;
+    if (!p || p->quiet) return;
+    const double t = now_s();
+    const int end = done >= total;
+    if (t - p->t0 < 1.0 || (t - p->last < 1.0 && !(end && p->printed))) return;
+    fprintf(stderr, "%s: %d of %d %s, %.1f s\n", p->cmd, done, total, what ? what : "steps", t - p->t0);
+    p->last = t;
+    p->printed = 1;
 }
 
 int cli_fail_status(int st)

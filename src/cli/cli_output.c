@@ -9,6 +9,7 @@
  *   array of arrays (a matrix)    → one row per row
  *   array of objects (rows)       → one row per object, header from keys
  *   object of arrays (channels)   → one column per channel, with i,l,m
+ *   object of scalars             → context under dotted keys ("choice.method")
  */
 #define _GNU_SOURCE
 #include "cli.h"
@@ -22,7 +23,7 @@ json_t *cli_json_array(const double *v, size_t n)
     json_t *a = json_array();
     if (!a) return NULL;
     for (size_t i = 0; i < n; i++) {
-        json_t *x = json_real(v[i]); /* NULL for NaN/Inf */
+        json_t *x = json_real(v[i] + 0.0); /* −0 → 0; NULL for NaN/Inf */
         if (!x || json_array_append_new(a, x)) { json_decref(a); return NULL; }
     }
     return a;
@@ -209,6 +210,66 @@ static void put_row(FILE *o, const table_t *t, size_t r, const char *sep, int ta
 #undef S
 }
 
+/* An object whose members are all scalars (e.g. plan's "choice") is shown
+ * as context with dotted keys: "choice.method: zxzxz" / column "choice.method". */
+static int is_flat_object(const json_t *v)
+{
+    if (!json_is_object(v) || json_object_size(v) == 0) return 0;
+    const char *k;
+    json_t *x;
+    json_object_foreach((json_t *)v, k, x) if (!is_scalar(x)) return 0;
+    return 1;
+}
+
+/* Call f for every context value of root, in order: its scalars, and the
+ * members of its flat objects under "key.member". */
+typedef void (*ctx_fn)(FILE *o, const char *prefix, const char *key, const json_t *v, int *first,
+                       int table);
+static void each_context(FILE *o, json_t *root, ctx_fn f, int *first, int table)
+{
+    const char *k;
+    json_t *v;
+    json_object_foreach(root, k, v) {
+        if (is_scalar(v)) f(o, NULL, k, v, first, table);
+        else if (is_flat_object(v)) {
+            const char *k2;
+            json_t *x;
+            json_object_foreach(v, k2, x) f(o, k, k2, x, first, table);
+        }
+    }
+}
+
+static void ctx_table(FILE *o, const char *prefix, const char *key, const json_t *v, int *first,
+                      int table)
+{
+    (void)first;
+    if (prefix) fprintf(o, "%s.", prefix);
+    fprintf(o, "%s: ", key);
+    put_scalar(o, v, table);
+    fputc('\n', o);
+}
+
+static void ctx_csv_head(FILE *o, const char *prefix, const char *key, const json_t *v, int *first,
+                         int table)
+{
+    (void)v;
+    (void)table;
+    if (!*first) fputc(',', o);
+    if (prefix) fprintf(o, "%s.", prefix);
+    fputs(key, o);
+    *first = 0;
+}
+
+static void ctx_csv_value(FILE *o, const char *prefix, const char *key, const json_t *v, int *first,
+                          int table)
+{
+    (void)prefix;
+    (void)key;
+    if (!*first) fputc(',', o);
+    put_scalar(o, v, table);
+    *first = 0;
+}
+
 static void render_text(FILE *o, json_t *root, cli_format fmt)
 {
     const char *k;
@@ -216,12 +277,11 @@ static void render_text(FILE *o, json_t *root, cli_format fmt)
     table_t tabs[16];
     int nt = 0;
     json_object_foreach(root, k, v) {
-        if (!is_scalar(v) && nt < 16 && classify(k, v, &tabs[nt])) nt++;
+        if (!is_scalar(v) && !is_flat_object(v) && nt < 16 && classify(k, v, &tabs[nt])) nt++;
     }
     if (fmt == CLI_TABLE) {
-        json_object_foreach(root, k, v) {
-            if (is_scalar(v)) { fprintf(o, "%s: ", k); put_scalar(o, v, 1); fputc('\n', o); }
-        }
+        int first = 1;
+        each_context(o, root, ctx_table, &first, 1);
         for (int t = 0; t < nt; t++) {
             fprintf(o, "\n%s:\n", tabs[t].key);
             put_header(o, &tabs[t], "\t");
@@ -230,21 +290,17 @@ static void render_text(FILE *o, json_t *root, cli_format fmt)
         }
         return;
     }
-    /* CSV: scalars become leading columns repeated on every row */
+    /* CSV: context values become leading columns repeated on every row */
     for (int t = 0; t < (nt ? nt : 1); t++) {
         if (t) fputc('\n', o);
         int first = 1;
-        json_object_foreach(root, k, v) if (is_scalar(v)) { fprintf(o, first ? "%s" : ",%s", k); first = 0; }
+        each_context(o, root, ctx_csv_head, &first, 0);
         if (nt) { if (!first) fputc(',', o); put_header(o, &tabs[t], ","); }
         fputc('\n', o);
         size_t nrows = nt ? tabs[t].nrows : 1;
         for (size_t r = 0; r < nrows; r++) {
             first = 1;
-            json_object_foreach(root, k, v) if (is_scalar(v)) {
-                if (!first) fputc(',', o);
-                put_scalar(o, v, 0);
-                first = 0;
-            }
+            each_context(o, root, ctx_csv_value, &first, 0);
             if (nt) { if (!first) fputc(',', o); put_row(o, &tabs[t], r, ",", 0); }
             fputc('\n', o);
         }

@@ -43,6 +43,7 @@ static const char help[] =
     "  --max-beta B       largest β of the random rotations (default π)\n"
     "  --degrees          --max-beta in degrees\n"
     "  --seed S           seed of rotations and vectors (default 12345)\n"
+    "  --convention C     cs (default) | nocs: convention of the plans timed\n"
     "  --quiet            no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help             this text\n"
@@ -81,6 +82,7 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_PRECISION,
                                          CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPT_CONVENTION,
                                          {"order", required_argument, 0, 'o'},
                                          {"methods", required_argument, 0, 'm'},
                                          {"mode", required_argument, 0, 'M'},
@@ -167,6 +169,7 @@ static int run(int argc, char **argv)
     }
     /* --method and --precision are kept by cli_common_opt */
     prec = com.prec;
+    bo.conv = com.conv;
     if (optind < argc) return cli_fail("bench: unexpected argument '%s'", argv[optind]);
     if (have_beta) {
         const double b = com.degrees ? max_beta * M_PI / 180 : max_beta;

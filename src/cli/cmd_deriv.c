@@ -25,8 +25,10 @@ static const char help[] =
     "The frame rotation's derivative is the transpose, times (-1)^k.\n"
     "\n"
     "  --order N            bands 0..N-1 (1..32)\n"
-    "  --k K                derivative order 0..32\n"
-    "  --beta B             angle (default 0; radians unless --degrees)\n"
+    "  --k K                derivative order >= 0 (refused only when an entry\n"
+    "                       overflows a double: about k > 709/ln(N-1))\n"
+    "  --beta B             angle (default 0; radians unless --degrees), any finite\n"
+    "                       value: reduced modulo 2π (remainder), printed reduced\n"
     "  --way recursion|generator\n"
     "  --degrees            B in degrees (the derivative stays per radian)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
@@ -34,7 +36,7 @@ static const char help[] =
     "  --help               this text\n"
     "\n"
     "JSON: {\"order\",\"k\",\"beta\",\"convention\",\"way\",\"matrix\":[[...]]}\n"
-    "(\"beta\" in radians.)\n";
+    "(\"beta\" in radians, reduced to [-π, π].)\n";
 
 static int run(int argc, char **argv)
 {
@@ -53,7 +55,7 @@ static int run(int argc, char **argv)
         switch (o) {
         case 'k':
             if (cli_int("--k", optarg, &k)) return CLI_EXIT_USAGE;
-            if (k < 0 || k > SH_DERIV_MAX_K) return cli_fail("--k: %d out of range 0..%d", k, SH_DERIV_MAX_K);
+            if (k < 0) return cli_fail("--k: %d must be >= 0", k);
             break;
         case 'b':
             if (cli_double("--beta", optarg, &beta)) return CLI_EXIT_USAGE;
@@ -76,7 +78,8 @@ static int run(int argc, char **argv)
         return cli_fail("deriv: --order %d too large for a printed N²×N² matrix (max %d)", com.order,
                         DERIV_PRINT_MAX_ORDER);
     if (com.degrees) beta *= M_PI / 180.0;
-    if (!isfinite(beta) || fabs(beta) > 1e6) return cli_fail("deriv: --beta must be finite and |beta| <= 1e6");
+    if (!isfinite(beta)) return cli_fail("deriv: --beta must be finite");
+    beta = remainder(beta, 2.0 * M_PI); /* R_Y is 2π-periodic (exact reduction) */
     const int n = com.order;
     const size_t nn = (size_t)n * n;
     double *blocks = malloc(sh_rot_block_offset(n) * sizeof *blocks), *M = malloc(nn * nn * sizeof *M);

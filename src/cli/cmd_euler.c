@@ -18,14 +18,15 @@ static const char help[] =
     "  --axis X,Y,Z --angle T | --euler A,B,G   (see shlab rotmat --help);\n"
     "  --inverse, --orthonormalize\n"
     "  --degrees            input and output angles in degrees\n"
+    "  --convention cs|nocs reported only (the angles do not depend on it)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"alpha\",\"beta\",\"gamma\",\"units\",\"residual\"}  (residual = max|R(α,β,γ) − R|)\n";
+    "JSON: {\"alpha\",\"beta\",\"gamma\",\"units\",\"residual\",\"convention\"}  (residual = max|R(α,β,γ) − R|)\n";
 
 static int run(int argc, char **argv)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE, CLI_LONGOPT_DEGREES,
+    static const struct option opts[] = {CLI_LONGOPTS_BASE, CLI_LONGOPT_DEGREES, CLI_LONGOPT_CONVENTION,
                                          CLI_LONGOPTS_ROTATION, {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_rotation_args ra = {0};
@@ -55,6 +56,8 @@ static int run(int argc, char **argv)
     root = cli_put(root, "gamma", json_real(g * k));
     root = cli_put(root, "units", json_string(com.degrees ? "degrees" : "radians"));
     root = cli_put(root, "residual", json_real(res));
+    /* last, so that the CSV columns of the angles keep their places */
+    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
     return cli_emit(root, com.fmt);
 }
 

@@ -39,10 +39,11 @@ static const char help[] =
     "  --beta-step S        largest grid step (default 0.25°)\n"
     "  --degrees            --max-beta and --beta-step in degrees\n"
     "  --precision P        double (default) | float\n"
+    "  --convention C       cs (default) | nocs: convention of the plans measured and timed\n"
     "  --exr FILE           environment image (with --order auto)\n"
     "  --layout L           latlong (default) | probe\n"
     "  --max-order M        largest order tried by auto (default 32)\n"
-    "  --quiet              no progress on stderr\n"
+    "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -53,7 +54,10 @@ static const char help[] =
     "                      \"ns_per_rotation\",\"mults\"}],\n"
     "       with --order auto also \"order_residual\" (relative L2 at the chosen order)\n"
     "       and \"image\":{\"path\",\"width\",\"height\",\"layout\"}}.  Exit 0 if a method\n"
-    "       qualifies, 1 if none does (the candidates still printed).\n";
+    "       qualifies, 1 if none does (the candidates still printed), also 1 with\n"
+    "       --order auto when no order <= --max-order represents the image to E:\n"
+    "       then \"order\":null, \"max_order\", \"order_residual\" at --max-order,\n"
+    "       choice and runner_up null, no candidates (one line on stderr says so).\n";
 
 static json_t *cand_json(const sh_rot_candidate *c, int full)
 {
@@ -77,6 +81,7 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_PRECISION,
                                          CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPT_CONVENTION,
                                          {"order", required_argument, 0, 'o'},
                                          {"max-beta", required_argument, 0, 'B'},
                                          {"tolerance", required_argument, 0, 'e'},
@@ -167,6 +172,7 @@ static int run(int argc, char **argv)
     if (!order_auto && (exr || have_layout || have_max_order))
         return cli_fail("plan: --exr, --layout and --max-order apply to --order auto only");
     if (!order_auto && rot_tol > 0) return cli_fail("plan: --rot-tolerance applies to --order auto only");
+    co.conv = com.conv;
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;
     if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
@@ -189,19 +195,43 @@ static int run(int argc, char **argv)
         const int w = img.width, h = img.height;
         sh_image_free(&img);
         if (st) return cli_fail_status(st);
-        if (order < 0)
-            return cli_fail("plan: no order <= %d represents %s to relative L2 %g (at order %d: %.3g)",
-                            max_order, exr, img_tol, max_order, resid[max_order - 1]);
-        co.order = order;
-        order_resid = resid[order - 1];
-        if (rot_tol > 0) co.tolerance = rot_tol;
         img_json = json_object();
         img_json = cli_put(img_json, "path", json_string(exr));
         img_json = cli_put(img_json, "width", json_integer(w));
         img_json = cli_put(img_json, "height", json_integer(h));
         img_json = cli_put(img_json, "layout", json_string(layout == SH_LAYOUT_LATLONG ? "latlong" : "probe"));
+        if (order < 0) {
+            /* a valid request whose answer is "no order qualifies": a failed
+             * check (exit 1), the result still printed, without candidates */
+            fprintf(stderr, "plan: no order <= %d represents %s to relative L2 %g (at order %d: %.3g)\n",
+                    max_order, exr, img_tol, max_order, resid[max_order - 1]);
+            json_t *root = json_object();
+            root = cli_put(root, "order", json_null());
+            root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
+            root = cli_put(root, "max_beta", json_real(co.max_beta));
+            root = cli_put(root, "tolerance", json_real(rot_tol > 0 ? rot_tol : co.tolerance));
+            root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
+            root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
+            root = cli_put(root, "precision", json_string(sh_precision_name(co.prec)));
+            root = cli_put(root, "image_tolerance", json_real(img_tol));
+            root = cli_put(root, "max_order", json_integer(max_order));
+            root = cli_put(root, "order_residual", json_real(resid[max_order - 1]));
+            root = cli_put(root, "image", img_json);
+            root = cli_put(root, "choice", json_null());
+            root = cli_put(root, "runner_up", json_null());
+            root = cli_put(root, "candidates", json_array());
+            const int rc = cli_emit(root, com.fmt);
+            return rc == CLI_EXIT_OK ? CLI_EXIT_CHECK : rc;
+        }
+        co.order = order;
+        order_resid = resid[order - 1];
+        if (rot_tol > 0) co.tolerance = rot_tol;
     }
     if (!quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
+    cli_progress prog;
+    cli_progress_start(&prog, "plan", quiet);
+    co.progress = cli_progress_step;
+    co.progress_ctx = &prog;
     sh_rot_candidate cand[SH_ROT_NMETHODS];
     int nc = 0, choice = -1, runner = -1;
     int st = sh_rot_choose(&co, cand, &nc, &choice, &runner);

@@ -5,6 +5,7 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 extern const cli_command cmd_scale_interp;
 
@@ -29,6 +30,7 @@ static const char help[] =
     "  --energy             energy-preserving scaling\n"
     "  --cone-angle T       cone family half-angle (default π/4; --degrees)\n"
     "  --convention cs|nocs tag only (the matrix does not depend on it)\n"
+    "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -37,7 +39,7 @@ static const char help[] =
 
 static int run(int argc, char **argv)
 {
-    enum { O_FAMILY = 0x201, O_SAMPLES, O_SPACING, O_KMIN, O_KMAX, O_INTERP, O_DENSE, O_ENERGY, O_CONE };
+    enum { O_FAMILY = 0x201, O_SAMPLES, O_SPACING, O_KMIN, O_KMAX, O_INTERP, O_DENSE, O_ENERGY, O_CONE, O_QUIET };
     static const struct option opts[] = {
         CLI_LONGOPTS_BASE,
         CLI_LONGOPT_ORDER,
@@ -50,12 +52,13 @@ static int run(int argc, char **argv)
         {"dense", required_argument, 0, O_DENSE},
         {"energy", no_argument, 0, O_ENERGY},
         {"cone-angle", required_argument, 0, O_CONE},
+        {"quiet", no_argument, 0, O_QUIET},
         CLI_LONGOPT_DEGREES,
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *family = NULL, *spacing = NULL, *interp = "linear";
-    int samples = 0, dense = INTERP_DEFAULT_DENSE, have_min = 0, have_max = 0, have_cone = 0;
+    int samples = 0, dense = INTERP_DEFAULT_DENSE, have_min = 0, have_max = 0, have_cone = 0, quiet = 0;
     double kmin = 0, kmax = 0, cone = 0;
     sh_scaling s = {SH_SCALE_LINEAR, 1.0, 0.0, 0};
     opterr = 0;
@@ -71,6 +74,7 @@ static int run(int argc, char **argv)
         case O_INTERP: interp = optarg; break;
         case O_DENSE: if (cli_int("--dense", optarg, &dense)) return CLI_EXIT_USAGE; break;
         case O_ENERGY: s.energy = 1; break;
+        case O_QUIET: quiet = 1; break;
         case O_CONE: if (cli_double("--cone-angle", optarg, &cone)) return CLI_EXIT_USAGE; have_cone = 1; break;
         default: {
             const int r = cli_common_opt(&cmd_scale_interp, o, argv, &com);
@@ -98,8 +102,15 @@ static int run(int argc, char **argv)
             return cli_fail("--cone-angle: %g is outside (0, %s)", cone, com.degrees ? "180" : "pi");
     }
     sh_scale_interp_result r;
-    const int st = sh_scale_interp_error(order, &s, samples, sp, kmin, kmax, ik, dense, &r);
-    if (st) return cli_fail("scale-interp: %s", sh_last_error());
+    cli_progress prog;
+    cli_progress_start(&prog, "scale-interp", quiet);
+    const int st = sh_scale_interp_error_progress(order, &s, samples, sp, kmin, kmax, ik, dense, &r,
+                                                  cli_progress_step, &prog);
+    if (st) { /* the library's message may already name the command */
+        const char *why = sh_last_error();
+        if (!why || !*why) why = sh_strerror(st);
+        return cli_fail(strncmp(why, "scale-interp: ", 14) ? "scale-interp: %s" : "%s", why);
+    }
     json_t *root = json_object();
     root = cli_put(root, "order", json_integer(order));
     root = cli_put(root, "family", json_string(sh_scale_family_name(s.family)));

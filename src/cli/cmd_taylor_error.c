@@ -32,7 +32,7 @@ static const char help[] =
     "  --lobe-exp E         lobe exponent (default 7, >= 0)\n"
     "  --degrees            angles in degrees (in and out)\n"
     "  --convention cs|nocs only reported (the errors do not depend on it)\n"
-    "  --quiet              no progress on stderr\n"
+    "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -106,6 +106,8 @@ static int run(int argc, char **argv)
                         com.degrees ? "180" : "pi");
     const int nrow = have_beta ? 1 : steps + 1;
     json_t *rows = json_array();
+    cli_progress prog;
+    cli_progress_start(&prog, "taylor-error", quiet);
     for (int i = 0; i < nrow; i++) {
         const double b = have_beta ? beta : beta_max * i / steps;
         sh_taylor_err e;
@@ -117,8 +119,7 @@ static int run(int argc, char **argv)
         r = cli_put(r, "mean", json_real(e.mean));
         r = cli_put(r, "lobe", json_real(e.lobe));
         if (!r || json_array_append_new(rows, r)) { json_decref(rows); return cli_fail("out of memory or non-finite result"); }
-        if (!quiet && nrow >= 200 && (i % 100 == 0 || i == nrow - 1))
-            fprintf(stderr, "taylor-error: %d of %d angles\n", i + 1, nrow);
+        cli_progress_step(&prog, i + 1, nrow, "angles");
     }
     json_t *root = json_object();
     root = cli_put(root, "order", json_integer(com.order));

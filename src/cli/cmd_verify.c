@@ -42,7 +42,8 @@ static const char help[] =
     "\n"
     "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
     "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
-    "       \"worst_tolerance\",[\"diagnosis\",\"diagnosis_matches\",\n"
+    "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
+    "       cases mix both),[\"method\" (with --method)],[\"diagnosis\",\"diagnosis_matches\",\n"
     "       \"diagnosis_checked\"]}  (checked: cases the mistake changes; matches: of those, the ones the candidate equals)\n";
 
 /* A transformation of the expected answer that a wrong kernel would produce. */
@@ -286,6 +287,15 @@ static int run(int argc, char **argv)
     root = cli_put(root, "worst_error", isfinite(we) ? json_real(we) : json_string("not finite"));
     root = cli_put(root, "worst_tolerance",
                    json_real(prec == SH_PREC_FLOAT ? wc->tol_float : wc->tol_double));
+    /* after the fields above, so that their CSV columns keep their places */
+    int have_cs = 0, have_nocs = 0;
+    for (int k = 0; k < fx.ncases; k++) {
+        have_cs |= fx.cases[k].conv == SH_CS;
+        have_nocs |= fx.cases[k].conv == SH_NOCS;
+    }
+    root = cli_put(root, "convention",
+                   json_string(have_cs && have_nocs ? "cs+nocs" : have_nocs ? "nocs" : "cs"));
+    if (have_method) root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
     if (diagnose && failed) {
         /* float precision only: every case within its float32 tolerance */
         int float_ok = 0, best = -1, best_n = 0, best_seen = 0;

@@ -46,7 +46,7 @@ echo '{"coeffs": [1, 2' > "$TMP/bad.json"
 expect_usage_error "convert corrupt json" convert --from cs --to nocs --in "$TMP/bad.json"
 echo '{"channels": {"R":[1,2,3,4],"G":[0,0,0,1]}}' > "$TMP/ch.json"
 expect_success "convert channels file" convert --from cs --to nocs --in "$TMP/ch.json" --format json
-if grep -q '"G":\[0.0,-0.0,0.0,-1.0\]' "$TMP/out"; then ok "convert channels"; else notok "convert channels: $(cat "$TMP/out")"; fi
+if grep -q '"G":\[0.0,0.0,0.0,-1.0\]' "$TMP/out"; then ok "convert channels"; else notok "convert channels: $(cat "$TMP/out")"; fi
 
 # review regressions: NUL bytes, over-long channel names (would collide when
 # truncated), write errors on stdout, CSV quoting of strings with commas

@@ -62,6 +62,8 @@ e10=$(json_num "$TMP/out" max_error)
 expect_success "scale-interp 40" scale-interp --order 4 --family cone --samples 40 --spacing geometric --kmin 0.5 --kmax 2 --format json
 e40=$(json_num "$TMP/out" max_error)
 lt "$e40" "$e10" && ok "40 samples ($e40) beat 10 ($e10)" || notok "interp 40 $e40 vs 10 $e10"
+expect_success "scale-interp 40 --quiet" scale-interp --order 4 --family cone --samples 40 --spacing geometric --kmin 0.5 --kmax 2 --format json --quiet
+[ ! -s "$TMP/err" ] && [ "$(json_num "$TMP/out" max_error)" = "$e40" ] && ok "scale-interp --quiet: silent, same result" || notok "scale-interp --quiet: $(head -c 200 "$TMP/err")"
 expect_success "scale-interp uniform midrange cubic" scale-interp --order 3 --family midrange --samples 21 --spacing uniform --kmin -0.8 --kmax 0.8 --interp cubic --energy
 
 # scenes

@@ -15,6 +15,19 @@ if grep -q '"convention"' "$TMP/out" && grep -q '"k": *2,' "$TMP/out" && grep -q
 "$SHLAB" deriv --order 5 --k 3 --beta 1.1 --way generator --format csv > "$TMP/b" 2>/dev/null
 d=$(paste -d, "$TMP/a" "$TMP/b" | awk -F, 'NR > 1 { h = NF / 2; for (i = 7; i <= h; i++) { x = $i - $(i + h); if (x < 0) x = -x; if (x > m) m = x } } END { print m + 0 }')
 if close "$d" 0 1e-12; then ok "deriv recursion == generator (max diff $d)"; else notok "deriv ways differ by $d"; fi
+# k = 40 at order 3: J has eigenvalues 0, ±i (band 1), 0, ±i, ±2i (band 2), so
+# trace(J^40) = 2 + 2 + 2·2^40 = 2199023255556 (the trace of J^41 is 0)
+expect_success "deriv k 40" deriv --order 3 --k 40 --format csv
+t=$(awk -F, 'NR > 1 { r = $6; tr += $(7 + r) } END { printf "%.17g", tr }' "$TMP/out")
+close "$t" 2199023255556 1e-12 && ok "deriv k=40: trace $t = 4 + 2^41" || notok "deriv k=40 trace $t"
+# any β: β and β + 2π·1000 agree (R_Y is 2π-periodic)
+b2=$(awk 'BEGIN { printf "%.17g", 0.4 + 2000 * atan2(0, -1) }')
+"$SHLAB" deriv --order 4 --k 2 --beta 0.4 --format csv > "$TMP/a" 2>/dev/null
+"$SHLAB" deriv --order 4 --k 2 --beta "$b2" --format csv > "$TMP/b" 2>/dev/null
+d=$(paste -d, "$TMP/a" "$TMP/b" | awk -F, 'NR > 1 { h = NF / 2; for (i = 7; i <= h; i++) { x = $i - $(i + h); if (x < 0) x = -x; if (x > m) m = x } } END { print m + 0 }')
+[ -s "$TMP/b" ] && close "$d" 0 1e-9 && ok "deriv beta vs beta + 2000 pi (max diff $d)" || notok "deriv large beta: diff $d"
+expect_success "deriv huge beta" deriv --order 3 --k 1 --beta 1e300
+expect_usage_error "deriv k overflows" deriv --order 3 --k 5000
 expect_usage_error "deriv without --k" deriv --order 3
 expect_usage_error "deriv bad k" deriv --order 3 --k -1
 expect_usage_error "deriv bad way" deriv --order 3 --k 1 --way magic
