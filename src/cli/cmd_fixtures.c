@@ -239,6 +239,7 @@ static int run(int argc, char **argv)
         root = json_object();
         root = cli_put(root, "out", json_string(dir));
         root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
+        root = cli_put(root, "convention", json_string("cs+nocs")); /* every case names its own */
         root = cli_put(root, "files", method == SH_ROT_REFERENCE ? json_pack("[s,s]", p1, p2) : json_pack("[s]", p1));
         root = cli_put(root, "cases", json_integer(ncase));
     }
