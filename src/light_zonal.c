@@ -95,3 +95,15 @@ int sh_light_closed_form(const sh_light *L, int order, sh_convention conv, doubl
     free(z);
     return st;
 }
+
+int sh__lobe_zonal_unit(double e, int order, double *z)
+{
+    int st = sh_lobe_zonal(e, order, z);
+    if (st) return st;
+    double n2 = 0;
+    for (int l = 0; l < order; l++) n2 += z[l] * z[l];
+    const double n = sqrt(n2);
+    if (!(n > 0)) return sh_error(SH_EINVAL, "lobe vector of exponent %g is zero", e);
+    for (int l = 0; l < order; l++) z[l] /= n;
+    return SH_OK;
+}

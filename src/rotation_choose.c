@@ -71,11 +71,7 @@ int sh_rot_errws_create_conv(int order, double lobe_exp, int use_reference, sh_c
         sh_rot_errws_free(w);
         return sh_error(SH_ENOMEM, "rotation error: out of memory (order %d)", order);
     }
-    if ((st = sh_lobe_zonal(lobe_exp, order, w->c))) { sh_rot_errws_free(w); return st; }
-    double nrm = 0;
-    for (int l = 0; l < order; l++) nrm += w->c[l] * w->c[l];
-    nrm = sqrt(nrm);
-    for (int l = 0; l < order; l++) w->c[l] /= nrm;
+    if ((st = sh__lobe_zonal_unit(lobe_exp, order, w->c))) { sh_rot_errws_free(w); return st; }
     if ((st = sh_rot_plan_create(order, use_reference ? SH_ROT_REFERENCE : SH_ROT_ZXZXZ, SH_PREC_DOUBLE,
                                  conv, &w->truth))) {
         sh_rot_errws_free(w);
@@ -108,6 +104,12 @@ int sh_rot_errws_set(sh_rot_errws *w, const sh_rotation *rot)
 
 int sh_rot_errws_eval(sh_rot_errws *w, sh_rot_method method, sh_precision prec, sh_rot_error *err)
 {
+    return sh_rot_errws_eval_sv(w, method, prec, err, NULL);
+}
+
+int sh_rot_errws_eval_sv(sh_rot_errws *w, sh_rot_method method, sh_precision prec, sh_rot_error *err,
+                         double *sv)
+{
     if (!w->have_rot) return sh_error(SH_EINVAL, "rotation error: no rotation set");
     if (method < 0 || method >= SH_ROT_NMETHODS || (prec != SH_PREC_DOUBLE && prec != SH_PREC_FLOAT))
         return sh_error(SH_EINVAL, "rotation error: bad method or precision");
@@ -139,6 +141,7 @@ int sh_rot_errws_eval(sh_rot_errws *w, sh_rot_method method, sh_precision prec, 
         for (int k = 0; k < n; k++) {
             smax = fmax(smax, w->S[k]);
             ssum += w->S[k];
+            if (sv) sv[(size_t)l * l + k] = w->S[k];
         }
     }
     err->max = smax;

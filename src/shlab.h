@@ -654,6 +654,10 @@ int sh_rot_errws_create_conv(int order, double lobe_exp, int use_reference, sh_c
 int sh_rot_errws_set(sh_rot_errws *w, const sh_rotation *rot);
 /* Error of a method (plans are created on first use and kept). */
 int sh_rot_errws_eval(sh_rot_errws *w, sh_rot_method method, sh_precision prec, sh_rot_error *err);
+/* The same, also writing all order² singular values to sv (band l's, in
+ * decreasing order, at sv[l²..l²+2l]) when sv is not NULL. */
+int sh_rot_errws_eval_sv(sh_rot_errws *w, sh_rot_method method, sh_precision prec, sh_rot_error *err,
+                         double *sv);
 void sh_rot_errws_free(sh_rot_errws *w);
 
 /* The cheapest method for an error budget (rotation_choose.c): every method

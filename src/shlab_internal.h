@@ -31,4 +31,8 @@ int sh__gauss_legendre(long S, double *x, double *w);
 int sh__make_temp_path(const char *path, char **tmp_out);
 int sh__commit_temp(const char *tmp, const char *path);
 
+/* light_zonal.c: the zonal coefficients z[l] (of y_l^0, l < order) of
+ * max(0, cosθ)^e about +z scaled to a unit vector (sh_lobe_zonal / its norm). */
+int sh__lobe_zonal_unit(double e, int order, double *z);
+
 #endif

@@ -14,9 +14,11 @@
  *      coefficients of max(0, cosθ)^e about +z).
  *
  * D is block diagonal (bands do not mix), so its singular values are those
- * of the band blocks together; each (2l+1)² block is decomposed alone.
- * R_Y(β) comes from the zxzxz method (exact, accurate to l = 1000); T(β) from
- * the taylor plan's blocks (the kernel under test).  sh_taylor_lobe_error
+ * of the band blocks together; each (2l+1)² block is decomposed alone, by
+ * the generic error engine of rotation_choose.c (sh_rot_errws) that `plan`
+ * and the frontier use for every method.  R_Y(β) comes from the zxzxz method
+ * (exact, accurate to l = 1000); T(β) from the taylor plan's blocks (the
+ * kernel under test).  sh_taylor_lobe_error
  * takes the other path — the two plans applied to the lobe vector — so the
  * tests can compare the two.  Both conventions give the same numbers: nocs
  * is S·D·S with S = diag(±1) orthogonal, and the lobe vector is zonal (m = 0,
@@ -24,8 +26,6 @@
  */
 #include "rot_internal.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_linalg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,125 +41,39 @@ static int ty_check(int order, sh_rot_method taylor, double beta)
     return SH_OK;
 }
 
-/* blocks of method m for Ry(β), CS */
-static int y_blocks(int order, sh_rot_method m, double beta, double *blocks)
+/* The measures of D(β) through the generic error engine (rotation_choose.c:
+ * band blocks of zxzxz minus the taylor plan's, GSL's Jacobi SVD per band,
+ * lobe error from the m = 0 columns). */
+static int ty_eval(int order, sh_rot_method taylor, double beta, double lobe_exp, sh_rot_error *e,
+                   double *sv)
 {
-    sh_rotation rot;
-    int st = sh_rotation_from_euler(0, beta, 0, &rot);
+    int st = ty_check(order, taylor, beta);
     if (st) return st;
-    sh_rot_plan *p;
-    if ((st = sh_rot_plan_create(order, m, SH_PREC_DOUBLE, SH_CS, &p))) return st;
-    if (!(st = sh_rot_plan_set(p, &rot))) st = sh_rot_plan_blocks(p, blocks);
-    sh_rot_plan_free(p);
-    return st;
-}
-
-/* D(β) blocks = exact − approximation */
-static int d_blocks(int order, sh_rot_method taylor, double beta, double **out)
-{
-    const size_t nb = sh_rot_block_offset(order);
-    double *D = malloc(nb * sizeof *D), *A = malloc(nb * sizeof *A);
-    int st = (!D || !A) ? sh_error(SH_ENOMEM, "taylor error: out of memory (order %d)", order) : SH_OK;
-    if (!st) st = y_blocks(order, SH_ROT_ZXZXZ, beta, D);
-    if (!st) st = y_blocks(order, taylor, beta, A);
-    if (!st)
-        for (size_t i = 0; i < nb; i++) D[i] -= A[i];
-    free(A);
-    if (st) {
-        free(D);
-        return st;
-    }
-    *out = D;
-    return SH_OK;
-}
-
-/* Singular values of each band block of D into sv (order² values). */
-static int band_svd(int order, const double *D, double *sv)
-{
-    const int W = 2 * order - 1;
-    gsl_matrix *A = gsl_matrix_alloc((size_t)W, (size_t)W), *V = gsl_matrix_alloc((size_t)W, (size_t)W);
-    gsl_vector *S = gsl_vector_alloc((size_t)W);
-    if (!A || !V || !S) {
-        if (A) gsl_matrix_free(A);
-        if (V) gsl_matrix_free(V);
-        if (S) gsl_vector_free(S);
-        return sh_error(SH_ENOMEM, "taylor error: out of memory (SVD)");
-    }
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    int st = SH_OK;
-    for (int l = 0; l < order && !st; l++) {
-        const size_t w = 2 * (size_t)l + 1;
-        gsl_matrix_view a = gsl_matrix_submatrix(A, 0, 0, w, w), v = gsl_matrix_submatrix(V, 0, 0, w, w);
-        gsl_vector_view s = gsl_vector_subvector(S, 0, w);
-        for (size_t r = 0; r < w; r++)
-            for (size_t c = 0; c < w; c++) gsl_matrix_set(&a.matrix, r, c, D[sh_rot_block_offset(l) + r * w + c]);
-        if (gsl_linalg_SV_decomp_jacobi(&a.matrix, &v.matrix, &s.vector))
-            st = sh_error(SH_ENUM, "taylor error: Jacobi SVD did not converge (band %d)", l);
-        for (size_t i = 0; i < w; i++) sv[(size_t)l * l + i] = gsl_vector_get(&s.vector, i);
-    }
-    gsl_set_error_handler(old);
-    gsl_matrix_free(A);
-    gsl_matrix_free(V);
-    gsl_vector_free(S);
+    sh_rotation rot;
+    sh_rot_errws *w;
+    if ((st = sh_rotation_from_euler(0, beta, 0, &rot))) return st;
+    if ((st = sh_rot_errws_create(order, lobe_exp, 0, &w))) return st;
+    if (!(st = sh_rot_errws_set(w, &rot))) st = sh_rot_errws_eval_sv(w, taylor, SH_PREC_DOUBLE, e, sv);
+    sh_rot_errws_free(w);
     return st;
 }
 
 int sh_taylor_singular_values(int order, sh_rot_method taylor, double beta, double *sv)
 {
-    int st = ty_check(order, taylor, beta);
-    if (st) return st;
-    double *D;
-    if ((st = d_blocks(order, taylor, beta, &D))) return st;
-    st = band_svd(order, D, sv);
-    free(D);
-    return st;
-}
-
-/* unit lobe vector's zonal part z[l] (coefficient of y_l^0) */
-static int lobe_zonal_unit(int order, double e, double *z)
-{
-    int st = sh_lobe_zonal(e, order, z);
-    if (st) return st;
-    double n2 = 0;
-    for (int l = 0; l < order; l++) n2 += z[l] * z[l];
-    const double n = sqrt(n2);
-    if (!(n > 0)) return sh_error(SH_EINVAL, "taylor error: lobe vector is zero");
-    for (int l = 0; l < order; l++) z[l] /= n;
-    return SH_OK;
+    sh_rot_error e;
+    return ty_eval(order, taylor, beta, 7, &e, sv);
 }
 
 int sh_taylor_error(int order, sh_rot_method taylor, double beta, double lobe_exp, sh_taylor_err *out)
 {
-    int st = ty_check(order, taylor, beta);
+    sh_rot_error e;
+    int st = ty_eval(order, taylor, beta, lobe_exp, &e, NULL);
     if (st) return st;
-    const size_t n = (size_t)order * order;
-    double *sv = malloc(n * sizeof *sv), *z = malloc((size_t)order * sizeof *z), *D = NULL;
-    if (!sv || !z) st = sh_error(SH_ENOMEM, "taylor error: out of memory");
-    if (!st) st = lobe_zonal_unit(order, lobe_exp, z);
-    if (!st) st = d_blocks(order, taylor, beta, &D);
-    if (!st) st = band_svd(order, D, sv);
-    if (!st) {
-        double mx = 0, sum = 0, lobe2 = 0;
-        for (size_t i = 0; i < n; i++) {
-            mx = fmax(mx, sv[i]);
-            sum += sv[i];
-        }
-        /* D c: c has only m = 0 entries, so band l of D c is column m = 0 times z_l */
-        for (int l = 0; l < order; l++) {
-            const size_t w = 2 * (size_t)l + 1;
-            const double *B = D + sh_rot_block_offset(l);
-            for (size_t r = 0; r < w; r++) {
-                const double y = B[r * w + (size_t)l] * z[l];
-                lobe2 += y * y;
-            }
-        }
-        out->beta = beta;
-        out->max = mx;
-        out->mean = sum / (double)n;
-        out->lobe = sqrt(lobe2);
-    }
-    free(sv), free(z), free(D);
-    return st;
+    out->beta = beta;
+    out->max = e.max;
+    out->mean = e.mean;
+    out->lobe = e.lobe;
+    return SH_OK;
 }
 
 int sh_taylor_lobe_error(int order, sh_rot_method taylor, double beta, double lobe_exp, double *lobe)
@@ -172,7 +86,7 @@ int sh_taylor_lobe_error(int order, sh_rot_method taylor, double beta, double lo
     sh_rot_plan *pe = NULL, *pa = NULL;
     sh_rotation rot;
     if (!c || !z) st = sh_error(SH_ENOMEM, "taylor error: out of memory");
-    if (!st) st = lobe_zonal_unit(order, lobe_exp, z);
+    if (!st) st = sh__lobe_zonal_unit(lobe_exp, order, z);
     if (!st) st = sh_rotation_from_euler(0, beta, 0, &rot);
     if (!st) st = sh_rot_plan_create(order, SH_ROT_ZXZXZ, SH_PREC_DOUBLE, SH_CS, &pe);
     if (!st) st = sh_rot_plan_create(order, taylor, SH_PREC_DOUBLE, SH_CS, &pa);
