@@ -405,6 +405,11 @@ typedef struct {
  * (π/2, π, π/2), tiny β with α+γ = 0, and two seeded random rotations; names
  * (may be NULL) get a short label for each. */
 int sh_rot_stability_set(sh_rotation set[SH_ROT_STABILITY_NSET], const char *names[SH_ROT_STABILITY_NSET]);
+/* Orthogonality error of one w×w block B: max|B Bᵀ − I| exactly (exact ≠ 0,
+ * O(w³)), or the two-probe estimate max|Bᵀ(B v) − v| over two fixed seeded
+ * unit vectors v (O(w²); a lower bound of the exact value's order).  A
+ * non-finite entry gives +Inf. */
+double sh_rot_block_orthogonality(const double *B, int w, int exact);
 typedef int (*sh_rot_stability_cb)(const sh_rot_stability_row *row, void *ctx);
 /* Rows for the bands listed (increasing; NULL: every band 0..lmax).  The
  * sweep stops after the first row whose orth exceeds stop_above (> 0), or

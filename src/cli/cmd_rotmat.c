@@ -49,38 +49,6 @@ static const char help[] =
     "max|Rᵀ(R v) - v|); an exact method above 1e-8 (float: 1e-3) gets a warning\n"
     "on stderr: it has broken down at that band.\n";
 
-/* max|Bᵀ(B v) − v| over two seeded unit vectors: an O(w²) lower bound of
- * max|BᵀB − I| for one band (exact would be O(w³): 8e9 operations at l = 1000). */
-static double orthogonality_probe(const double *B, int w)
-{
-    double *v = malloc(2 * (size_t)w * sizeof *v), worst = 0;
-    if (!v) return 0;
-    double *y = v + w;
-    unsigned long x = 12345;
-    for (int probe = 0; probe < 2; probe++) {
-        double nn = 0;
-        for (int i = 0; i < w; i++) {
-            x = x * 6364136223846793005UL + 1442695040888963407UL;
-            v[i] = (double)(x >> 11) / 9007199254740992.0 - 0.5;
-            nn += v[i] * v[i];
-        }
-        nn = sqrt(nn);
-        for (int i = 0; i < w; i++) v[i] /= nn;
-        for (int i = 0; i < w; i++) {
-            double t = 0;
-            for (int j = 0; j < w; j++) t += B[(size_t)i * w + j] * v[j];
-            y[i] = t;
-        }
-        for (int j = 0; j < w; j++) {
-            double t = 0;
-            for (int i = 0; i < w; i++) t += B[(size_t)i * w + j] * y[i];
-            worst = fmax(worst, fabs(t - v[j]));
-        }
-    }
-    free(v);
-    return worst;
-}
-
 /* An exact method whose result is far from orthogonal has broken down
  * (the l-recursions do past l ≈ 100): say so instead of printing it silently. */
 static void warn_if_inaccurate(sh_rot_method m, sh_precision p, int band, double orth)
@@ -155,7 +123,7 @@ static int run(int argc, char **argv)
         if (!B) { json_decref(root); return cli_fail("out of memory"); }
         st = sh_rot_band(band, method, prec, com.conv, &rot, B);
         if (st) { free(B); json_decref(root); return cli_fail_status(st); }
-        const double orth = orthogonality_probe(B, (int)w);
+        const double orth = sh_rot_block_orthogonality(B, (int)w, 0);
         root = cli_put(root, "band", json_integer(band));
         root = cli_put(root, "orthogonality_error", json_real(orth));
         root = cli_put(root, "matrix", cli_json_matrix(B, w, w));
@@ -174,16 +142,8 @@ static int run(int argc, char **argv)
         if (st) { free(blocks); free(M); json_decref(root); return cli_fail_status(st); }
         sh_rot_blocks_to_dense(order, blocks, M);
         double orth = 0;
-        for (int l = 0; l < order; l++) {
-            const int w = 2 * l + 1;
-            const double *B = blocks + sh_rot_block_offset(l);
-            for (int i = 0; i < w; i++)
-                for (int j = 0; j < w; j++) {
-                    double t = 0;
-                    for (int q = 0; q < w; q++) t += B[i * w + q] * B[j * w + q];
-                    orth = fmax(orth, fabs(t - (i == j)));
-                }
-        }
+        for (int l = 0; l < order; l++)
+            orth = fmax(orth, sh_rot_block_orthogonality(blocks + sh_rot_block_offset(l), 2 * l + 1, 1));
         root = cli_put(root, "orthogonality_error", json_real(orth));
         root = cli_put(root, "matrix", cli_json_matrix(M, n, n));
         warn_if_inaccurate(method, prec, order - 1, orth);
