@@ -238,7 +238,7 @@ static void rot_check_orth_homomorphism(sh_rot_method method)
 
 /* The method's single band L (sh_rot_band, the path `rotmat --band` uses)
  * against the MPFR reference, both conventions, at a fixed tilted rotation. */
-static void rot_check_band(sh_rot_method method, int L)
+static inline void rot_check_band(sh_rot_method method, int L)
 {
     sh_rotation r;
     sh_rotation_from_euler(-1.9, 2.4, 0.6, &r);

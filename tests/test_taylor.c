@@ -248,26 +248,7 @@ START_TEST(test_J_exponential)
 }
 END_TEST
 
-/* Krivánek Figure 2 as printed (three significant digits): bands 1..3 of
- * dR_Y/dβ(0) and d²R_Y/dβ²(0).  The printed J is the nocs function rotation
- * (equivalently the cs frame rotation, Jᵀ); in cs it is −J.  J² holds in all. */
-static const double fig2_J[3][49] = {
-    {0, 0, 0, 0, 0, -1, 0, 1, 0},
-    {0, 1, 0, 0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1.73, 0, 0, 0, 1.73, 0, -1, 0, 0, 0, 1, 0},
-    {0, 1.22, 0, 0, 0, 0, 0, -1.22, 0, 1.58, 0, 0, 0, 0, 0, -1.58, 0, 0, 0, 0, 0, 0, 0, 0, 0, -2.45, 0, 0,
-     0, 0, 0, 2.45, 0, -1.58, 0, 0, 0, 0, 0, 1.58, 0, -1.22, 0, 0, 0, 0, 0, 1.22, 0}};
-static const double fig2_J2[3][49] = {
-    {0, 0, 0, 0, -1, 0, 0, 0, -1},
-    {-1, 0, 0, 0, 0, 0, -1, 0, 0, 0, 0, 0, -3, 0, 1.73, 0, 0, 0, -4, 0, 0, 0, 1.73, 0, -1},
-    {-1.5, 0, 1.94, 0, 0, 0, 0, 0, -4, 0, 0, 0, 0, 0, 1.94, 0, -2.5, 0, 0, 0, 0, 0, 0, 0, -6, 0, 3.87, 0,
-     0, 0, 0, 0, -8.5, 0, 1.94, 0, 0, 0, 3.87, 0, -4, 0, 0, 0, 0, 0, 1.94, 0, -1.5}};
-
-static double sig3(double x)
-{
-    if (x == 0) return 0;
-    const double e = floor(log10(fabs(x))) - 2, p = pow(10, e);
-    return round(x / p) * p;
-}
+#include "../data/papers/krivanek2005_fig2.h"
 
 START_TEST(test_figure2)
 {
