@@ -142,13 +142,15 @@ void SH_R(sh__rot_block_from_d)(int l, const sh_real *d, const sh_real *csa, con
 #undef B
 }
 
+void SH_R(sh__rot_band_nocs)(int l, sh_real *B)
+{
+    const int w = 2 * l + 1;
+    for (int mp = -l; mp <= l; mp++)
+        for (int m = -l; m <= l; m++)
+            if ((mp ^ m) & 1) B[(size_t)(mp + l) * w + (size_t)(m + l)] = -B[(size_t)(mp + l) * w + (size_t)(m + l)];
+}
+
 void SH_R(sh__rot_blocks_nocs)(int order, sh_real *blocks)
 {
-    for (int l = 1; l < order; l++) {
-        const int w = 2 * l + 1;
-        sh_real *B = blocks + sh_rot_block_offset(l);
-        for (int mp = -l; mp <= l; mp++)
-            for (int m = -l; m <= l; m++)
-                if ((mp ^ m) & 1) B[(size_t)(mp + l) * w + (size_t)(m + l)] *= -1;
-    }
+    for (int l = 1; l < order; l++) SH_R(sh__rot_band_nocs)(l, blocks + sh_rot_block_offset(l));
 }

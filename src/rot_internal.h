@@ -90,6 +90,9 @@ void sh__rot_block_from_d_f(int l, const float *d, const float *csa, const float
 /* Flip to/from the nocs convention: negate entries whose m and m' differ in
  * parity (= S·B·S, S = diag((−1)^m for odd m)). */
 void sh__rot_blocks_nocs_d(int order, double *blocks);
+/* The same for one band's (2l+1)² block. */
+void sh__rot_band_nocs_d(int l, double *block);
+void sh__rot_band_nocs_f(int l, float *block);
 void sh__rot_blocks_nocs_f(int order, float *blocks);
 
 /* Prototypes of a method's kernels in both precisions (each method file

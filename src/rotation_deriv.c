@@ -128,18 +128,6 @@ static int deriv_finite(int order, int k, const double *blocks)
     return SH_OK;
 }
 
-/* S·M·S: negate the entries whose m, m' differ in parity. */
-static void flip_parity(int order, double *blocks)
-{
-    for (int l = 1; l < order; l++) {
-        const int w = 2 * l + 1;
-        double *B = blocks + sh_rot_block_offset(l);
-        for (int mp = -l; mp <= l; mp++)
-            for (int m = -l; m <= l; m++)
-                if ((mp ^ m) & 1) B[(size_t)(mp + l) * w + (size_t)(m + l)] *= -1;
-    }
-}
-
 /* ------------------------------------------------ (1) the recursion */
 
 /* u, v', w of [2] Table 1 (v' = v·√(1+δ_{|m|,1})) for band l, entry (m, n). */
@@ -258,7 +246,7 @@ int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, do
     }
     memcpy(blocks, all + (size_t)K * nb, nb * sizeof *blocks);
     free(all), free(R1), free(binom);
-    if (conv == SH_CS) flip_parity(order, blocks); /* the recursion works in nocs */
+    if (conv == SH_CS) sh__rot_blocks_nocs_d(order, blocks); /* S·M·S: the recursion works in nocs */
     return deriv_finite(order, k_asked, blocks);
 }
 
@@ -299,6 +287,6 @@ int sh_rot_deriv_generator(int order, int k, double beta, sh_convention conv, do
     }
     if (k > 0) blocks[0] = 0;
     free(s), free(row);
-    if (conv == SH_NOCS) flip_parity(order, blocks);
+    if (conv == SH_NOCS) sh__rot_blocks_nocs_d(order, blocks); /* S·M·S */
     return deriv_finite(order, k_asked, blocks);
 }

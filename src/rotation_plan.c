@@ -371,10 +371,7 @@ int sh_rot_bands_next(sh_rot_bands *it, int *l_out, double *block)
         break;
     }
     if (st) return st;
-    if (it->conv == SH_NOCS && it->kind != IT_PLAN)
-        for (int mp = -l; mp <= l; mp++)
-            for (int m = -l; m <= l; m++)
-                if ((mp ^ m) & 1) block[(size_t)(mp + l) * w + (m + l)] *= -1;
+    if (it->conv == SH_NOCS && it->kind != IT_PLAN) sh__rot_band_nocs_d(l, block);
     *l_out = l;
     it->next++;
     return SH_OK;
