@@ -27,17 +27,21 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
-            -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS)
+            -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
 LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
 
-LIB_SRC  := $(sort $(wildcard src/*.c))
+# src/ is grouped by concept, one folder each (README "Layout"): the library is
+# every src/<concept>/*.c except src/cli/ (the command-line tool).
+LIB_DIRS := core basis io project rotate taylor scale measure
+LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
-# src/rot_*.c are precision-generic rotation kernels (rot_real.h): compiled
-# once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
-ROTK_SRC := $(sort $(wildcard src/rot_*.c))
+# src/*/rot_*.c are precision-generic rotation kernels (rotate/rot_real.h):
+# compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
+ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
 LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
+PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
@@ -51,15 +55,16 @@ deps-quiet:
 	@tools/deps.sh --quiet
 
 # ---- library and CLI --------------------------------------------------------
-$(BUILD)/obj/%.o: src/%.c src/shlab.h src/shlab_internal.h src/rot_internal.h src/rot_real.h
+# Header dependencies come from the compiler (-MMD -MP, the .d files).
+$(BUILD)/obj/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
-$(BUILD)/obj/%_f.o: src/%.c src/shlab.h src/shlab_internal.h src/rot_internal.h src/rot_real.h
+$(BUILD)/obj/%_f.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DSH_REAL_FLOAT -c $< -o $@
 
-$(BUILD)/obj/cli/%.o: src/cli/%.c src/cli/cli.h src/shlab.h
+$(BUILD)/obj/cli/%.o: src/cli/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DSHLAB_REVISION='"$(REV)"' -c $< -o $@
 
@@ -76,7 +81,7 @@ $(BUILD)/shlab: $(CLI_OBJ) $(BUILD)/libshlab.a
 # ---- tests ----------------------------------------------------------------
 $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Isrc -o $@ $< $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
+	$(CC) $(CFLAGS) -o $@ $< $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
 
 check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
@@ -92,7 +97,7 @@ EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Isrc -Iexperiments/common -o $@ $(filter %.c,$^) $(BUILD)/libshlab.a $(LDLIBS)
+	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(BUILD)/libshlab.a $(LDLIBS)
 
 experiments: $(EXP_BIN)
 
@@ -111,12 +116,13 @@ $(BUILD)/shlab.pc: tools/shlab.pc.in
 
 install: all $(BUILD)/shlab.1 $(BUILD)/shlab.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
-	  $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/share/man/man1
+	  $(DESTDIR)$(PREFIX)/include/shlab $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 755 $(BUILD)/shlab $(DESTDIR)$(PREFIX)/bin/shlab
 	install -m 644 $(BUILD)/libshlab.a $(DESTDIR)$(PREFIX)/lib/libshlab.a
 	install -m 755 $(BUILD)/libshlab.so $(DESTDIR)$(PREFIX)/lib/libshlab.so.0
 	ln -sf libshlab.so.0 $(DESTDIR)$(PREFIX)/lib/libshlab.so
 	install -m 644 src/shlab.h $(DESTDIR)$(PREFIX)/include/shlab.h
+	install -m 644 $(wildcard src/shlab/*.h) $(DESTDIR)$(PREFIX)/include/shlab/
 	install -m 644 $(BUILD)/shlab.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/shlab.pc
 	install -m 644 $(BUILD)/shlab.1 $(DESTDIR)$(PREFIX)/share/man/man1/shlab.1
 
@@ -124,3 +130,5 @@ man: $(BUILD)/shlab.1
 
 clean:
 	rm -rf build
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

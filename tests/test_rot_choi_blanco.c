@@ -13,7 +13,7 @@
  * (≈ 170 FLT_EPSILON): entries are ≤ 1 and the kernels take O(l) float
  * roundings per entry (l ≤ 9), plus the float rounding of the angles. */
 #include "testutil.h"
-#include "rot_internal.h"
+#include "rotate/rot_internal.h"
 
 #include <string.h>
 

@@ -1,4 +1,4 @@
-/* test_rot_ivanic.c — the `ivanic` method (src/rot_ivanic.c).
+/* test_rot_ivanic.c — the `ivanic` method (src/rotate/rot_ivanic.c).
  *
  * Truths: the MPFR reference (orders 1..10, seeded random rotations and the
  * extremes, both conventions, double and float plans), the pointwise

@@ -1,4 +1,4 @@
-/* test_rot_zxzxz.c — the `zxzxz` method (src/rot_zxzxz.c).
+/* test_rot_zxzxz.c — the `zxzxz` method (src/rotate/rot_zxzxz.c).
  *
  * Truths: the MPFR reference (orders 1..10, seeded random rotations and the
  * extremes, both conventions, double and float plans; the sparse apply is
@@ -8,7 +8,7 @@
  * generated blocks (d(π/2) recurrence) are compared with it to l = 100. */
 #include "rottest.h"
 
-/* src/rot_zxzxz.c: the dense X₊₉₀ block of band l as the tables are built */
+/* src/rotate/rot_zxzxz.c: the dense X₊₉₀ block of band l as the tables are built */
 int sh__rot_zxzxz_xplus_band(int l, double *X);
 
 /* The pattern, stated from its derivation (rot_zxzxz.c header): m is of cos

@@ -13,7 +13,7 @@
 
 #include <string.h>
 
-#include "../src/rot_internal.h"
+#include "rotate/rot_internal.h"
 
 static unsigned long rng_state = 4242;
 static double urand(void)

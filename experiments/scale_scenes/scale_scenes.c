@@ -1,5 +1,5 @@
 /* scale_scenes — SH scaling against ground truth (Wang et al. 2006, Sec. 3,
- * Figs. 5-7 in spirit).  Scenes and error measures: see src/scale_scene.c.
+ * Figs. 5-7 in spirit).  Scenes and error measures: see src/scale/scale_scene.c.
  *  sphere    occluder radius ρ = r/2, sampled at d = r, scaled to k = d/r;
  *  cone      cone occluder θ0 = 45°, rim at r/2·(1 + 0.3 cosφ) (non-zonal);
  *  midrange  two smooth lobes on a sphere of radius R, and (when present) a

@@ -12,7 +12,7 @@
 #include <jansson.h>
 #include <stdio.h>
 
-#include "../shlab.h"
+#include "shlab.h"
 
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_CHECK 1

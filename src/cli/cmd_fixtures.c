@@ -6,7 +6,7 @@
  * exact answer rounded to double.  The files are deterministic: the same
  * shlab writes the same bytes (a test regenerates and compares them). */
 #include "cli.h"
-#include "../shlab_internal.h"
+#include "core/shlab_internal.h"
 
 #include <getopt.h>
 #include <gsl/gsl_rng.h>

@@ -2,7 +2,7 @@
  * shlab's own methods) against golden rotation fixtures, and with --diagnose
  * name the likely cause of a mismatch by testing known transformations. */
 #include "cli.h"
-#include "../shlab_internal.h"
+#include "core/shlab_internal.h"
 
 #include <getopt.h>
 #include <math.h>

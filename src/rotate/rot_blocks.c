@@ -1,0 +1,156 @@
+/* rot_blocks.c — pieces every SH rotation method shares (precision-generic,
+ * see rot_real.h): block × vector, multiple angles, the z rotation of a band,
+ * the real block from a Wigner small-d matrix, the nocs sign flip.
+ *
+ * References
+ *  [1] CONVENTIONS.md: g(s) = f(R⁻¹s), R = Rz(α)Ry(β)Rz(γ), real SH with CS phase.
+ *  [2] D^l_{m'm}(α,β,γ) = e^{−im'α} d^l_{m'm}(β) e^{−imγ}, Y_l^m(R⁻¹s) =
+ *      Σ_{m'} Y_l^{m'}(s) D^l_{m'm}(R)  (Edmonds / Wikipedia "Wigner D-matrix").
+ *
+ * Derivation of the real R_Y block (sh__rot_block_from_d).  With complex
+ * Y^m (CS phase) and the real basis y = U·Y,
+ *   y^m  = (Y^m + (−1)^m Y^{−m})/√2,  y^{−m} = (Y^m − (−1)^m Y^{−m})/(i√2)  (m>0),
+ * the real matrix is R = conj(U) D Uᵀ.  For β alone D = d is real, and with
+ * d_{m'm} = (−1)^{m−m'} d_{mm'} = d_{−m,−m'} the four terms of each entry
+ * collapse to the formulas in rot_internal.h; entries that pair a cosine with
+ * a sine function are purely imaginary in conj(U) d Uᵀ and hence zero.  The
+ * test suite checks the result by evaluating the rotated functions pointwise.
+ */
+#include "rotate/rot_internal.h"
+#include "rotate/rot_real.h"
+
+void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real *in, sh_real *out,
+                                uint64_t *mults)
+{
+    /* per band: out_l = B_l · in_l, (2l+1)² multiplications */
+    uint64_t count = 0;
+    for (int l = 0; l < order; l++) {
+        const int w = 2 * l + 1;
+        const sh_real *B = blocks + sh_rot_block_offset(l);
+        const sh_real *x = in + (size_t)l * l;
+        sh_real *y = out + (size_t)l * l;
+        /* four rows at a time: four independent accumulator chains instead of
+         * one (the single chain is bound by the add latency); each row is
+         * still summed left to right, so the result is bit for bit the same */
+        int r = 0;
+        for (; r + 4 <= w; r += 4) {
+            const sh_real *r0 = B + (size_t)r * w, *r1 = r0 + w, *r2 = r1 + w, *r3 = r2 + w;
+            sh_real a0 = 0, a1 = 0, a2 = 0, a3 = 0;
+            for (int c = 0; c < w; c++) {
+                const sh_real xc = x[c];
+                a0 += r0[c] * xc;
+                a1 += r1[c] * xc;
+                a2 += r2[c] * xc;
+                a3 += r3[c] * xc;
+            }
+            y[r] = a0;
+            y[r + 1] = a1;
+            y[r + 2] = a2;
+            y[r + 3] = a3;
+        }
+        for (; r < w; r++) {
+            sh_real acc = 0;
+            const sh_real *row = B + (size_t)r * w;
+            for (int c = 0; c < w; c++) acc += row[c] * x[c];
+            y[r] = acc;
+        }
+        count += (uint64_t)w * w;
+    }
+    if (mults) *mults += count;
+}
+
+void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
+{
+    /* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin.  The
+     * recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
+     * double), so every SH_ANGLE_RESEED steps two consecutive pairs are taken from libm (argument
+     * m·θ formed in double) and the recurrence restarts from it. */
+    const sh_real c1 = SH_COS(theta), s1 = SH_SIN(theta), two_c = 2 * c1;
+    cs[0] = 1;
+    cs[1] = 0;
+    if (mmax < 1) return;
+    cs[2] = c1;
+    cs[3] = s1;
+    for (int m = 2; m <= mmax; m++) {
+        if (m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
+            const double a = (double)m * (double)theta;
+            cs[2 * m] = (sh_real)cos(a);
+            cs[2 * m + 1] = (sh_real)sin(a);
+            continue;
+        }
+        cs[2 * m] = two_c * cs[2 * (m - 1)] - cs[2 * (m - 2)];
+        cs[2 * m + 1] = two_c * cs[2 * (m - 1) + 1] - cs[2 * (m - 2) + 1];
+    }
+}
+
+void SH_R(sh__rot_z_band)(int l, const sh_real *cs, sh_real *c, uint64_t *mults)
+{
+    /* c points at band l's first coefficient (m = −l); index m+l. */
+    for (int m = 1; m <= l; m++) {
+        const sh_real cm = cs[2 * m], sm = cs[2 * m + 1];
+        const sh_real a = c[l + m], b = c[l - m];
+        c[l + m] = cm * a - sm * b;
+        c[l - m] = sm * a + cm * b;
+    }
+    if (mults) *mults += 4u * (uint64_t)l;
+}
+
+void SH_R(sh__rot_block_from_d)(int l, const sh_real *d, const sh_real *csa, const sh_real *csg,
+                                sh_real *block)
+{
+    const int w = 2 * l + 1;
+    const sh_real r2 = SH_SQRT((sh_real)2);
+#define D(mp, m) d[(size_t)((mp) + l) * w + (size_t)((m) + l)]
+#define B(mp, m) block[(size_t)((mp) + l) * w + (size_t)((m) + l)]
+    /* R_Y(β) in the real basis (formulas in rot_internal.h) */
+    B(0, 0) = D(0, 0);
+    for (int m = 1; m <= l; m++) {
+        B(0, m) = r2 * D(0, m);
+        B(0, -m) = 0;
+        B(m, 0) = r2 * D(m, 0);
+        B(-m, 0) = 0;
+    }
+    for (int mp = 1; mp <= l; mp++)
+        for (int m = 1; m <= l; m++) {
+            const sh_real a = D(mp, m), b = (m & 1) ? -D(mp, -m) : D(mp, -m);
+            B(mp, m) = a + b;
+            B(-mp, -m) = a - b;
+            B(mp, -m) = 0;
+            B(-mp, m) = 0;
+        }
+    /* Z(α) from the left: rows (m', −m') mix; Z(γ) from the right: columns.
+     * Left:  [c_{m'}; c_{−m'}] ← [[cos, −sin], [sin, cos]](m'α) [c_{m'}; c_{−m'}]
+     * Right: B·Z(γ): column m ← cos(mγ) B[:,m] + sin(mγ) B[:,−m],
+     *                column −m ← −sin(mγ) B[:,m] + cos(mγ) B[:,−m]. */
+    for (int mp = 1; mp <= l; mp++) {
+        const sh_real c = csa[2 * mp], s = csa[2 * mp + 1];
+        for (int m = -l; m <= l; m++) {
+            const sh_real p = B(mp, m), q = B(-mp, m);
+            B(mp, m) = c * p - s * q;
+            B(-mp, m) = s * p + c * q;
+        }
+    }
+    for (int m = 1; m <= l; m++) {
+        const sh_real c = csg[2 * m], s = csg[2 * m + 1];
+        for (int mp = -l; mp <= l; mp++) {
+            const sh_real p = B(mp, m), q = B(mp, -m);
+            B(mp, m) = c * p + s * q;
+            B(mp, -m) = -s * p + c * q;
+        }
+    }
+#undef D
+#undef B
+}
+
+void SH_R(sh__rot_band_nocs)(int l, sh_real *B)
+{
+    const int w = 2 * l + 1;
+    for (int mp = -l; mp <= l; mp++)
+        for (int m = -l; m <= l; m++)
+            if ((mp ^ m) & 1) B[(size_t)(mp + l) * w + (size_t)(m + l)] = -B[(size_t)(mp + l) * w + (size_t)(m + l)];
+}
+
+void SH_R(sh__rot_blocks_nocs)(int order, sh_real *blocks)
+{
+    for (int l = 1; l < order; l++) SH_R(sh__rot_band_nocs)(l, blocks + sh_rot_block_offset(l));
+}

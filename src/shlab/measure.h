@@ -1,0 +1,129 @@
+/* shlab/measure.h — timing of the rotation methods (bench), the error engine and the
+ * planner (plan).
+ * Part of the public API: include <shlab.h>, which includes every part. */
+#ifndef SHLAB_MEASURE_H
+#define SHLAB_MEASURE_H
+
+#include "rotate.h"
+#include "io.h"
+#include "project.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Timing of the rotation methods (rotation_bench.c) and the choice of the
+ * cheapest method for an error budget (rotation_choose.c).  Generic over the
+ * methods table: every method built in (including the Taylor approximations
+ * once registered) can be timed, measured and chosen. */
+typedef enum {
+    SH_BENCH_PER_ROTATION = 0, /* per vector: matrix → sh_rotation → plan_set → apply */
+    SH_BENCH_BATCHED           /* one set, then `batch` vectors applied; per vector */
+} sh_bench_mode;
+const char *sh_bench_mode_name(sh_bench_mode m);
+typedef struct {
+    int count;     /* timed iterations per repeat; 0 = calibrated to ~target_ms */
+    int repeat;    /* timed repeats (median/min/max over them); ≥ 1 */
+    int batch;     /* vectors per set in SH_BENCH_BATCHED; ≥ 1 */
+    double target_ms; /* calibration target per repeat (count = 0); 0 = 5 ms */
+    double max_beta;  /* the random rotations have β uniform in [0, max_beta] (the
+                         z method is always timed at β = 0, its only domain) */
+    uint64_t seed;    /* rotations and vectors (deterministic) */
+    sh_convention conv; /* convention of the plans timed (default SH_CS) */
+} sh_bench_opts;
+#define SH_BENCH_OPTS_DEFAULT {0, 11, 16, 5.0, 3.14159265358979323846, 12345u, SH_CS}
+typedef struct {
+    double ns_median, ns_min, ns_max; /* ns per rotated vector, over the repeats */
+    double mults;        /* counted multiplications per rotated vector:
+                            set + apply (per rotation), set/batch + apply (batched) */
+    double mults_per_ns; /* mults / ns_median */
+    uint64_t set_mults, apply_mults; /* as sh_rot_plan_mults reports them */
+    int count;           /* iterations per repeat actually used */
+    double checksum;     /* sum of outputs (keeps the work observable) */
+} sh_bench_result;
+/* Time one (order, method, precision, mode).  A rotation is given to the
+ * plan as a user holding an orthonormal 3×3 frame must: copy R, extract the
+ * ZYZ angles (sh_euler_from_matrix), sh_rot_plan_set, sh_rot_plan_apply.
+ * A warm-up repeat precedes the timed ones (CLOCK_MONOTONIC).  SH_EINVAL
+ * for a method that is not built in or an order it refuses. */
+int sh_rot_bench(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
+                 const sh_bench_opts *opts, sh_bench_result *res);
+/* ns to build an sh_rotation from an orthonormal matrix as above (angles
+ * only) — the part of every per-rotation time that no method can avoid. */
+double sh_rot_bench_setup_ns(const sh_bench_opts *opts);
+
+/* Error of a method's rotation against the exact one (CONVENTIONS.md,
+ * "Taylor-approximated rotation"), computed generically: D = R_method −
+ * R_exact for the rotation (α, β, γ) block by block, R_exact from the MPFR
+ * reference plan (use_reference) or the zxzxz plan in double (accurate to
+ * ~1e-15 for order ≤ 100; zxzxz then measures 0 against itself).  max = largest singular value of
+ * D, mean = mean of all n² singular values (GSL one-sided Jacobi SVD per
+ * band), lobe = ‖D c‖₂, c the unit coefficient vector of max(0, cosθ)^e
+ * about +z (sh_lobe_zonal).  Since Z(α), Z(γ) are orthogonal and c is
+ * zonal, these equal the measures of R_Y(β) − approx(R_Y(β)). */
+typedef struct { double max, mean, lobe; } sh_rot_error;
+typedef struct sh_rot_errws sh_rot_errws;
+int sh_rot_errws_create(int order, double lobe_exp, int use_reference, sh_rot_errws **out);
+/* The same with every plan (truth and methods) in convention conv (the
+ * above: SH_CS).  The measures do not depend on it. */
+int sh_rot_errws_create_conv(int order, double lobe_exp, int use_reference, sh_convention conv,
+                             sh_rot_errws **out);
+/* Set the rotation: computes the exact blocks once. */
+int sh_rot_errws_set(sh_rot_errws *w, const sh_rotation *rot);
+/* Error of a method (plans are created on first use and kept). */
+int sh_rot_errws_eval(sh_rot_errws *w, sh_rot_method method, sh_precision prec, sh_rot_error *err);
+/* The same, also writing all order² singular values to sv (band l's, in
+ * decreasing order, at sv[l²..l²+2l]) when sv is not NULL. */
+int sh_rot_errws_eval_sv(sh_rot_errws *w, sh_rot_method method, sh_precision prec, sh_rot_error *err,
+                         double *sv);
+void sh_rot_errws_free(sh_rot_errws *w);
+
+/* The cheapest method for an error budget (rotation_choose.c): every method
+ * built in (reference excluded; z only if max_beta = 0) is measured (against
+ * the MPFR reference up to order 32, zxzxz above) over the
+ * β grid 0, h, 2h, …, max_beta (h ≤ beta_step) at seeded α, γ, and timed
+ * (sh_rot_bench per rotation, short); candidates whose largest error stays
+ * ≤ tolerance are ranked by ns_median. */
+typedef enum { SH_MEASURE_LOBE = 0, SH_MEASURE_MAX } sh_error_measure;
+const char *sh_error_measure_name(sh_error_measure m);
+int sh_error_measure_parse(const char *s, sh_error_measure *out);
+typedef struct {
+    sh_rot_method method;
+    int exact;
+    double max_error;  /* largest error over the β grid (the chosen measure) */
+    double worst_beta; /* where */
+    double ns_per_rotation, mults;
+    int ok;            /* max_error ≤ tolerance */
+} sh_rot_candidate;
+typedef struct {
+    int order;
+    double max_beta, tolerance, lobe_exp, beta_step;
+    sh_error_measure measure;
+    sh_precision prec;
+    double target_ms; /* timing per repeat (0: 2 ms) */
+    int repeat;       /* 0: 5 */
+    sh_progress_fn progress; /* optional: after each β of the grid, then each method timed */
+    void *progress_ctx;
+    sh_convention conv;      /* convention of the plans measured and timed (0: SH_CS) */
+    /* optional: the cost of a method instead of timing it (ns per rotation;
+     * tests use it to be deterministic); mults are then not counted (0) */
+    double (*cost)(void *ctx, sh_rot_method m, int order);
+    void *cost_ctx;
+} sh_rot_choose_opts;
+/* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
+ * time first, then the others by error); *ncand their count; *choice and
+ * *runner_up index cand (−1 when none). */
+int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
+                  int *runner_up);
+/* The smallest order ≤ max_order whose projection of the image (luminance:
+ * Y, or 0.2126R + 0.7152G + 0.0722B) has relative L2 residual ≤ tol on the
+ * sphere, by Parseval: ε² = (‖f‖² − Σc²)/‖f‖², ‖f‖² by the same pixel
+ * quadrature as the projection.  *order_out = −1 if none ≤ max_order; the
+ * residuals per order 1..max_order into resid (may be NULL). */
+int sh_order_for_image(const sh_image *img, sh_layout layout, double tol, int max_order,
+                       int *order_out, double *resid);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SHLAB_MEASURE_H */
