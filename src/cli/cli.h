@@ -170,4 +170,33 @@ void fx_free(fx_set *set);
 int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
              sh_convention conv, const double *in, double *out);
 
+/* ---- angles and units (cli_angles.c) -------------------------------------
+ * --degrees means angles in and angles out in degrees, in every command
+ * (docs/CONVENTIONS.md "Angles and units"); every printed angle goes with a
+ * "unit" field.  Warnings are one line "shlab: warning: ..." each on stderr,
+ * printed when the command has finished; the exit status is not changed. */
+void cli_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Print the warnings kept so far (main() calls it when the command returns):
+ * only when rc is not CLI_EXIT_USAGE, whose one error line stays alone. */
+void cli_warn_flush(int rc);
+const char *cli_angle_unit(int degrees);          /* "degrees" or "radians" */
+double cli_angle_out(double radians, int degrees); /* radians → the output unit */
+/* Warn when an angle given in radians (degrees == 0) exceeds 2π in magnitude:
+ * degrees given without --degrees, most likely.  what: e.g. "--beta". */
+void cli_warn_radians(const char *cmd, const char *what, double value, int degrees);
+/* The angle in radians (with the warning above). */
+double cli_angle_in(const char *cmd, const char *what, double value, int degrees);
+/* For an approximate method (taylor1, taylor1.5, taylor2): warn when the
+ * rotation's β lies beyond the angle where the method's lobe error reaches
+ * 1e-2, and give the estimated lobe error at β (sh_taylor_lobe_limit,
+ * sh_taylor_lobe_error).  Nothing for exact methods. */
+void cli_warn_approx_rotation(const char *cmd, sh_rot_method m, int order, const sh_rotation *rot,
+                              int degrees);
+
+/* Lights (sh_light_parse): 1 if the spec holds angles (cap:T, cie-clear and
+ * cie-partly's sun position), so that the output says their unit; and the
+ * 2π warning for the one angle that is not range-checked (the sun azimuth). */
+int cli_light_has_angles(const sh_light *L);
+void cli_light_warn(const char *cmd, const sh_light *L, int degrees);
+
 #endif

@@ -28,7 +28,8 @@ static const char help[] =
     "  --inverse            use R⁻¹ (the frame rotation, R_sh transposed)\n"
     "  --orthonormalize     accept a matrix/quaternion that is not orthonormal:\n"
     "                       use the nearest proper rotation\n"
-    "  --degrees            angles in degrees\n"
+    "  --degrees            angles in degrees (radians otherwise; a warning on\n"
+    "                       stderr when an angle in radians exceeds 2π)\n"
     "\n"
     "  --order N            bands 0..N-1 (1..32 for the printed matrix)\n"
     "  --band L             one band only (0..1000; below --order if both are given);\n"
@@ -37,7 +38,9 @@ static const char help[] =
     "                       need all lower blocks in memory (refused above 1.1 GB)\n"
     "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
     "                       (exact; default ivanic) or taylor1 | taylor1.5 |\n"
-    "                       taylor2 (Krivánek et al.'s approximations)\n"
+    "                       taylor2 (Krivánek et al.'s approximations; a warning on\n"
+    "                       stderr, with the estimated error, when β is beyond the\n"
+    "                       angle where their lobe error reaches 1e-2)\n"
     "  --precision P        double (default) | float (computed in float)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
@@ -150,6 +153,7 @@ static int run(int argc, char **argv)
         free(blocks);
         free(M);
     }
+    cli_warn_approx_rotation("rotmat", method, band >= 0 ? band + 1 : order, &rot, com.degrees);
     return cli_emit(root, com.fmt);
 }
 

@@ -75,5 +75,7 @@ int main(int argc, char **argv)
     }
     const cli_command *cmd = cli_find(c);
     if (!cmd) return cli_fail("unknown command '%s' (try 'shlab --help')", c);
-    return cmd->run(argc - 1, argv + 1);
+    const int rc = cmd->run(argc - 1, argv + 1);
+    cli_warn_flush(rc);
+    return rc;
 }
