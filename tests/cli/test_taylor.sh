@@ -18,7 +18,7 @@ if close "$d" 0 1e-12; then ok "deriv recursion == generator (max diff $d)"; els
 # k = 40 at order 3: J has eigenvalues 0, ±i (band 1), 0, ±i, ±2i (band 2), so
 # trace(J^40) = 2 + 2 + 2·2^40 = 2199023255556 (the trace of J^41 is 0)
 expect_success "deriv k 40" deriv --order 3 --k 40 --format csv
-t=$(awk -F, 'NR > 1 { r = $6; tr += $(7 + r) } END { printf "%.17g", tr }' "$TMP/out")
+t=$(awk -F, 'NR > 1 { r = $7; tr += $(8 + r) } END { printf "%.17g", tr }' "$TMP/out")
 close "$t" 2199023255556 1e-12 && ok "deriv k=40: trace $t = 4 + 2^41" || notok "deriv k=40 trace $t"
 # any β: β and β + 2π·1000 agree (R_Y is 2π-periodic)
 b2=$(awk 'BEGIN { printf "%.17g", 0.4 + 2000 * atan2(0, -1) }')
