@@ -1,6 +1,6 @@
 /* cli.h — shared pieces of the shlab command-line tool (not installed).
  *
- * Contract of every command (CONVENTIONS.md "Output"):
+ * Contract of every command (docs/CONVENTIONS.md "Output"):
  *  - the result is built completely as a JSON value, then rendered once as
  *    table, csv or json on stdout (so a failure never prints half a result);
  *  - bad usage or input: one line "shlab: error: ..." on stderr, exit 2;

@@ -16,7 +16,7 @@ static const char help[] =
     "Usage: shlab deriv --order N --k K [--beta B] [OPTIONS]\n"
     "\n"
     "The k-th derivative d^k R_Y/dβ^k at β of the SH rotation about y,\n"
-    "R_Y(β) = R_sh(Ry(β)) (function rotation, CONVENTIONS.md), as the dense\n"
+    "R_Y(β) = R_sh(Ry(β)) (function rotation, docs/CONVENTIONS.md), as the dense\n"
     "N²×N² matrix.  k = 1 at β = 0 is J, the generator; k = 2 at β = 0 is J².\n"
     "Computed by\n"
     "  recursion  Krivánek et al. 2005 Appendix A: the Leibniz rule carried\n"

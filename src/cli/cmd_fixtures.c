@@ -39,7 +39,7 @@ static const char help[] =
     "  --help               this text\n";
 
 /* Tolerances, |candidate_i − expected_i| ≤ tol for a unit input.  Double:
- * the issue's 1e-13 everywhere (the stable methods stay below 5e-15 even at
+ * 1e-13 everywhere (the stable methods stay below 5e-15 even at
  * l = 200).  Float32: about 4× the worst error of shlab's best float kernel
  * (zxzxz, float arithmetic throughout) on these cases, measured with
  * `shlab verify --method zxzxz --precision float`: 2.3e-7 (orders ≤ 10; the

@@ -21,7 +21,7 @@ static const char help[] =
     "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
     "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
     "largest error over the grid is <= E; the runner-up the next fastest.\n"
-    "Errors (CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
+    "Errors (docs/CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
     "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
     "value of R_method − R_exact.\n"
     "With --order auto the order is first chosen as the smallest n <= --max-order\n"

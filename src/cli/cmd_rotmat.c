@@ -16,7 +16,7 @@ static const char help[] =
     "       shlab rotmat --band L --method M ROTATION [OPTIONS]\n"
     "\n"
     "The real SH rotation matrix R_sh(R): the coefficients of f map to those of\n"
-    "g(s) = f(R⁻¹s) (CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
+    "g(s) = f(R⁻¹s) (docs/CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
     "matrix is printed, or with --band L only the (2L+1)×(2L+1) block of band L\n"
     "(rows and columns m = -L..L).\n"
     "\n"

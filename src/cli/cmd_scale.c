@@ -23,7 +23,7 @@ static const char help[] =
     "Spherical harmonics scaling matrix (Wang, Lin, Guo, Shum 2006, eq. 6)\n"
     "  M_ij = ∫∫ y_i(θ,φ) y_j(τ(θ),φ) ψ(θ) dθ dφ,   S_d = M S_r,\n"
     "with ψ = sinθ (plain: visibility) or ψ = sin τ(θ)·τ'(θ) (--energy:\n"
-    "energy-preserving, ∫F dΩ kept).  Angular scaling families (CONVENTIONS.md):\n"
+    "energy-preserving, ∫F dΩ kept).  Angular scaling families (docs/CONVENTIONS.md):\n"
     "  linear    τ = min(kθ, π),                              k = d/r in [0.001, 1000]\n"
     "  cone      cot τ = (cot θ + (1−k) cot θ0)/k  (cone occluder, half-angle θ0),\n"
     "                                                          k = d/r in [0.001, 1000]\n"

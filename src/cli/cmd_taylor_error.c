@@ -18,7 +18,7 @@ static const char help[] =
     "                          [--lobe-exp E] [OPTIONS]\n"
     "\n"
     "Error of the Taylor-approximated rotation about y, D(β) = R_Y(β) - T(β)\n"
-    "(CONVENTIONS.md): T = I + βJ (1), + β²/2·diag(J²) (1.5), + β²/2·J² (2).\n"
+    "(docs/CONVENTIONS.md): T = I + βJ (1), + β²/2·diag(J²) (1.5), + β²/2·J² (2).\n"
     "R_Y(β) is exact (zxzxz); T(β) is the taylor method's own matrix.\n"
     "  max   largest singular value of D (worst unit coefficient vector)\n"
     "  mean  mean of the N² singular values (GSL one-sided Jacobi SVD)\n"
