@@ -45,6 +45,8 @@ int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
 int cli_convention(const char *s, sh_convention *out);
 int cli_order(const char *opt, const char *s, int *out);
+/* A comma-separated list of at most max orders, each checked as cli_order does. */
+int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 
 /* Read a coefficient file: JSON with "coeffs" (array) or "channels"
  * ({name: array}), or plain text numbers.  Returns nchan vectors of length

@@ -282,3 +282,21 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
     free(buf);
     return rc;
 }
+
+int cli_orders(const char *opt, const char *s, int *out, int max, int *n)
+{
+    /* each element through cli_order, so that a list words its errors as a
+     * single --order does */
+    char *copy = strdup(s);
+    if (!copy) return cli_fail("out of memory");
+    int k = 0, rc = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(copy, ", \t", &save); t && !rc; t = strtok_r(NULL, ", \t", &save)) {
+        if (k == max) rc = cli_fail("%s: at most %d orders", opt, max);
+        else rc = cli_order(opt, t, &out[k++]);
+    }
+    free(copy);
+    if (!rc && k == 0) rc = cli_fail("%s: no orders given", opt);
+    if (!rc) *n = k;
+    return rc;
+}
