@@ -54,6 +54,11 @@ int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8]);
 
+/* The one error line for a JSON file that json_load_file could not read
+ * (err_no: errno right after the call): "cannot open WHAT 'PATH': reason" or
+ * "WHAT 'PATH' is not valid JSON: ... (line L, column C)". */
+int cli_fail_json(const char *what, const char *path, int err_no, const json_error_t *err);
+
 /* JSON builders. */
 json_t *cli_json_array(const double *v, size_t n);
 json_t *cli_json_matrix(const double *M, size_t rows, size_t cols);

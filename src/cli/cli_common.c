@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 int cli_fail(const char *fmt, ...)
@@ -299,4 +300,17 @@ int cli_orders(const char *opt, const char *s, int *out, int max, int *n)
     if (!rc && k == 0) rc = cli_fail("%s: no orders given", opt);
     if (!rc) *n = k;
     return rc;
+}
+
+int cli_fail_json(const char *what, const char *path, int err_no, const json_error_t *err)
+{
+    struct stat sb;
+    if (json_error_code(err) == json_error_cannot_open_file)
+        return cli_fail("cannot open %s '%s': %s", what, path, err_no ? strerror(err_no) : err->text);
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return cli_fail("cannot read %s '%s': it is a directory", what, path);
+    if (err->line > 0)
+        return cli_fail("%s '%s' is not valid JSON: %s (line %d, column %d)", what, path, err->text, err->line,
+                        err->column);
+    return cli_fail("%s '%s' is not valid JSON: %s", what, path, err->text);
 }
