@@ -12,8 +12,8 @@ if ! command -v pkg-config >/dev/null || ! command -v make >/dev/null; then
     ok "# skip install test (no make or pkg-config)"; exit 0
 fi
 # the sanitizer build's library needs the sanitizer runtime in the program too
-san=""
-case "$BUILD" in *san*) san="-fsanitize=address,undefined" ;; esac
+san="" sanmake="SANITIZE=0"
+case "$BUILD" in *san*) san="-fsanitize=address,undefined" sanmake="SANITIZE=1" ;; esac
 
 cat >"$TMP/prog.c" <<'EOF'
 #include <shlab.h>
@@ -30,7 +30,7 @@ y00=0.28209479177387814
 
 # install into PREFIX, compile against it with pkg-config, run without LD_LIBRARY_PATH
 P=$TMP/prefix
-if make -s -C "$ROOT" install BUILD="$BUILD" PREFIX="$P" >"$TMP/log" 2>&1; then ok "make install PREFIX=$P"
+if make -s -C "$ROOT" install BUILD="$BUILD" $sanmake PREFIX="$P" >"$TMP/log" 2>&1; then ok "make install PREFIX=$P"
 else notok "make install: $(tail -5 "$TMP/log")"; fi
 for f in bin/shlab lib/libshlab.so.0 lib/libshlab.a include/shlab.h include/shlab/core.h lib/pkgconfig/shlab.pc \
          share/man/man1/shlab.1 share/doc/shlab/CONVENTIONS.md; do
@@ -57,7 +57,7 @@ else notok "static link: $(head -5 "$TMP/err")"; fi
 
 # staged install (DESTDIR), then copied to its PREFIX as a package manager would
 F=$TMP/final; D=$TMP/stage
-if make -s -C "$ROOT" install BUILD="$BUILD" DESTDIR="$D" PREFIX="$F" >"$TMP/log" 2>&1 && [ ! -e "$F" ] \
+if make -s -C "$ROOT" install BUILD="$BUILD" $sanmake DESTDIR="$D" PREFIX="$F" >"$TMP/log" 2>&1 && [ ! -e "$F" ] \
     && grep -q "^prefix=$F\$" "$D$F/lib/pkgconfig/shlab.pc"; then ok "make install DESTDIR=... stages under DESTDIR, .pc names PREFIX"
 else notok "staged install: $(tail -5 "$TMP/log")"; fi
 mkdir -p "$F" && cp -a "$D$F/." "$F/"
