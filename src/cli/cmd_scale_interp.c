@@ -35,7 +35,8 @@ static const char help[] =
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"family\",\"energy\",\"convention\",[\"cone_angle\",\"unit\" (cone family)],\"samples\",\"spacing\",\"interp\",\n"
+    "JSON: {\"order\",\"family\",\"energy\",\"convention\",[\"cone_angle\",\"unit\" (cone\n"
+    "       family)],\"samples\",\"spacing\",\"interp\",\n"
     "       \"kmin\",\"kmax\",\"dense\",\"max_error\",\"rms_error\",\"worst_k\"}\n";
 
 static int run(int argc, char **argv)
