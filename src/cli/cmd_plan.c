@@ -178,7 +178,8 @@ static int run(int argc, char **argv)
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;
     if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
-        return cli_fail("--max-beta: must be in [0, π]");
+        return cli_fail("--max-beta: %g is outside [0, %s", max_beta,
+                        com.degrees ? "180] degrees" : "π] radians (--degrees for degrees)");
     co.max_beta = fmin(co.max_beta, M_PI);
     co.beta_step = beta_step > 0 ? beta_step * deg : 0.25 * M_PI / 180;
     if (co.beta_step < 1e-5) return cli_fail("--beta-step: too small (< 1e-5 rad)");

@@ -102,8 +102,8 @@ static int run(int argc, char **argv)
     const double unit = com.degrees ? M_PI / 180.0 : 1.0;
     const double top = have_beta ? beta : beta_max;
     if (top < 0 || top * unit > M_PI * (1 + 1e-15))
-        return cli_fail("taylor-error: %s %g outside [0, %s]", have_beta ? "--beta" : "--beta-max", top,
-                        com.degrees ? "180" : "pi");
+        return cli_fail("taylor-error: %s %g outside [0, %s", have_beta ? "--beta" : "--beta-max", top,
+                        com.degrees ? "180] degrees" : "pi] radians (--degrees for degrees)");
     const int nrow = have_beta ? 1 : steps + 1;
     json_t *rows = json_array();
     cli_progress prog;
