@@ -58,10 +58,9 @@ static void warn_if_inaccurate(sh_rot_method m, sh_precision p, int band, double
 {
     const double limit = p == SH_PREC_FLOAT ? 1e-3 : 1e-8;
     if (sh_rot_method_is_exact(m) && !(orth <= limit))
-        fprintf(stderr,
-                "shlab: warning: method %s is inaccurate here: orthogonality error %.2g at band %d "
-                "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)\n",
-                sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
+        cli_warn("method %s is inaccurate here: orthogonality error %.2g at band %d "
+                 "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)",
+                 sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
 }
 
 static int run(int argc, char **argv)
