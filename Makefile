@@ -45,7 +45,7 @@ PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man
+.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -111,8 +111,12 @@ probes:
 $(BUILD)/shlab.1: $(BUILD)/shlab tools/help2man.sh
 	tools/help2man.sh $(BUILD)/shlab > $@
 
-$(BUILD)/shlab.pc: tools/shlab.pc.in
-	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define SHLAB_VERSION "\(.*\)"/\1/p' src/shlab.h)|g' $< > $@
+# the libraries libshlab links, for static linking (Libs.private; see the .pc.in)
+PC_PRIVATE = $(shell pkg-config --static --libs gsl OpenEXR 2>/dev/null) -lmpfr -lgmp -lstdc++ -lm
+$(BUILD)/shlab.pc: tools/shlab.pc.in FORCE
+	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define SHLAB_VERSION "\(.*\)"/\1/p' src/shlab.h)|g' \
+	    -e 's|@PRIVATE_LIBS@|$(strip $(PC_PRIVATE))|g' $< > $@
+FORCE:
 
 install: all $(BUILD)/shlab.1 $(BUILD)/shlab.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
@@ -125,6 +129,12 @@ install: all $(BUILD)/shlab.1 $(BUILD)/shlab.pc
 	install -m 644 $(wildcard src/shlab/*.h) $(DESTDIR)$(PREFIX)/include/shlab/
 	install -m 644 $(BUILD)/shlab.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/shlab.pc
 	install -m 644 $(BUILD)/shlab.1 $(DESTDIR)$(PREFIX)/share/man/man1/shlab.1
+	install -d $(DESTDIR)$(PREFIX)/share/doc/shlab
+	install -m 644 docs/CONVENTIONS.md docs/REFERENCES.md $(DESTDIR)$(PREFIX)/share/doc/shlab/
+	@# run-time lookup of libshlab.so.0: shlab.pc's Libs carry an rpath (any PREFIX);
+	@# a root install into /usr/local or /usr (directories the loader searches)
+	@# also refreshes its cache, for programs linked without pkg-config
+	@case "$(DESTDIR):$(PREFIX)" in :/usr/local|:/usr) [ "$$(id -u)" != 0 ] || ldconfig ;; esac
 
 man: $(BUILD)/shlab.1
 

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <string.h>
 
-/* Double agreement required by issue 3; float: 32 float ulps of 1 (every
+/* Double agreement required of every exact method; float: 32 float ulps of 1 (every
  * entry of a rotation block is ≤ 1 in magnitude, so absolute is right). */
 #define ROT_TOL_D 1e-13
 #define ROT_TOL_F (32.0 * 1.1920929e-07)

@@ -62,7 +62,7 @@ START_TEST(test_deriv_two_ways)
 END_TEST
 
 /* 5-point central differences of blanco's R_Y: first and second derivative */
-/* Large k and large β (issue 5: any k ≥ 0, any β).  Truth for k = 40 at
+/* Large k and large β (deriv takes any k ≥ 0 and any β).  Truth for k = 40 at
  * order 3: J of bands 1, 2 has eigenvalues 0, ±i (, ±2i), so it satisfies
  * J⁵ = −5J³ − 4J (minimal polynomial x(x²+1)(x²+4)); J^40 is built here from
  * the closed-form J and its powers 2..4 (dense products) by that recurrence,

@@ -14,8 +14,25 @@ static const char *revision = "unknown";
 
 void exp_init(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
+    /* --help answers without running (and without touching OUTDIR); any
+     * other option, a missing or an extra argument is a usage error */
+    const char *name = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("Usage: %s OUTDIR\n\n"
+                   "Run one experiment of the shlab report and write into OUTDIR its data\n"
+                   "files, index.md (the report's paragraphs) and claims.tsv (rows of the\n"
+                   "claims ledger).  What it measures: the comment at the top of\n"
+                   "  experiments/%s/%s.c\n"
+                   "The plots come from experiments/%s/*.gp.  `make report` runs every\n"
+                   "experiment with OUTDIR = reports/<name> and assembles reports/index.md and\n"
+                   "reports/claims.tsv.  The environment variable REV names the revision\n"
+                   "stamped into the data files.\n",
+                   name, name, name, name);
+            exit(fflush(stdout) == 0 && !ferror(stdout) ? 0 : 2);
+        }
+    if (argc != 2 || argv[1][0] == '-') {
+        fprintf(stderr, "%s: usage: %s OUTDIR (or --help)\n", name, name);
         exit(2);
     }
     outdir = argv[1];

@@ -1,11 +1,11 @@
 /* rotation_frontier — the speed–accuracy frontier of the rotation methods:
- * error (lobe and max, CONVENTIONS.md) against ns per rotation, for β = 5°,
+ * error (lobe and max, docs/CONVENTIONS.md) against ns per rotation, for β = 5°,
  * 15°, 25° and orders 4..12, every exact and approximate method built in.
  *
  * References
  *  [1] J. Křivánek et al., "Fast Approximation to Spherical Harmonic
  *      Rotation" (2005), Sec. 3.2 (error measures) and Table 1 (speed).
- *  [2] CONVENTIONS.md: max = σ_max(D), lobe = ‖D c‖₂, c the unit coefficient
+ *  [2] docs/CONVENTIONS.md: max = σ_max(D), lobe = ‖D c‖₂, c the unit coefficient
  *      vector of max(0, cosθ)^7 about +z; D = R_method − R_exact.
  *
  * Errors by sh_rot_errws (rotation_choose.c): D block by block against the
@@ -88,7 +88,7 @@ int main(int argc, char **argv)
                             "here without change.");
     char buf[256];
     snprintf(buf, sizeof buf, "largest max error of an exact method over beta 5-25 deg, orders 4-12: %.2e", worst_exact);
-    exp_claim("frontier-exact-rounding", "shlab (issue 5)", "exact methods are at rounding error on the frontier (<= 1e-13)",
+    exp_claim("frontier-exact-rounding", "shlab", "exact methods are at rounding error on the frontier (<= 1e-13)",
               "-", buf, "1e-13", worst_exact <= 1e-13 ? "reproduced" : "differs", "reports/rotation_frontier/frontier.dat");
     return 0;
 }

@@ -279,7 +279,7 @@ int main(int argc, char **argv)
              "(cone) geometry k = %.2f: %.2f; order 8: %.2f and %.2f",
              ks[k2], res_sph[1][1][0][k2][0], res_sph[1][1][0][k2][2], kc[k2], res_cone[1][1][0][k2][0],
              res_sph[3][1][0][k2][0], res_cone[3][1][0][k2][0]);
-    exp_claim("scale-truncation", "shlab (issue 4)",
+    exp_claim("scale-truncation", "shlab",
               "scaling a truncated projection: the error when shrinking (k > 1) is dominated by truncation, not by the family",
               "not stated in the paper", me, "measured", "reproduced", "scale_scenes/sphere.dat, cone.dat");
     if (have_probe) {
@@ -303,7 +303,7 @@ int main(int argc, char **argv)
               "**Cone occluder** (θ0 = 45°, rim at height r/2·(1 + 0.3 cos φ): not zonal). Its rim lies on the "
               "cone surface, so the cone family is exact geometry: the dashed plain cone curve sits at %.0e "
               "(quadrature level) for every k and order, and what remains is truncation only. This independently "
-              "confirms the cone τ of CONVENTIONS.md (also checked against a 3-D ray-cone intersection in the "
+              "confirms the cone τ of docs/CONVENTIONS.md (also checked against a 3-D ray-cone intersection in the "
               "unit tests).\n\n"
               "![mid-range lighting](scale_scenes_midrange.png)\n\n"
               "**Mid-range lighting** (two smooth non-zonal lobes on a sphere of radius R, captured at the centre, "

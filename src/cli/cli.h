@@ -1,6 +1,6 @@
 /* cli.h — shared pieces of the shlab command-line tool (not installed).
  *
- * Contract of every command (CONVENTIONS.md "Output"):
+ * Contract of every command (docs/CONVENTIONS.md "Output"):
  *  - the result is built completely as a JSON value, then rendered once as
  *    table, csv or json on stdout (so a failure never prints half a result);
  *  - bad usage or input: one line "shlab: error: ..." on stderr, exit 2;
@@ -45,12 +45,19 @@ int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
 int cli_convention(const char *s, sh_convention *out);
 int cli_order(const char *opt, const char *s, int *out);
+/* A comma-separated list of at most max orders, each checked as cli_order does. */
+int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 
 /* Read a coefficient file: JSON with "coeffs" (array) or "channels"
  * ({name: array}), or plain text numbers.  Returns nchan vectors of length
  * *len concatenated in *out (malloc'd), channel names in names (may be NULL). */
 int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8]);
+
+/* The one error line for a JSON file that json_load_file could not read
+ * (err_no: errno right after the call): "cannot open WHAT 'PATH': reason" or
+ * "WHAT 'PATH' is not valid JSON: ... (line L, column C)". */
+int cli_fail_json(const char *what, const char *path, int err_no, const json_error_t *err);
 
 /* JSON builders. */
 json_t *cli_json_array(const double *v, size_t n);
@@ -169,5 +176,34 @@ void fx_free(fx_set *set);
 /* out = R_sh(rot)·in for a case's shape (its order, or band only), by method. */
 int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
              sh_convention conv, const double *in, double *out);
+
+/* ---- angles and units (cli_angles.c) -------------------------------------
+ * --degrees means angles in and angles out in degrees, in every command
+ * (docs/CONVENTIONS.md "Angles and units"); every printed angle goes with a
+ * "unit" field.  Warnings are one line "shlab: warning: ..." each on stderr,
+ * printed when the command has finished; the exit status is not changed. */
+void cli_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Print the warnings kept so far (main() calls it when the command returns):
+ * only when rc is not CLI_EXIT_USAGE, whose one error line stays alone. */
+void cli_warn_flush(int rc);
+const char *cli_angle_unit(int degrees);          /* "degrees" or "radians" */
+double cli_angle_out(double radians, int degrees); /* radians → the output unit */
+/* Warn when an angle given in radians (degrees == 0) exceeds 2π in magnitude:
+ * degrees given without --degrees, most likely.  what: e.g. "--beta". */
+void cli_warn_radians(const char *cmd, const char *what, double value, int degrees);
+/* The angle in radians (with the warning above). */
+double cli_angle_in(const char *cmd, const char *what, double value, int degrees);
+/* For an approximate method (taylor1, taylor1.5, taylor2): warn when the
+ * rotation's β lies beyond the angle where the method's lobe error reaches
+ * 1e-2, and give the estimated lobe error at β (sh_taylor_lobe_limit,
+ * sh_taylor_lobe_error).  Nothing for exact methods. */
+void cli_warn_approx_rotation(const char *cmd, sh_rot_method m, int order, const sh_rotation *rot,
+                              int degrees);
+
+/* Lights (sh_light_parse): 1 if the spec holds angles (cap:T, cie-clear and
+ * cie-partly's sun position), so that the output says their unit; and the
+ * 2π warning for the one angle that is not range-checked (the sun azimuth). */
+int cli_light_has_angles(const sh_light *L);
+void cli_light_warn(const char *cmd, const sh_light *L, int degrees);
 
 #endif

@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 int cli_fail(const char *fmt, ...)
@@ -281,4 +282,35 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
     }
     free(buf);
     return rc;
+}
+
+int cli_orders(const char *opt, const char *s, int *out, int max, int *n)
+{
+    /* each element through cli_order, so that a list words its errors as a
+     * single --order does */
+    char *copy = strdup(s);
+    if (!copy) return cli_fail("out of memory");
+    int k = 0, rc = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(copy, ", \t", &save); t && !rc; t = strtok_r(NULL, ", \t", &save)) {
+        if (k == max) rc = cli_fail("%s: at most %d orders", opt, max);
+        else rc = cli_order(opt, t, &out[k++]);
+    }
+    free(copy);
+    if (!rc && k == 0) rc = cli_fail("%s: no orders given", opt);
+    if (!rc) *n = k;
+    return rc;
+}
+
+int cli_fail_json(const char *what, const char *path, int err_no, const json_error_t *err)
+{
+    struct stat sb;
+    if (json_error_code(err) == json_error_cannot_open_file)
+        return cli_fail("cannot open %s '%s': %s", what, path, err_no ? strerror(err_no) : err->text);
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return cli_fail("cannot read %s '%s': it is a directory", what, path);
+    if (err->line > 0)
+        return cli_fail("%s '%s' is not valid JSON: %s (line %d, column %d)", what, path, err->text, err->line,
+                        err->column);
+    return cli_fail("%s '%s' is not valid JSON: %s", what, path, err->text);
 }

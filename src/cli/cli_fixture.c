@@ -3,6 +3,7 @@
  * data/fixtures/rotation/README.md. */
 #include "cli.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,8 +36,9 @@ int fx_load(const char *path, fx_set *set)
 {
     memset(set, 0, sizeof *set);
     json_error_t err;
+    errno = 0;
     json_t *root = json_load_file(path, 0, &err);
-    if (!root) return cli_fail("fixture '%s': %s (line %d)", path, err.text, err.line);
+    if (!root) return cli_fail_json("fixture", path, errno, &err);
     const json_t *cases = json_object_get(root, "cases");
     const char *fmt = json_string_value(json_object_get(root, "format"));
     if (!fmt || strcmp(fmt, "shlab-rotation-fixtures/1") || !json_is_array(cases)) {

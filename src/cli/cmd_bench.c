@@ -107,22 +107,9 @@ static int run(int argc, char **argv)
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
-        case 'o': {
-            double *v = NULL;
-            int n = 0;
-            if (cli_doubles("--order", optarg, &v, &n)) return CLI_EXIT_USAGE;
-            if (n < 1 || n > 64) { free(v); return cli_fail("--order: give 1 to 64 orders"); }
-            for (int k = 0; k < n; k++) {
-                if (v[k] != floor(v[k]) || v[k] < 1 || v[k] > SHLAB_MAX_ORDER) {
-                    free(v);
-                    return cli_fail("--order: need integers in 1..%d", SHLAB_MAX_ORDER);
-                }
-                orders[k] = (int)v[k];
-            }
-            no = n;
-            free(v);
+        case 'o':
+            if (cli_orders("--order", optarg, orders, 64, &no)) return CLI_EXIT_USAGE;
             break;
-        }
         case 'm':
             if (parse_methods(optarg, ms, &nm)) return CLI_EXIT_USAGE;
             have_methods = 1;

@@ -21,7 +21,7 @@ static const char help[] =
     "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
     "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
     "largest error over the grid is <= E; the runner-up the next fastest.\n"
-    "Errors (CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
+    "Errors (docs/CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
     "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
     "value of R_method − R_exact.\n"
     "With --order auto the order is first chosen as the smallest n <= --max-order\n"
@@ -37,7 +37,8 @@ static const char help[] =
     "  --measure lobe|max   error measure (default lobe)\n"
     "  --lobe-exp E2        exponent of the lobe (default 7)\n"
     "  --beta-step S        largest grid step (default 0.25°)\n"
-    "  --degrees            --max-beta and --beta-step in degrees\n"
+    "  --degrees            angles in degrees: --max-beta and --beta-step, and the\n"
+    "                       printed max_beta and worst_beta (\"unit\" says which)\n"
     "  --precision P        double (default) | float\n"
     "  --convention C       cs (default) | nocs: convention of the plans measured and timed\n"
     "  --exr FILE           environment image (with --order auto)\n"
@@ -47,7 +48,8 @@ static const char help[] =
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"convention\",\"max_beta\",\"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
+    "JSON: {\"order\",\"convention\",\"max_beta\",\"unit\" (of max_beta and worst_beta),\n"
+    "       \"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
     "       \"choice\":{\"method\",\"ns_per_rotation\",\"max_error\"} (null if none qualifies),\n"
     "       \"runner_up\":{...} (or null),\n"
     "       \"candidates\":[{\"method\",\"exact\",\"ok\",\"max_error\",\"worst_beta\",\n"
@@ -59,7 +61,7 @@ static const char help[] =
     "       then \"order\":null, \"max_order\", \"order_residual\" at --max-order,\n"
     "       choice and runner_up null, no candidates (one line on stderr says so).\n";
 
-static json_t *cand_json(const sh_rot_candidate *c, int full)
+static json_t *cand_json(const sh_rot_candidate *c, int full, int degrees)
 {
     json_t *o = json_object();
     o = cli_put(o, "method", json_string(sh_rot_method_name(c->method)));
@@ -70,7 +72,7 @@ static json_t *cand_json(const sh_rot_candidate *c, int full)
     o = cli_put(o, "ns_per_rotation", json_real(c->ns_per_rotation));
     o = cli_put(o, "max_error", json_real(c->max_error));
     if (full) {
-        o = cli_put(o, "worst_beta", json_real(c->worst_beta));
+        o = cli_put(o, "worst_beta", json_real(cli_angle_out(c->worst_beta, degrees)));
         o = cli_put(o, "mults", json_real(c->mults));
     }
     return o;
@@ -176,7 +178,8 @@ static int run(int argc, char **argv)
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;
     if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
-        return cli_fail("--max-beta: must be in [0, π]");
+        return cli_fail("--max-beta: %g is outside [0, %s", max_beta,
+                        com.degrees ? "180] degrees" : "π] radians (--degrees for degrees)");
     co.max_beta = fmin(co.max_beta, M_PI);
     co.beta_step = beta_step > 0 ? beta_step * deg : 0.25 * M_PI / 180;
     if (co.beta_step < 1e-5) return cli_fail("--beta-step: too small (< 1e-5 rad)");
@@ -208,7 +211,8 @@ static int run(int argc, char **argv)
             json_t *root = json_object();
             root = cli_put(root, "order", json_null());
             root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-            root = cli_put(root, "max_beta", json_real(co.max_beta));
+            root = cli_put(root, "max_beta", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
+            root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
             root = cli_put(root, "tolerance", json_real(rot_tol > 0 ? rot_tol : co.tolerance));
             root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
             root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
@@ -238,11 +242,12 @@ static int run(int argc, char **argv)
     if (st) { json_decref(img_json); return cli_fail_status(st); }
     json_t *cj = json_array();
     for (int k = 0; k < nc && cj; k++)
-        if (json_array_append_new(cj, cand_json(&cand[k], 1))) { json_decref(cj); cj = NULL; }
+        if (json_array_append_new(cj, cand_json(&cand[k], 1, com.degrees))) { json_decref(cj); cj = NULL; }
     json_t *root = json_object();
     root = cli_put(root, "order", json_integer(co.order));
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    root = cli_put(root, "max_beta", json_real(co.max_beta));
+    root = cli_put(root, "max_beta", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
     root = cli_put(root, "tolerance", json_real(co.tolerance));
     root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
     root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
@@ -252,8 +257,8 @@ static int run(int argc, char **argv)
         root = cli_put(root, "order_residual", json_real(order_resid));
         root = cli_put(root, "image", img_json);
     }
-    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0) : json_null());
-    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0) : json_null());
+    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0, com.degrees) : json_null());
+    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0, com.degrees) : json_null());
     root = cli_put(root, "candidates", cj);
     const int rc = cli_emit(root, com.fmt);
     return rc == CLI_EXIT_OK && choice < 0 ? CLI_EXIT_CHECK : rc;

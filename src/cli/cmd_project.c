@@ -41,7 +41,8 @@ static const char help[] =
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON (light): {\"order\",\"convention\",\"method\",\"samples\",\"seed\",\"coeffs\":[n²]}\n"
+    "JSON (light): {\"order\",\"convention\",\"light\",[\"unit\" of the angles in SPEC: cap,\n"
+    "  cie-clear, cie-partly],\"method\",\"samples\",\"seed\",\"coeffs\":[n²]}\n"
     "  (\"method\" is \"closed-form\" when the closed form was used; \"samples\" is\n"
     "  the number actually used, 0 for closed forms)\n"
     "JSON (exr): {\"order\",\"convention\",\"layout\",\"width\",\"height\",\"fallback\",\n"
@@ -56,6 +57,7 @@ static int run_light(int order, sh_convention conv, const char *spec, int degree
 {
     sh_light L;
     if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());
+    cli_light_warn("project", &L, degrees);
     const int n = sh_ncoeff(order);
     double *c = malloc(sizeof(double) * (size_t)n);
     if (!c) return cli_fail("out of memory");
@@ -76,6 +78,7 @@ static int run_light(int order, sh_convention conv, const char *spec, int degree
     root = cli_put(root, "order", json_integer(order));
     root = cli_put(root, "convention", json_string(sh_convention_name(conv)));
     root = cli_put(root, "light", json_string(spec));
+    if (cli_light_has_angles(&L)) root = cli_put(root, "unit", json_string(cli_angle_unit(degrees)));
     root = cli_put(root, "method", json_string(method));
     root = cli_put(root, "samples", json_integer(used));
     root = cli_put(root, "seed", json_integer((json_int_t)seed));

@@ -103,6 +103,7 @@ static int run(int argc, char **argv)
     for (int k = 0; !st && k < nchan; k++) st = sh_rot_plan_apply(p, c + (size_t)k * n, c + (size_t)k * n);
     sh_rot_plan_free(p);
     if (st) { free(c); return cli_fail_status(st); }
+    cli_warn_approx_rotation("rotate", method, order, &rot, com.degrees);
     json_t *root = json_object();
     root = cli_put(root, "order", json_integer(order));
     root = cli_put(root, "method", json_string(sh_rot_method_name(method)));

@@ -16,7 +16,7 @@ static const char help[] =
     "       shlab rotmat --band L --method M ROTATION [OPTIONS]\n"
     "\n"
     "The real SH rotation matrix R_sh(R): the coefficients of f map to those of\n"
-    "g(s) = f(R⁻¹s) (CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
+    "g(s) = f(R⁻¹s) (docs/CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
     "matrix is printed, or with --band L only the (2L+1)×(2L+1) block of band L\n"
     "(rows and columns m = -L..L).\n"
     "\n"
@@ -28,7 +28,8 @@ static const char help[] =
     "  --inverse            use R⁻¹ (the frame rotation, R_sh transposed)\n"
     "  --orthonormalize     accept a matrix/quaternion that is not orthonormal:\n"
     "                       use the nearest proper rotation\n"
-    "  --degrees            angles in degrees\n"
+    "  --degrees            angles in degrees (radians otherwise; a warning on\n"
+    "                       stderr when an angle in radians exceeds 2π)\n"
     "\n"
     "  --order N            bands 0..N-1 (1..32 for the printed matrix)\n"
     "  --band L             one band only (0..1000; below --order if both are given);\n"
@@ -37,7 +38,9 @@ static const char help[] =
     "                       need all lower blocks in memory (refused above 1.1 GB)\n"
     "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
     "                       (exact; default ivanic) or taylor1 | taylor1.5 |\n"
-    "                       taylor2 (Krivánek et al.'s approximations)\n"
+    "                       taylor2 (Krivánek et al.'s approximations; a warning on\n"
+    "                       stderr, with the estimated error, when β is beyond the\n"
+    "                       angle where their lobe error reaches 1e-2)\n"
     "  --precision P        double (default) | float (computed in float)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
@@ -55,10 +58,9 @@ static void warn_if_inaccurate(sh_rot_method m, sh_precision p, int band, double
 {
     const double limit = p == SH_PREC_FLOAT ? 1e-3 : 1e-8;
     if (sh_rot_method_is_exact(m) && !(orth <= limit))
-        fprintf(stderr,
-                "shlab: warning: method %s is inaccurate here: orthogonality error %.2g at band %d "
-                "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)\n",
-                sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
+        cli_warn("method %s is inaccurate here: orthogonality error %.2g at band %d "
+                 "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)",
+                 sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
 }
 
 static int run(int argc, char **argv)
@@ -150,6 +152,7 @@ static int run(int argc, char **argv)
         free(blocks);
         free(M);
     }
+    cli_warn_approx_rotation("rotmat", method, band >= 0 ? band + 1 : order, &rot, com.degrees);
     return cli_emit(root, com.fmt);
 }
 

@@ -28,13 +28,15 @@ static const char help[] =
     "  --interp linear|cubic  linear (default) or GSL natural cubic spline\n"
     "  --dense D            points of the dense check grid (default 400)\n"
     "  --energy             energy-preserving scaling\n"
-    "  --cone-angle T       cone family half-angle (default π/4; --degrees)\n"
+    "  --cone-angle T       cone family half-angle (default π/4)\n"
+    "  --degrees            --cone-angle and the printed cone_angle in degrees\n"
     "  --convention cs|nocs tag only (the matrix does not depend on it)\n"
     "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"family\",\"energy\",\"convention\",\"samples\",\"spacing\",\"interp\",\n"
+    "JSON: {\"order\",\"family\",\"energy\",\"convention\",[\"cone_angle\",\"unit\" (cone\n"
+    "       family)],\"samples\",\"spacing\",\"interp\",\n"
     "       \"kmin\",\"kmax\",\"dense\",\"max_error\",\"rms_error\",\"worst_k\"}\n";
 
 static int run(int argc, char **argv)
@@ -116,8 +118,10 @@ static int run(int argc, char **argv)
     root = cli_put(root, "family", json_string(sh_scale_family_name(s.family)));
     root = cli_put(root, "energy", json_boolean(s.energy));
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    if (s.family == SH_SCALE_CONE)
-        root = cli_put(root, "cone_angle", json_real(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0));
+    if (s.family == SH_SCALE_CONE) {
+        root = cli_put(root, "cone_angle", json_real(cli_angle_out(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0, com.degrees)));
+        root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
+    }
     root = cli_put(root, "samples", json_integer(samples));
     root = cli_put(root, "spacing", json_string(sh_scale_spacing_name(sp)));
     root = cli_put(root, "interp", json_string(sh_scale_interp_name(ik)));

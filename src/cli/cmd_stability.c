@@ -32,11 +32,13 @@ static const char help[] =
     "  --ref-max R          compare with the reference up to band R (default 40)\n"
     "  --exact-max E        exact orthogonality up to band E (default 128)\n"
     "  --convention cs|nocs\n"
+    "  --degrees            print the rotations' Euler angles in degrees\n"
     "  --quiet              no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"rotations\":[{name,euler}],\n"
+    "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"unit\" (of the Euler angles),\n"
+    "       \"rotations\":[{name,euler}],\n"
     "       \"rows\":[{\"band\",\"orth\",\"orth_exact\",\"hom\",\"ref\",\"broken\"}]}\n";
 
 typedef struct {
@@ -66,6 +68,7 @@ static int run(int argc, char **argv)
 {
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_CONVENTION,
+                                         CLI_LONGOPT_DEGREES,
                                          CLI_LONGOPT_METHOD,
                                          CLI_LONGOPT_PRECISION,
                                          {"lmax", required_argument, 0, 'L'},
@@ -149,7 +152,8 @@ static int run(int argc, char **argv)
     json_t *rots = json_array();
     for (int k = 0; k < SH_ROT_STABILITY_NSET; k++) {
         if (method == SH_ROT_Z && set[k].beta != 0) continue;
-        double e[3] = {set[k].alpha, set[k].beta, set[k].gamma};
+        double e[3] = {cli_angle_out(set[k].alpha, com.degrees), cli_angle_out(set[k].beta, com.degrees),
+                       cli_angle_out(set[k].gamma, com.degrees)};
         json_t *r = json_object();
         r = cli_put(r, "name", json_string(names[k]));
         r = cli_put(r, "euler", cli_json_array(e, 3));
@@ -160,6 +164,7 @@ static int run(int argc, char **argv)
     root = cli_put(root, "precision", json_string(sh_precision_name(prec)));
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
     root = cli_put(root, "lmax", json_integer(lmax));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
     root = cli_put(root, "rotations", rots);
     root = cli_put(root, "rows", a.rows);
     return cli_emit(root, com.fmt);

@@ -7,7 +7,7 @@
  *      2005), Sec. 3.1 (operation counts) and Table 1 (time per rotation in
  *      radiance caching: a 3×3 frame rotation per cache record and colour
  *      channel, then one vector rotated).
- *  [2] CONVENTIONS.md, "Rotations".
+ *  [2] docs/CONVENTIONS.md, "Rotations".
  *
  * What is timed.  Per rotation (the radiance-caching use of [1]): for each of
  * `count` iterations, one seeded orthonormal matrix R_k (from a pool of

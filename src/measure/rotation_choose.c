@@ -6,7 +6,7 @@
  *  [1] J. Křivánek et al., "Fast Approximation to Spherical Harmonic
  *      Rotation" (2005), Sec. 3.2 (error of the Taylor approximations as
  *      singular values of D(β) = R_Y(β) − R'_Y(β), and the lobe error).
- *  [2] CONVENTIONS.md, "Taylor-approximated rotation" (max, mean, lobe).
+ *  [2] docs/CONVENTIONS.md, "Taylor-approximated rotation" (max, mean, lobe).
  *  [3] GSL reference manual, "Singular Value Decomposition":
  *      gsl_linalg_SV_decomp_jacobi (one-sided Jacobi, accurate small
  *      singular values).

@@ -1,7 +1,7 @@
 /* envmap.c — environment-map layouts, exact pixel solid angles, and the
  * projection of an environment image onto real SH.
  *
- * Layouts (CONVENTIONS.md "Environment maps"):
+ * Layouts (docs/CONVENTIONS.md "Environment maps"):
  *  - lat-long W×H: pixel (i,j) centre u=(i+½)/W, v=(j+½)/H, θ=πv, φ=2πu;
  *    row j spans θ ∈ [πj/H, π(j+1)/H], so its pixels have the exact solid
  *    angle Ω_j = (2π/W)(cos θ_top − cos θ_bottom).

@@ -13,7 +13,7 @@
  * "hann" and "lanczos" without W use W = order (stored as param = 0).
  *
  * Reconstruction f(θ_j, φ_i) = Σ_l σ_l Σ_m c_l^m y_l^m at the lat-long pixel
- * centres (CONVENTIONS.md) is separable: per row one Legendre evaluation and
+ * centres (docs/CONVENTIONS.md) is separable: per row one Legendre evaluation and
  *   a_m = Σ_l σ_l c_l^m Q_l^m,  b_m = Σ_l σ_l c_l^{−m} Q_l^m,
  *   f = a_0 + √2 Σ_{m>0} (a_m cos mφ + b_m sin mφ),
  * O(H·n² + H·W·n) per channel.

@@ -8,7 +8,7 @@
  *      matrices in the basis of real spherical harmonics", J. Mol. Struct.
  *      (Theochem) 419 (1997) 19.  Equation numbers below are the paper's as
  *      cited by F. J. Simons' MATLAB port (blanco.m, slepian_alpha); the paper
- *      itself is not in ../shared/papers.  Eq. 64: three-term recurrence in l;
+ *      itself was not at hand.  Eq. 64: three-term recurrence in l;
  *      eqs. 65, 66: the diagonal corner elements; eqs. 67, 68: the edge rows
  *      by a ratio recurrence in m'; eq. 38: the symmetries.
  *  [2] T. Dachsel, J. Chem. Phys. 124 (2006) 144115: the three-term recurrence

@@ -3,7 +3,7 @@
  * the real block from a Wigner small-d matrix, the nocs sign flip.
  *
  * References
- *  [1] CONVENTIONS.md: g(s) = f(R⁻¹s), R = Rz(α)Ry(β)Rz(γ), real SH with CS phase.
+ *  [1] docs/CONVENTIONS.md: g(s) = f(R⁻¹s), R = Rz(α)Ry(β)Rz(γ), real SH with CS phase.
  *  [2] D^l_{m'm}(α,β,γ) = e^{−im'α} d^l_{m'm}(β) e^{−imγ}, Y_l^m(R⁻¹s) =
  *      Σ_{m'} Y_l^{m'}(s) D^l_{m'm}(R)  (Edmonds / Wikipedia "Wigner D-matrix").
  *

@@ -10,7 +10,7 @@
  *      Chem. A 102 (1998) 9099–9100 (the corrected Table 2).
  *  [3] R. Green, "Spherical Harmonic Lighting: The Gritty Details" (2003),
  *      Appendix I — a transcription of [1]+[2] with two misprints (below).
- *  [4] CONVENTIONS.md: g(s) = f(R⁻¹s); `nocs` = Ivanic's real basis.
+ *  [4] docs/CONVENTIONS.md: g(s) = f(R⁻¹s); `nocs` = Ivanic's real basis.
  *
  * Basis.  [1] uses real SH without the Condon-Shortley phase (our `nocs`):
  * band 1 is ∝ (y, z, x) for m = −1, 0, 1.  A linear function c·s rotated as

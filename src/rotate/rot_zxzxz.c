@@ -10,7 +10,7 @@
  *  [4] Trapani & Navaza 2006 (d(π/2) by recursion); the recursion used here is
  *      the three-term one in m' below, run in the stable direction.
  *
- * Decomposition (our conventions, CONVENTIONS.md).  Ry(β) = Rx(−90°) Rz(β)
+ * Decomposition (our conventions, docs/CONVENTIONS.md).  Ry(β) = Rx(−90°) Rz(β)
  * Rx(+90°) (the conjugated z axis Rx(−90°)ẑ is ŷ), and R_sh is a
  * homomorphism, so R_Y(β) = X₋₉₀ Z(β) X₊₉₀ with X_θ = R_sh(Rx(θ)), and
  *   R_sh(Rz(α)Ry(β)Rz(γ)) = Z(α) X₋₉₀ Z(β) X₊₉₀ Z(γ).

@@ -52,7 +52,7 @@ int sh_rot_bench(int order, sh_rot_method method, sh_precision prec, sh_bench_mo
  * only) — the part of every per-rotation time that no method can avoid. */
 double sh_rot_bench_setup_ns(const sh_bench_opts *opts);
 
-/* Error of a method's rotation against the exact one (CONVENTIONS.md,
+/* Error of a method's rotation against the exact one (docs/CONVENTIONS.md,
  * "Taylor-approximated rotation"), computed generically: D = R_method −
  * R_exact for the rotation (α, β, γ) block by block, R_exact from the MPFR
  * reference plan (use_reference) or the zxzxz plan in double (accurate to

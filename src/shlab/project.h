@@ -92,6 +92,16 @@ int sh_green_reference(int order, sh_convention conv, double tol, double *coeffs
  * points sh_project uses for that seed, each of weight 4π/count. */
 int sh_rule_nodes(sh_rule rule, long samples, unsigned long seed, double **theta, double **phi,
                   double **weight, long *count);
+/* Orthonormality of a rule (orthonormality.c): the Gram matrix
+ * G_ij = Σ_k w_k y_i(s_k) y_j(s_k) of its nodes (sh_rule_nodes with samples
+ * and seed) for bands 0..order-1, and err[l] = max |G_ij − δ_ij| over i, j
+ * in bands 0..l: err[n−1] is the error at order n (cumulative, so
+ * non-decreasing).  The same in both conventions.  nodes (may be NULL): the
+ * number of nodes used.  progress (may be NULL) is called per chunk of 256
+ * nodes.  Memory ≈ order⁴/2 doubles; order <= SH_GRAM_MAX_ORDER. */
+#define SH_GRAM_MAX_ORDER 64
+int sh_rule_gram_error(sh_rule rule, long samples, unsigned long seed, int order, sh_convention conv,
+                       double *err, long *nodes, sh_progress_fn progress, void *ctx);
 int sh_exr_write_dwab_rgba(const char *path, const sh_image *img);
 /* Fill a 1-channel "Y" image by point-sampling f at the pixel centres of
  * the layout.  Probe pixels wholly outside the unit disc get 0; rim pixels

@@ -10,7 +10,7 @@
 extern "C" {
 #endif
 
-/* Rotations (CONVENTIONS.md): a proper rotation R acts on functions,
+/* Rotations (docs/CONVENTIONS.md): a proper rotation R acts on functions,
  * g(s) = f(R⁻¹ s); the SH rotation matrix R_sh(R) maps the coefficients of f
  * to those of g, so R_sh(AB) = R_sh(A) R_sh(B).  Euler angles are ZYZ active:
  * R = Rz(α) Ry(β) Rz(γ).  An sh_rotation carries both the 3×3 matrix (row

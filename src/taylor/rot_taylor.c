@@ -8,7 +8,7 @@
  *      Approximation to Spherical Harmonic Rotation", IRISA PI 1728 (2005),
  *      Sec. 3 (the expansion and shRotYdiff15), Sec. 3.1 (cost 9n² − 4n),
  *      Appendix C (z rotation).
- *  [2] CONVENTIONS.md "Taylor-approximated rotation":
+ *  [2] docs/CONVENTIONS.md "Taylor-approximated rotation":
  *        taylor1:   T = I + βJ
  *        taylor1.5: T = I + βJ + (β²/2)·diag(J²)
  *        taylor2:   T = I + βJ + (β²/2)·J²

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI contract of bench and plan (issue 5).  No timing is asserted: only the
+# CLI contract of bench and plan.  No timing is asserted: only the
 # structure of the results, the counted work against the paper's formula,
 # the error contract, and plan --order auto on an EXR the test writes itself.
 . tests/cli/lib.inc
