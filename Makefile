@@ -45,6 +45,30 @@ PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
+# ---- sht: fast spherical harmonic transforms and the libsharp peer (begin) ----
+# FFTW3 for the φ transforms, OpenMP across rings and m (src/project/sht*.c).
+# The Legendre kernels (src/project/sht_kern.c) are compiled once more per x86
+# instruction set; sht.c picks the widest one the CPU runs.  libsharp, when
+# installed, is a peer (oracle in tests, yardstick in `shlab bench --peers`),
+# linked into the CLI and its tests only, never into libshlab.
+PKGS     += fftw3
+CFLAGS   += -fopenmp
+LDLIBS   += -fopenmp
+.DEFAULT_GOAL := all
+SHT_KFLAGS := -O3 -ffp-contract=fast
+ifneq ($(filter x86_64%,$(shell $(CC) -dumpmachine)),)
+CFLAGS   += -DSHLAB_SHT_X86
+LIB_OBJ  += $(BUILD)/obj/project/sht_kern_avx2.o $(BUILD)/obj/project/sht_kern_avx512.o
+endif
+$(BUILD)/obj/project/sht_kern.o $(BUILD)/obj/project/sht.o: CFLAGS += -O3
+$(BUILD)/obj/project/sht_kern_avx2.o: src/project/sht_kern.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx2 -mfma -DSHT_KERN_AVX2 -c $< -o $@
+$(BUILD)/obj/project/sht_kern_avx512.o: src/project/sht_kern.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx512f -mfma -DSHT_KERN_AVX512 -c $< -o $@
+# ---- sht (end) ----
+
 .PHONY: all deps deps-quiet check report experiments probes install clean man
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
