@@ -67,6 +67,22 @@ $(BUILD)/obj/project/sht_kern_avx2.o: src/project/sht_kern.c
 $(BUILD)/obj/project/sht_kern_avx512.o: src/project/sht_kern.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx512f -mfma -DSHT_KERN_AVX512 -c $< -o $@
+# libsharp peer: src/measure/peers/peer_sharp.c (stubs that say so without libsharp)
+HAVE_SHARP := $(shell pkg-config --exists libsharp 2>/dev/null && echo 1)
+PEER_SHARP_OBJ := $(BUILD)/obj/measure/peers/peer_sharp.o
+ifeq ($(HAVE_SHARP),1)
+SHARP_CFLAGS := -DSHLAB_HAVE_SHARP $(shell pkg-config --cflags libsharp)
+SHARP_LIBS := $(shell pkg-config --libs libsharp)
+endif
+$(PEER_SHARP_OBJ): CFLAGS += $(SHARP_CFLAGS)
+CLI_OBJ  += $(PEER_SHARP_OBJ)
+$(BUILD)/shlab: LDLIBS += $(SHARP_LIBS)
+$(BUILD)/tests/test_sht_sharp: tests/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
+.PHONY: bench-peers
+bench-peers: all
+	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
 .PHONY: all deps deps-quiet check report experiments probes install clean man

@@ -54,6 +54,7 @@
 struct sh_sht {
     int order, lmax, nrings, nphi, nchan, nthreads;
     int npairs, chunk, nchunks; /* chunk: pairs per chunk, a multiple of SHT_LANES */
+    int chunk_alloc;            /* the chunk the buffers were sized for */
     double phi0;
     int *pn, *ps;               /* pair → north ring, south ring (−1: single ring) */
     double *px, *psin;          /* pair → cosθ, sinθ of its north ring */
@@ -128,6 +129,16 @@ int sh__sht_set_isa(sh_sht *p, sht_isa isa)
 }
 
 const char *sh_sht_kernel_name(const sh_sht *p) { return p ? sh__sht_isa_name(p->isa) : ""; }
+
+int sh__sht_set_chunk(sh_sht *p, int pairs)
+{
+    if (!p || pairs < SHT_LANES || pairs % SHT_LANES || pairs > p->chunk_alloc)
+        return sh_error(SH_EINVAL, "chunk of %d pairs (a multiple of %d, at most %d)", pairs, SHT_LANES,
+                        p ? p->chunk_alloc : 0);
+    p->chunk = pairs;
+    p->nchunks = (p->npairs + pairs - 1) / pairs;
+    return SH_OK;
+}
 
 /* ------------------------------------------------------------------ grids */
 
@@ -271,6 +282,7 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->npairs = count_pairs(g);
     p->chunk = chunk_pairs(L, nchan, p->npairs);
     p->nchunks = (p->npairs + p->chunk - 1) / p->chunk;
+    p->chunk_alloc = p->chunk;
     const size_t nl_all = (size_t)(L + 1) * (L + 2) / 2;
     p->pn = malloc(sizeof(int) * p->npairs);
     p->ps = malloc(sizeof(int) * p->npairs);

@@ -42,6 +42,9 @@ const char *sh__sht_isa_name(sht_isa isa);
 int sh__sht_isa_usable(sht_isa isa);
 /* Force the kernels of a plan (tests compare every usable set with BASE). */
 int sh__sht_set_isa(sh_sht *p, sht_isa isa);
+/* Use chunks of `pairs` ring pairs (a multiple of SHT_LANES, at most what the
+ * plan was sized for): tests run several chunks on small grids. */
+int sh__sht_set_chunk(sh_sht *p, int pairs);
 
 void sh__sht_analysis_base(const sht_kjob *j);
 void sh__sht_synthesis_base(const sht_kjob *j);
