@@ -46,9 +46,14 @@
 #include <omp.h>
 #endif
 
+/* Lanes are handled in groups of GRP (one cache line of doubles) so that
+ * the m-major chunk buffers are written a line at a time. */
+#define GRP 8
+_Static_assert(SHT_LANES % GRP == 0, "groups must tile a chunk");
+
 /* Working memory budget for the chunk buffers (the m-spectra of a chunk). */
 #ifndef CHUNK_BYTES
-#define CHUNK_BYTES (32u << 20)
+#define CHUNK_BYTES (8u << 20)
 #endif
 
 struct sh_sht {
@@ -195,6 +200,7 @@ static int chunk_pairs(int lmax, int nchan, int npairs)
 
 static int count_pairs(const sh_grid *g)
 {
+    if (!g->cos_theta) return (g->nrings + 1) / 2; /* a symmetric grid */
     int n = 0;
     for (int k = 0, j = g->nrings - 1; k <= j; k++, j--) n += (k < j && g->cos_theta[k] == -g->cos_theta[j]) ? 1 : (k < j ? 2 : 1);
     return n;
@@ -210,7 +216,7 @@ static int nthreads_eff(int nthreads)
 
 size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
 {
-    if (order < 1 || !g || g->nrings < 1 || g->nphi < 1 || nchan < 1 || !g->cos_theta) return 0;
+    if (order < 1 || !g || g->nrings < 1 || g->nphi < 1 || nchan < 1) return 0;
     const double L1 = order, np = count_pairs(g), T = nthreads_eff(nthreads);
     const double ch = chunk_pairs(order - 1, nchan, (int)np);
     double b = np * (2 * sizeof(int) + 2 * sizeof(double)) + g->nrings * sizeof(double);
@@ -218,7 +224,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
          ((double)nchan * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
-          L1 * nchan * 2 * 8 + 8 + L1 * nchan * 4 * 8);
+          L1 * nchan * 2 * 8 + 8 + (L1 * nchan * 4 + 24) * 8);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
 }
@@ -313,7 +319,7 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
         p->spec[t] = fftw_malloc(sizeof(fftw_complex) * (size_t)(N / 2 + 1));
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
-        p->stage[t] = malloc(sizeof(double) * (size_t)(L + 1) * nchan * 4 * 8);
+        p->stage[t] = malloc(sizeof(double) * ((size_t)(L + 1) * nchan * 4 + 24) * GRP);
         bad = !p->ring[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] ||
               !p->stage[t];
     }
@@ -399,10 +405,6 @@ static inline int thread_id(void)
 #endif
 }
 
-/* Lanes are handled in groups of GRP (one cache line of doubles) so that
- * the m-major chunk buffers are written a line at a time. */
-#define GRP 8
-_Static_assert(SHT_LANES % GRP == 0, "groups must tile a chunk");
 
 /* Sectoral seeds of lanes [i0, i0+GRP) of the chunk starting at pair q0 (n
  * pairs): Q_m^m(x) = mant·2^(800·k) by the product of legendre.c,
@@ -410,28 +412,27 @@ _Static_assert(SHT_LANES % GRP == 0, "groups must tile a chunk");
  * mantissa falls below 2^−400.  Padding lanes get 0. */
 static void seeds_group(sh_sht *p, int q0, int n, int i0)
 {
+    typedef double v8 __attribute__((vector_size(GRP * sizeof(double))));
+    typedef long long m8 __attribute__((vector_size(GRP * sizeof(double))));
     const int L = p->lmax;
     const size_t C = (size_t)p->chunk;
-    double s[GRP], P[GRP], k[GRP];
+    v8 s, P, k = {0};
     for (int g = 0; g < GRP; g++) {
         const int live = i0 + g < n;
         s[g] = live ? p->psin[q0 + i0 + g] : 0.0;
         P[g] = live ? p->fm[0] : 0.0;
-        k[g] = 0.0;
         p->cx[i0 + g] = live ? p->px[q0 + i0 + g] : 0.0;
     }
+    const v8 zero = {0}, one = zero + 1.0, big = zero + 0x1p800;
     for (int m = 0; m <= L; m++) {
-        double *mant = p->cmant + m * C + i0, *scl = p->cscl + m * C + i0;
-        for (int g = 0; g < GRP; g++) {
-            if (m) {
-                P[g] *= s[g] * p->fm[m];
-                const double low = (fabs(P[g]) < 0x1p-400) & (P[g] != 0.0);
-                P[g] *= 1.0 + low * (0x1p800 - 1.0);
-                k[g] -= low;
-            }
-            mant[g] = P[g];
-            scl[g] = k[g];
+        if (m) {
+            P *= s * p->fm[m];
+            const m8 low = (P < 0x1p-400) & (P > -0x1p-400) & (P != 0.0);
+            P *= (v8)(((m8)big & low) | ((m8)one & ~low));
+            k -= (v8)((m8)one & low);
         }
+        memcpy(p->cmant + m * C + i0, &P, sizeof P);
+        memcpy(p->cscl + m * C + i0, &k, sizeof k);
     }
 }
 
@@ -439,7 +440,7 @@ static sht_kjob job_for(const sh_sht *p, int m, int npad)
 {
     const int nl = p->lmax - m + 1;
     const size_t C = (size_t)p->chunk;
-    sht_kjob j = {m, p->lmax, p->nchan, npad, p->cx, p->cmant + m * C, p->cscl + m * C,
+    sht_kjob j = {m, p->lmax, p->nchan, npad, p->chunk, p->cx, p->cmant + m * C, p->cscl + m * C,
                   p->rc + p->moff[m], p->rc + p->moff[m] + nl, NULL, NULL, NULL};
     return j;
 }
@@ -464,28 +465,88 @@ static void note_err(first_err *e, int st, int ring)
 /* Per-thread staging of one group of lanes, lane-major: lane g's m-data at
  * [g·R + (m·nc + c)·4 + k], R = (lmax+1)·nc·4; moved to and from the m-major
  * chunk buffer (row (m·nc + c)·4 + k, lane i) a group at a time. */
+/* Lane stride of the staging: R rounded up to an odd number of cache lines,
+ * so that the GRP lanes read side by side do not share cache sets. */
+static inline size_t stage_stride(const sh_sht *p)
+{
+    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4;
+    return (R + 7) / 16 * 16 + 8;
+}
+
 static inline double *stage_at(sh_sht *p, int t, int g, int m, int c)
 {
-    return p->stage[t] + (size_t)g * (p->lmax + 1) * p->nchan * 4 + ((size_t)m * p->nchan + c) * 4;
+    return p->stage[t] + (size_t)g * stage_stride(p) + ((size_t)m * p->nchan + c) * 4;
 }
 
 static void stage_flush(sh_sht *p, int t, int i0)
 {
-    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4;
+    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4, S = stage_stride(p);
     const double *st = p->stage[t];
     for (size_t r = 0; r < R; r++) {
         double *d = p->cdata + r * p->chunk + i0;
-        for (int g = 0; g < GRP; g++) d[g] = st[g * R + r];
+        for (int g = 0; g < GRP; g++) d[g] = st[g * S + r];
     }
 }
 
 static void stage_load(sh_sht *p, int t, int i0)
 {
-    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4;
+    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4, S = stage_stride(p);
     double *st = p->stage[t];
     for (size_t r = 0; r < R; r++) {
         const double *d = p->cdata + r * p->chunk + i0;
-        for (int g = 0; g < GRP; g++) st[g * R + r] = d[g];
+        for (int g = 0; g < GRP; g++) st[g * S + r] = d[g];
+    }
+}
+
+/* Between shlab's flat layout (l(l+1)+m per channel) and the m-major alm,
+ * in blocks of LBLK bands so that both sides stay in cache. */
+#define LBLK 16
+
+static inline double mfactor(sh_convention conv, int m)
+{
+    return m ? ((conv == SH_NOCS && (m & 1)) ? -M_SQRT2 : M_SQRT2) : 1.0;
+}
+
+static void alm_to_flat(sh_sht *p, sh_convention conv, double *coeffs)
+{
+    const int L = p->lmax, nc = p->nchan;
+    const size_t nn = (size_t)p->order * p->order;
+#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
+    for (int l0 = 0; l0 <= L; l0 += LBLK) {
+        const int l1 = l0 + LBLK - 1 < L ? l0 + LBLK - 1 : L;
+        for (int m = 0; m <= l1; m++) {
+            const double f = mfactor(conv, m);
+            const double *a = p->alm + p->moff[m] * nc;
+            for (int l = m > l0 ? m : l0; l <= l1; l++)
+                for (int c = 0; c < nc; c++) {
+                    double *cc = coeffs + c * nn;
+                    cc[sh_index(l, m)] = f * a[((size_t)(l - m) * nc + c) * 2];
+                    if (m) cc[sh_index(l, -m)] = f * a[((size_t)(l - m) * nc + c) * 2 + 1];
+                }
+        }
+    }
+}
+
+static void flat_to_alm(sh_sht *p, sh_convention conv, const double *coeffs, const double *sigma)
+{
+    const int L = p->lmax, nc = p->nchan;
+    const size_t nn = (size_t)p->order * p->order;
+#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
+    for (int l0 = 0; l0 <= L; l0 += LBLK) {
+        const int l1 = l0 + LBLK - 1 < L ? l0 + LBLK - 1 : L;
+        for (int m = 0; m <= l1; m++) {
+            const int nl = L - m + 1;
+            const double f = mfactor(conv, m), *gg = p->rc + p->moff[m] + nl;
+            double *a = p->alm + p->moff[m] * nc;
+            for (int l = m > l0 ? m : l0; l <= l1; l++) {
+                const double s = f * gg[l - m] * (sigma ? sigma[l] : 1.0);
+                for (int c = 0; c < nc; c++) {
+                    const double *cc = coeffs + c * nn;
+                    a[((size_t)(l - m) * nc + c) * 2] = s * cc[sh_index(l, m)];
+                    a[((size_t)(l - m) * nc + c) * 2 + 1] = m ? s * cc[sh_index(l, -m)] : 0.0;
+                }
+            }
+        }
     }
 }
 
@@ -522,7 +583,7 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     if (!p || !get || !coeffs) return sh_error(SH_EINVAL, "sh_sht_analysis: NULL argument");
     if (!p->w) return sh_error(SH_EINVAL, "sh_sht_analysis: the grid has no weights");
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "unknown convention");
-    const int L = p->lmax, nc = p->nchan, N = p->nphi, nn = p->order * p->order;
+    const int L = p->lmax, nc = p->nchan, N = p->nphi;
     memset(p->alm, 0, sizeof(double) * p->moff[L] * nc + 2 * nc * sizeof(double));
     first_err err = {0, 0, ""};
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
@@ -565,18 +626,7 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     }
     if (err.st) return sh_error(err.st, "%s", err.msg);
     /* c_l^{±m} = √2·Σ (m > 0), odd m negated in nocs */
-#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
-    for (int m = 0; m <= L; m++) {
-        const double f = m ? ((conv == SH_NOCS && (m & 1)) ? -M_SQRT2 : M_SQRT2) : 1.0;
-        const double *a = p->alm + p->moff[m] * nc;
-        for (int c = 0; c < nc; c++) {
-            double *cc = coeffs + (size_t)c * nn;
-            for (int l = m; l <= L; l++) {
-                cc[sh_index(l, m)] = f * a[((size_t)(l - m) * nc + c) * 2];
-                if (m) cc[sh_index(l, -m)] = f * a[((size_t)(l - m) * nc + c) * 2 + 1];
-            }
-        }
-    }
+    alm_to_flat(p, conv, coeffs);
     return SH_OK;
 }
 
@@ -620,24 +670,10 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
 {
     if (!p || !put || !coeffs) return sh_error(SH_EINVAL, "sh_sht_synthesis: NULL argument");
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "unknown convention");
-    const int L = p->lmax, nc = p->nchan, N = p->nphi, nn = p->order * p->order;
+    const int L = p->lmax, nc = p->nchan, N = p->nphi;
     /* the coefficients m-major, times √2 (m > 0, odd m negated in nocs), the
      * window σ_l and the recursion scale g (sht_kern.c) */
-#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
-    for (int m = 0; m <= L; m++) {
-        const int nl = L - m + 1;
-        double *a = p->alm + p->moff[m] * nc;
-        const double *gg = p->rc + p->moff[m] + nl;
-        const double f = m ? ((conv == SH_NOCS && (m & 1)) ? -M_SQRT2 : M_SQRT2) : 1.0;
-        for (int l = m; l <= L; l++) {
-            const double s = f * gg[l - m] * (sigma ? sigma[l] : 1.0);
-            for (int c = 0; c < nc; c++) {
-                const double *cc = coeffs + (size_t)c * nn;
-                a[((size_t)(l - m) * nc + c) * 2] = s * cc[sh_index(l, m)];
-                a[((size_t)(l - m) * nc + c) * 2 + 1] = m ? s * cc[sh_index(l, -m)] : 0.0;
-            }
-        }
-    }
+    flat_to_alm(p, conv, coeffs, sigma);
     first_err err = {0, 0, ""};
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;

@@ -21,14 +21,15 @@
 /* One job of the Legendre stage: one m, every ring pair of one chunk. */
 typedef struct {
     int m, lmax, nchan, npad;   /* npad: lanes, a multiple of SHT_LANES */
+    int ld;                     /* row stride of the [nchan][4][·] lane arrays (≥ npad) */
     const double *x;            /* [npad] cosθ of the pair's north ring (0 for padding) */
     const double *mant, *scl;   /* [npad] Q_m^m(x) = mant · 2^(SHT_SCALE·scl) */
     const double *alpha, *g;    /* scaled recursion of this m (sht_kern.c), indexed by l − m */
-    /* analysis: in  = [nchan][4][npad] (S_re, S_im, D_re, D_im: north ± south),
+    /* analysis: in  = [nchan][4][ld] (S_re, S_im, D_re, D_im: north ± south),
      *           out[(l−m)·nchan·2 + 2c + k] += Σ_lanes Q_l^m · (S or D)_k, k = re, im;
      *           acc: scratch of (lmax−m+1)·nchan·2·8 doubles.
      * synthesis: in = [(l−m)·nchan·2 + 2c + k] coefficients of this m,
-     *           out = [nchan][4][npad] (north re, north im, south re, south im). */
+     *           out = [nchan][4][ld] (north re, north im, south re, south im). */
     const double *in;
     double *out, *acc;
 } sht_kjob;

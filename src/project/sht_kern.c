@@ -62,8 +62,8 @@ typedef double vd __attribute__((vector_size(VL * 8)));
 typedef long long vm __attribute__((vector_size(VL * 8)));
 typedef double vdu __attribute__((vector_size(VL * 8), aligned(8)));
 
-static inline vd ld(const double *p) { return *(const vdu *)p; }
-static inline void st(double *p, vd v) { *(vdu *)p = v; }
+static inline vd vload(const double *p) { return *(const vdu *)p; }
+static inline void vstore(double *p, vd v) { *(vdu *)p = v; }
 static inline vd bc(double s) { return (vd){0} + s; }
 static inline vd sel(vm msk, vd a, vd b) { return (vd)(((vm)a & msk) | ((vm)b & ~msk)); }
 static inline vd vabs(vd a) { return (vd)((vm)a & 0x7fffffffffffffffLL); }
@@ -106,9 +106,9 @@ static inline int blk_load(blk_t *B, const sht_kjob *j, int b)
 {
     vm nz = {0}, live = (vm){0} - 1, some = {0};
     for (int v = 0; v < NV; v++) {
-        B->x[v] = ld(j->x + b + v * VL);
-        B->p1[v] = ld(j->mant + b + v * VL);
-        B->sc[v] = ld(j->scl + b + v * VL);
+        B->x[v] = vload(j->x + b + v * VL);
+        B->p1[v] = vload(j->mant + b + v * VL);
+        B->sc[v] = vload(j->scl + b + v * VL);
         B->p2[v] = bc(0.0);
         nz |= B->p1[v] != 0.0;
         live &= B->sc[v] == 0.0;
@@ -165,15 +165,15 @@ static inline int run_dead(blk_t *B, const double *al, int i, int nl)
 
 /* ------------------------------------------------------------ analysis */
 
-/* acc[2c + k] += Σ_v q[v] · in[(4c + 2·odd + k)·np + v·VL] */
-static inline void acc_analysis(vd *acc, const vd *q, const double *in, int np, int nc, int odd)
+/* acc[2c + k] += Σ_v q[v] · in[(4c + 2·odd + k)·ld + v·VL] */
+static inline void acc_analysis(vd *acc, const vd *q, const double *in, int ld, int nc, int odd)
 {
     for (int c = 0; c < nc; c++) {
-        const double *dr = in + (size_t)(4 * c + 2 * odd) * np, *di = dr + np;
+        const double *dr = in + (size_t)(4 * c + 2 * odd) * ld, *di = dr + ld;
         vd sr = acc[2 * c], si = acc[2 * c + 1];
         for (int v = 0; v < NV; v++) {
-            sr += q[v] * ld(dr + v * VL);
-            si += q[v] * ld(di + v * VL);
+            sr += q[v] * vload(dr + v * VL);
+            si += q[v] * vload(di + v * VL);
         }
         acc[2 * c] = sr;
         acc[2 * c + 1] = si;
@@ -182,26 +182,26 @@ static inline void acc_analysis(vd *acc, const vd *q, const double *in, int np, 
 
 /* The plain loop (every lane lives) from i (odd_first: parity of i) to nl − 1. */
 static inline __attribute__((always_inline)) void
-plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int np, int nc,
+plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int ld, int nc,
                int odd_first)
 {
     const int s = 2 * nc;
     for (; i + 1 < nl; i += 2) {
         const double a0 = al[i], a1 = al[i + 1];
         for (int v = 0; v < NV; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
-        acc_analysis(acc + (size_t)i * s, B->p2, in, np, nc, odd_first);
+        acc_analysis(acc + (size_t)i * s, B->p2, in, ld, nc, odd_first);
         for (int v = 0; v < NV; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
-        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, np, nc, !odd_first);
+        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, ld, nc, !odd_first);
     }
     if (i < nl) {
         for (int v = 0; v < NV; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
-        acc_analysis(acc + (size_t)i * s, B->p2, in, np, nc, odd_first);
+        acc_analysis(acc + (size_t)i * s, B->p2, in, ld, nc, odd_first);
     }
 }
 
 void KN(sh__sht_analysis)(const sht_kjob *j)
 {
-    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
+    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, ld = j->ld, s = 2 * nc;
     const double *al = j->alpha;
     vd *acc = (vd *)j->acc;
     memset(acc, 0, sizeof(vd) * (size_t)nl * s);
@@ -215,19 +215,19 @@ void KN(sh__sht_analysis)(const sht_kjob *j)
         if (kind == 1) i = run_dead(&B, al, 0, nl);
         else {
             for (int v = 0; v < NV; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
-            acc_analysis(acc, q, in, np, nc, 0); /* i = 0: l = m */
+            acc_analysis(acc, q, in, ld, nc, 0); /* i = 0: l = m */
         }
         if (kind != 3) /* some lanes still scaled: checked steps, live lanes accumulated */
             while (i < nl) {
                 const int e = i + 4 < nl ? i + 4 : nl;
                 for (; i < e; i++) {
                     step_checked(&B, al[i], q);
-                    acc_analysis(acc + (size_t)i * s, q, in, np, nc, i & 1);
+                    acc_analysis(acc + (size_t)i * s, q, in, ld, nc, i & 1);
                 }
                 if (blk_all_live(&B)) break;
             }
-        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, np, nc, 1);
-        else plain_analysis(&B, al, i, nl, acc, in, np, nc, 0);
+        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, ld, nc, 1);
+        else plain_analysis(&B, al, i, nl, acc, in, ld, nc, 0);
     }
     /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i) */
     for (int i = 0; i < nl; i++)
@@ -267,7 +267,7 @@ plain_synthesis(blk_t *B, const double *al, int i, int nl, vd (*E)[NV], vd (*O)[
 /* cin[i·2nc + 2c + k]: the coefficients of this m already multiplied by g_i. */
 void KN(sh__sht_synthesis)(const sht_kjob *j)
 {
-    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
+    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, ld = j->ld, s = 2 * nc;
     const double *al = j->alpha, *cin = j->in;
     for (int b = 0; b < np; b += BLK) {
         blk_t B;
@@ -298,11 +298,11 @@ void KN(sh__sht_synthesis)(const sht_kjob *j)
         /* north = E + O, south = E − O */
         for (int c = 0; c < nc; c++)
             for (int k = 0; k < 2; k++) {
-                double *north = j->out + (size_t)(4 * c + k) * np + b;
-                double *south = j->out + (size_t)(4 * c + 2 + k) * np + b;
+                double *north = j->out + (size_t)(4 * c + k) * ld + b;
+                double *south = j->out + (size_t)(4 * c + 2 + k) * ld + b;
                 for (int v = 0; v < NV; v++) {
-                    st(north + v * VL, E[2 * c + k][v] + O[2 * c + k][v]);
-                    st(south + v * VL, E[2 * c + k][v] - O[2 * c + k][v]);
+                    vstore(north + v * VL, E[2 * c + k][v] + O[2 * c + k][v]);
+                    vstore(south + v * VL, E[2 * c + k][v] - O[2 * c + k][v]);
                 }
             }
     }

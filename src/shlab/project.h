@@ -134,7 +134,9 @@ int sh_grid_gauss(int nrings, int nphi, double *cos_theta, double *weight, sh_gr
  * weight = the exact pixel solid angle (weight may be NULL). */
 int sh_grid_latlong(int width, int height, double *cos_theta, double *weight, sh_grid *g);
 /* Bytes a plan needs (its tables, chunk buffers and per-thread scratch; the
- * map and coefficients are the caller's); 0 for an invalid request. */
+ * map and coefficients are the caller's); 0 for an invalid request.
+ * cos_theta may be NULL: the rings are then taken to pair up (the size
+ * before the rings are made). */
 size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads);
 int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht **out);
 void sh_sht_destroy(sh_sht *p);
