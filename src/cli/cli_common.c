@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 int cli_fail(const char *fmt, ...)
@@ -305,19 +306,27 @@ void cli_progress_step_est(void *ctx, int done, int total, const char *what)
 
 double cli_mem_available(void)
 {
+    double avail = 0.0;
     FILE *f = fopen("/proc/meminfo", "r");
     if (f) {
         char line[256];
         unsigned long long kb;
         while (fgets(line, sizeof line, f))
             if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
-                fclose(f);
-                return (double)kb * 1024.0;
+                avail = (double)kb * 1024.0;
+                break;
             }
         fclose(f);
     }
-    const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-    return pages > 0 && size > 0 ? (double)pages * size : 0.0;
+    if (avail <= 0.0) {
+        const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+        avail = pages > 0 && size > 0 ? (double)pages * size : 0.0;
+    }
+    /* an address-space limit (ulimit -v) binds first */
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && (avail <= 0.0 || (double)rl.rlim_cur < avail))
+        avail = (double)rl.rlim_cur;
+    return avail;
 }
 
 int cli_mem_check(const char *cmd, double bytes, const char *what)

@@ -1,0 +1,266 @@
+/* cli_peers.c — `shlab bench --peers` (and `make bench-peers`): shlab's
+ * spherical harmonic transforms against libsharp's, timed interleaved in one
+ * process on the same rings, with the ratio of every repeat and the
+ * agreement of the results. */
+#include "cli.h"
+
+#include "measure/peers/peer_sharp.h"
+
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char help[] =
+    "Usage: shlab bench --peers [--lmax LIST] [--repeat R] [--threads N] [OPTIONS]\n"
+    "\n"
+    "Time shlab's spherical harmonic transforms against libsharp's (the peer),\n"
+    "interleaved in one process: analysis (shlab sh_sht_analysis, libsharp\n"
+    "map2alm) and synthesis (sh_sht_synthesis, alm2map) of order lmax+1 on\n"
+    "libsharp's Gauss-Legendre grid, lmax+1 rings × 2·lmax+2 points, both given\n"
+    "exactly the same rings and map.  Each repeat times the four calls once,\n"
+    "alternating which library goes first; ms are medians over the repeats,\n"
+    "ratio = shlab / libsharp per repeat (median, min, max), so that a load\n"
+    "shared by both sides cancels.  agreement = ‖shlab − libsharp‖₂ / ‖libsharp‖₂\n"
+    "of the coefficients (analysis) or map values (synthesis) of the first\n"
+    "repeat; max_rel = max|shlab − libsharp| / max|libsharp|.\n"
+    "\n"
+    "  --lmax LIST        band limits (comma separated; default 255,511)\n"
+    "  --repeat R         timed repeats (default 11)\n"
+    "  --threads N        threads of both libraries (default 1; 0: all cores)\n"
+    "  --quiet            no progress on stderr\n"
+    "  --format table|csv|json\n"
+    "  --help             this text\n"
+    "\n"
+    "JSON: {\"peer\",\"threads\",\"repeat\",\"kernel\",\"rows\":[{\"lmax\",\"transform\",\"nrings\",\n"
+    "       \"nphi\",\"shlab_ms\",\"peer_ms\",\"ratio\",\"ratio_min\",\"ratio_max\",\"agreement\",\n"
+    "       \"max_rel\"}]}\n";
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_d);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void agreement(const double *a, const double *b, size_t n, double *l2, double *mx)
+{
+    double d = 0.0, nb = 0.0, dm = 0.0, bm = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        d += (a[i] - b[i]) * (a[i] - b[i]);
+        nb += b[i] * b[i];
+        dm = fmax(dm, fabs(a[i] - b[i]));
+        bm = fmax(bm, fabs(b[i]));
+    }
+    *l2 = nb > 0.0 ? sqrt(d / nb) : sqrt(d);
+    *mx = bm > 0.0 ? dm / bm : dm;
+}
+
+typedef struct {
+    double shlab_ms, peer_ms, ratio, ratio_min, ratio_max, agree, max_rel;
+} peer_row;
+
+/* Time one lmax; rows[0] analysis, rows[1] synthesis. */
+static int time_lmax(int lmax, int repeat, int threads, const char **kernel, peer_row rows[2])
+{
+    const int order = lmax + 1, nn = order * order;
+    sh_peer_sharp *ps = NULL;
+    sh_sht *p = NULL;
+    int st = sh_peer_sharp_gauss(lmax, &ps);
+    if (st) return cli_fail_status(st);
+    int nr, np;
+    double phi0;
+    sh_peer_sharp_rings(ps, &nr, &np, NULL, NULL, &phi0);
+    const size_t nm = (size_t)nr * np;
+    double *x = malloc(sizeof(double) * nr * 2), *map = malloc(sizeof(double) * nm);
+    double *map2 = malloc(sizeof(double) * nm), *c = malloc(sizeof(double) * nn);
+    double *c2 = malloc(sizeof(double) * nn), *t = malloc(sizeof(double) * repeat * 6);
+    int rc = 0;
+    if (!x || !map || !map2 || !c || !c2 || !t) {
+        rc = cli_fail("bench --peers: out of memory at lmax %d", lmax);
+        goto out;
+    }
+    sh_peer_sharp_rings(ps, &nr, &np, x, x + nr, &phi0);
+    const sh_grid g = {nr, np, x, x + nr, phi0};
+    if ((st = sh_sht_create(order, &g, 1, threads, &p))) {
+        rc = cli_fail_status(st);
+        goto out;
+    }
+    *kernel = sh_sht_kernel_name(p);
+    sh_peer_sharp_threads(threads);
+    /* a seeded map and coefficient vector (values in [-1, 1)) */
+    unsigned long s = 12345;
+    for (size_t i = 0; i < nm; i++) map[i] = (double)((s = s * 6364136223846793005UL + 1442695040888963407UL) >> 11) * 0x1p-52 - 1.0;
+    for (int i = 0; i < nn; i++) c[i] = (double)((s = s * 6364136223846793005UL + 1442695040888963407UL) >> 11) * 0x1p-52 - 1.0;
+    double *ts = t, *tp = t + repeat, *us = t + 2 * repeat, *up = t + 3 * repeat;
+    double *ra = t + 4 * repeat, *rs = t + 5 * repeat;
+    for (int r = -1; r < repeat; r++) { /* r = −1: warm-up, and the agreement */
+        double a0, a1, b0, b1;
+        (void)a0, (void)b0;
+        for (int side = 0; side < 2; side++) {
+            const int first = (r & 1) ? !side : side; /* alternate who goes first */
+            if (first == 0) {
+                a0 = now_s();
+                st = sh_sht_analysis(p, SH_CS, map, c2);
+                a1 = now_s();
+                st = st ? st : sh_sht_synthesis(p, SH_CS, c, map2);
+                const double a2 = now_s();
+                if (r >= 0) ts[r] = a1 - a0, us[r] = a2 - a1;
+            } else {
+                b0 = now_s();
+                sh_peer_sharp_map2alm(ps, map);
+                b1 = now_s();
+                sh_peer_sharp_set_cs(ps, c); /* libsharp's input layout, not timed */
+                const double b2 = now_s();
+                sh_peer_sharp_alm2map(ps, map2);
+                const double b3 = now_s();
+                if (r >= 0) tp[r] = b1 - b0, up[r] = b3 - b2;
+            }
+            if (st) {
+                rc = cli_fail_status(st);
+                goto out;
+            }
+        }
+        if (r < 0) { /* agreement: redo each side into its own buffer */
+            double *m1 = malloc(sizeof(double) * nm), *k1 = malloc(sizeof(double) * nn);
+            if (!m1 || !k1) {
+                free(m1), free(k1);
+                rc = cli_fail("bench --peers: out of memory at lmax %d", lmax);
+                goto out;
+            }
+            sh_sht_analysis(p, SH_CS, map, c2);
+            sh_peer_sharp_map2alm(ps, map);
+            sh_peer_sharp_get_cs(ps, k1);
+            agreement(c2, k1, (size_t)nn, &rows[0].agree, &rows[0].max_rel);
+            sh_sht_synthesis(p, SH_CS, c, map2);
+            sh_peer_sharp_set_cs(ps, c);
+            sh_peer_sharp_alm2map(ps, m1);
+            agreement(map2, m1, nm, &rows[1].agree, &rows[1].max_rel);
+            free(m1), free(k1);
+        } else {
+            ra[r] = ts[r] / tp[r];
+            rs[r] = us[r] / up[r];
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        double *num = k ? us : ts, *den = k ? up : tp, *rat = k ? rs : ra;
+        qsort(rat, (size_t)repeat, sizeof *rat, cmp_d);
+        rows[k].ratio_min = rat[0];
+        rows[k].ratio_max = rat[repeat - 1];
+        rows[k].ratio = median(rat, repeat);
+        rows[k].shlab_ms = 1e3 * median(num, repeat);
+        rows[k].peer_ms = 1e3 * median(den, repeat);
+    }
+out:
+    sh_sht_destroy(p);
+    sh_peer_sharp_destroy(ps);
+    free(x), free(map), free(map2), free(c), free(c2), free(t);
+    return rc;
+}
+
+int cli_bench_peers(const cli_command *bench, int argc, char **argv)
+{
+    static const struct option opts[] = {CLI_LONGOPTS_BASE,
+                                         {"peers", no_argument, 0, 'P'},
+                                         {"lmax", required_argument, 0, 'l'},
+                                         {"repeat", required_argument, 0, 'r'},
+                                         {"threads", required_argument, 0, 'T'},
+                                         {"quiet", no_argument, 0, 'q'},
+                                         {0, 0, 0, 0}};
+    cli_common com = CLI_COMMON_DEFAULTS;
+    int lmaxs[16] = {255, 511}, nl = 2, repeat = 11, threads = 1, quiet = 0;
+    opterr = 0;
+    optind = 1;
+    int o;
+    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        switch (o) {
+        case 'h': fputs(help, stdout); return fflush(stdout) ? CLI_EXIT_USAGE : CLI_EXIT_OK;
+        case 'P': break;
+        case 'l': {
+            double *v;
+            int n;
+            if (cli_doubles("--lmax", optarg, &v, &n)) return CLI_EXIT_USAGE;
+            if (n < 1 || n > 16) {
+                free(v);
+                return cli_fail("--lmax: give 1 to 16 values");
+            }
+            for (int k = 0; k < n; k++)
+                if (!(v[k] >= 0 && v[k] <= SHLAB_MAX_ORDER - 1) || v[k] != floor(v[k])) {
+                    free(v);
+                    return cli_fail("--lmax: each value must be an integer in 0..%d", SHLAB_MAX_ORDER - 1);
+                }
+            for (int k = 0; k < n; k++) lmaxs[k] = (int)v[k];
+            nl = n;
+            free(v);
+            break;
+        }
+        case 'r':
+            if (cli_int("--repeat", optarg, &repeat)) return CLI_EXIT_USAGE;
+            if (repeat < 1 || repeat > 1000) return cli_fail("--repeat must be in 1..1000, got %d", repeat);
+            break;
+        case 'T':
+            if (cli_int("--threads", optarg, &threads)) return CLI_EXIT_USAGE;
+            if (threads < 0 || threads > 1024) return cli_fail("--threads must be in 0..1024, got %d", threads);
+            break;
+        case 'q': quiet = 1; break;
+        default: {
+            const int r = cli_common_opt(bench, o, argv, &com);
+            if (r >= 0) return r;
+        }
+        }
+    }
+    if (optind < argc) return cli_fail("bench: unexpected argument '%s'", argv[optind]);
+    if (!sh_peer_sharp_available())
+        return cli_fail("bench --peers: libsharp was not found when shlab was built (Debian: libsharp-dev)");
+    json_t *rows = json_array();
+    const char *kernel = "";
+    cli_progress prog;
+    cli_progress_start(&prog, "bench", quiet);
+    for (int k = 0; k < nl && rows; k++) {
+        peer_row pr[2];
+        const int rc = time_lmax(lmaxs[k], repeat, threads, &kernel, pr);
+        if (rc) {
+            json_decref(rows);
+            return rc;
+        }
+        for (int t = 0; t < 2 && rows; t++) {
+            json_t *row = json_object();
+            row = cli_put(row, "lmax", json_integer(lmaxs[k]));
+            row = cli_put(row, "transform", json_string(t ? "synthesis" : "analysis"));
+            row = cli_put(row, "nrings", json_integer(lmaxs[k] + 1));
+            row = cli_put(row, "nphi", json_integer(2 * lmaxs[k] + 2));
+            row = cli_put(row, "shlab_ms", json_real(pr[t].shlab_ms));
+            row = cli_put(row, "peer_ms", json_real(pr[t].peer_ms));
+            row = cli_put(row, "ratio", json_real(pr[t].ratio));
+            row = cli_put(row, "ratio_min", json_real(pr[t].ratio_min));
+            row = cli_put(row, "ratio_max", json_real(pr[t].ratio_max));
+            row = cli_put(row, "agreement", json_real(pr[t].agree));
+            row = cli_put(row, "max_rel", json_real(pr[t].max_rel));
+            if (!row || json_array_append_new(rows, row)) {
+                json_decref(rows);
+                rows = NULL;
+            }
+        }
+        cli_progress_step(&prog, k + 1, nl, "band limits");
+    }
+    json_t *root = json_object();
+    root = cli_put(root, "peer", json_string("libsharp"));
+    root = cli_put(root, "threads", json_integer(threads));
+    root = cli_put(root, "repeat", json_integer(repeat));
+    root = cli_put(root, "kernel", json_string(kernel));
+    root = cli_put(root, "rows", rows);
+    return cli_emit(root, com.fmt);
+}
