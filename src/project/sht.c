@@ -46,9 +46,7 @@
 #include <omp.h>
 #endif
 
-/* Lanes are handled in groups of GRP (one cache line of doubles) so that
- * the m-major chunk buffers are written a line at a time. */
-#define GRP 8
+#define GRP SHT_GRP
 _Static_assert(SHT_LANES % GRP == 0, "groups must tile a chunk");
 
 /* Working memory budget for the chunk buffers (the m-spectra of a chunk). */
@@ -72,8 +70,8 @@ struct sh_sht {
     sht_kern_fn ana, syn;
     fftw_plan r2c, c2r;
     /* chunk buffers */
-    double *cx, *cmant, *cscl;  /* cx[chunk]; cmant, cscl[(lmax+1)·chunk] */
-    double *cdata;              /* [(lmax+1)·nchan·4·chunk] */
+    double *cx, *cmant, *cscl;  /* cx[chunk]; cmant, cscl: [group][m][SHT_GRP] */
+    double *cdata;              /* [group][m][nchan·4][SHT_GRP] (sht_internal.h) */
     double *alm;                /* coefficients m-major: m at alm + moff[m]·nchan, then
                                    [(l−m)·nchan + c]·2 + {0, 1} for c_l^{m}, c_l^{−m} */
     /* per-thread scratch */
@@ -81,7 +79,6 @@ struct sh_sht {
     fftw_complex **spec;        /* nphi/2+1 (fftw_malloc) */
     fftw_complex **fold;        /* nphi, when nphi ≤ 2·lmax (aliasing), else NULL */
     double **acc;               /* analysis lane accumulators, 64-byte aligned */
-    double **stage;             /* (lmax+1)·nchan·4·GRP: the m-data of one group of lanes */
     sh_progress_fn progress;
     void *pctx;
 };
@@ -224,7 +221,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
          ((double)nchan * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
-          L1 * nchan * 2 * 8 + 8 + (L1 * nchan * 4 + 24) * 8);
+          L1 * nchan * 2 * 8 + 8);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
 }
@@ -245,9 +242,8 @@ void sh_sht_destroy(sh_sht *p)
         if (p->spec) fftw_free(p->spec[t]);
         if (p->fold) fftw_free(p->fold[t]);
         if (p->acc) free(p->acc[t]);
-        if (p->stage) free(p->stage[t]);
     }
-    free(p->ring), free(p->spec), free(p->fold), free(p->acc), free(p->stage);
+    free(p->ring), free(p->spec), free(p->fold), free(p->acc);
     free(p->pn), free(p->ps), free(p->px), free(p->psin), free(p->w), free(p->rc), free(p->moff);
     free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->alm);
     free(p);
@@ -309,19 +305,16 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->spec = calloc(T, sizeof *p->spec);
     p->fold = calloc(T, sizeof *p->fold);
     p->acc = calloc(T, sizeof *p->acc);
-    p->stage = calloc(T, sizeof *p->stage);
     int bad = !p->pn || !p->ps || !p->px || !p->psin || (g->weight && !p->w) || !p->rc || !p->moff ||
               !p->fm || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
-              !p->ring || !p->spec || !p->fold || !p->acc || !p->stage || !p->alm;
+              !p->ring || !p->spec || !p->fold || !p->acc || !p->alm;
     const size_t accn = (size_t)(L + 1) * nchan * 2 * 8;
     for (int t = 0; t < T && !bad; t++) {
         p->ring[t] = fftw_malloc(sizeof(double) * (size_t)nchan * N);
         p->spec[t] = fftw_malloc(sizeof(fftw_complex) * (size_t)(N / 2 + 1));
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
-        p->stage[t] = malloc(sizeof(double) * ((size_t)(L + 1) * nchan * 4 + 24) * GRP);
-        bad = !p->ring[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] ||
-              !p->stage[t];
+        bad = !p->ring[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t];
     }
     if (bad) {
         sh_sht_destroy(p);
@@ -406,8 +399,12 @@ static inline int thread_id(void)
 }
 
 
-/* Sectoral seeds of lanes [i0, i0+GRP) of the chunk starting at pair q0 (n
- * pairs): Q_m^m(x) = mant·2^(800·k) by the product of legendre.c,
+/* Group strides (doubles) of the chunk buffers. */
+static inline size_t seed_stride(const sh_sht *p) { return (size_t)(p->lmax + 1) * GRP; }
+static inline size_t data_stride(const sh_sht *p) { return (size_t)(p->lmax + 1) * p->nchan * 4 * GRP; }
+
+/* Sectoral seeds of lanes [i0, i0+GRP) (one group) of the chunk starting at
+ * pair q0 (n pairs): Q_m^m(x) = mant·2^(800·k) by the product of legendre.c,
  * Q_m^m = −sqrt((2m+1)/(2m))·s·Q_{m−1}^{m−1}, renormalised whenever the
  * mantissa falls below 2^−400.  Padding lanes get 0. */
 static void seeds_group(sh_sht *p, int q0, int n, int i0)
@@ -415,7 +412,8 @@ static void seeds_group(sh_sht *p, int q0, int n, int i0)
     typedef double v8 __attribute__((vector_size(GRP * sizeof(double))));
     typedef long long m8 __attribute__((vector_size(GRP * sizeof(double))));
     const int L = p->lmax;
-    const size_t C = (size_t)p->chunk;
+    double *mant = p->cmant + (size_t)(i0 / GRP) * seed_stride(p);
+    double *scl = p->cscl + (size_t)(i0 / GRP) * seed_stride(p);
     v8 s, P, k = {0};
     for (int g = 0; g < GRP; g++) {
         const int live = i0 + g < n;
@@ -431,18 +429,24 @@ static void seeds_group(sh_sht *p, int q0, int n, int i0)
             P *= (v8)(((m8)big & low) | ((m8)one & ~low));
             k -= (v8)((m8)one & low);
         }
-        memcpy(p->cmant + m * C + i0, &P, sizeof P);
-        memcpy(p->cscl + m * C + i0, &k, sizeof k);
+        memcpy(mant + (size_t)m * GRP, &P, sizeof P);
+        memcpy(scl + (size_t)m * GRP, &k, sizeof k);
     }
 }
 
 static sht_kjob job_for(const sh_sht *p, int m, int npad)
 {
     const int nl = p->lmax - m + 1;
-    const size_t C = (size_t)p->chunk;
-    sht_kjob j = {m, p->lmax, p->nchan, npad, p->chunk, p->cx, p->cmant + m * C, p->cscl + m * C,
-                  p->rc + p->moff[m], p->rc + p->moff[m] + nl, NULL, NULL, NULL};
+    sht_kjob j = {m, p->lmax, p->nchan, npad, p->cx, p->cmant + (size_t)m * GRP, p->cscl + (size_t)m * GRP,
+                  seed_stride(p), data_stride(p), p->rc + p->moff[m], p->rc + p->moff[m] + nl,
+                  NULL, NULL, NULL};
     return j;
+}
+
+/* Row r of lane i0 + g's m-data in the chunk buffer (the group of i0). */
+static inline double *data_at(sh_sht *p, int i0, int m, int c, int k)
+{
+    return p->cdata + (size_t)(i0 / GRP) * data_stride(p) + (((size_t)m * p->nchan + c) * 4 + k) * GRP;
 }
 
 /* The first failure among rings, by ring index, so that the reported error
@@ -462,45 +466,9 @@ static void note_err(first_err *e, int st, int ring)
     }
 }
 
-/* Per-thread staging of one group of lanes, lane-major: lane g's m-data at
- * [g·R + (m·nc + c)·4 + k], R = (lmax+1)·nc·4; moved to and from the m-major
- * chunk buffer (row (m·nc + c)·4 + k, lane i) a group at a time. */
-/* Lane stride of the staging: R rounded up to an odd number of cache lines,
- * so that the GRP lanes read side by side do not share cache sets. */
-static inline size_t stage_stride(const sh_sht *p)
-{
-    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4;
-    return (R + 7) / 16 * 16 + 8;
-}
-
-static inline double *stage_at(sh_sht *p, int t, int g, int m, int c)
-{
-    return p->stage[t] + (size_t)g * stage_stride(p) + ((size_t)m * p->nchan + c) * 4;
-}
-
-static void stage_flush(sh_sht *p, int t, int i0)
-{
-    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4, S = stage_stride(p);
-    const double *st = p->stage[t];
-    for (size_t r = 0; r < R; r++) {
-        double *d = p->cdata + r * p->chunk + i0;
-        for (int g = 0; g < GRP; g++) d[g] = st[g * S + r];
-    }
-}
-
-static void stage_load(sh_sht *p, int t, int i0)
-{
-    const size_t R = (size_t)(p->lmax + 1) * p->nchan * 4, S = stage_stride(p);
-    double *st = p->stage[t];
-    for (size_t r = 0; r < R; r++) {
-        const double *d = p->cdata + r * p->chunk + i0;
-        for (int g = 0; g < GRP; g++) st[g * S + r] = d[g];
-    }
-}
-
 /* Between shlab's flat layout (l(l+1)+m per channel) and the m-major alm,
  * in blocks of LBLK bands so that both sides stay in cache. */
-#define LBLK 16
+#define LBLK 64
 
 static inline double mfactor(sh_convention conv, int m)
 {
@@ -553,12 +521,13 @@ static void flat_to_alm(sh_sht *p, sh_convention conv, const double *coeffs, con
 /* ------------------------------------------------------------- analysis */
 
 /* Spectrum X of ring r, channel c, scaled by the ring weight and the φ0
- * phase, staged for every m into lane g as S (+) and D (±). */
-static void scatter_ring(sh_sht *p, int t, const fftw_complex *X, double w, int c, int g, int south)
+ * phase, written for every m into lane i0 + g of the chunk as S (+) and D (±). */
+static void scatter_ring(sh_sht *p, const fftw_complex *X, double w, int c, int i0, int g, int south)
 {
-    const int L = p->lmax, N = p->nphi, nc = p->nchan;
-    double *d = stage_at(p, t, g, 0, c);
-    for (int m = 0; m <= L; m++, d += 4 * nc) {
+    const int L = p->lmax, N = p->nphi;
+    const size_t step = (size_t)p->nchan * 4 * GRP;
+    double *d = data_at(p, i0, 0, c, 0) + g;
+    for (int m = 0; m <= L; m++, d += step) {
         double fr, fi; /* F_m = Σ_j f_j e^{−2πijm/N}, aliased for m > N/2 */
         if (2 * m <= N) {
             fr = X[m][0], fi = X[m][1];
@@ -571,9 +540,9 @@ static void scatter_ring(sh_sht *p, int t, const fftw_complex *X, double w, int 
         const double A = w * (p->cph[m] * fr + p->sph[m] * fi);
         const double B = -w * (p->cph[m] * fi - p->sph[m] * fr);
         if (!south) {
-            d[0] = A, d[1] = B, d[2] = A, d[3] = B;
+            d[0] = A, d[GRP] = B, d[2 * GRP] = A, d[3 * GRP] = B;
         } else {
-            d[0] += A, d[1] += B, d[2] -= A, d[3] -= B;
+            d[0] += A, d[GRP] += B, d[2 * GRP] -= A, d[3 * GRP] -= B;
         }
     }
 }
@@ -589,13 +558,16 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;
         const int npad = (n + SHT_LANES - 1) / SHT_LANES * SHT_LANES;
-        /* (1) rings, a group of lanes at a time: seeds; fill, FFT, stage, flush */
+        /* (1) rings, a group of lanes at a time: seeds; fill, FFT, scatter */
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
         for (int i0 = 0; i0 < npad; i0 += GRP) {
             const int t = thread_id();
             seeds_group(p, q0, n, i0);
-            for (int g = n - i0 > 0 ? n - i0 : 0; g < GRP; g++) /* padding lanes */
-                memset(stage_at(p, t, g, 0, 0), 0, sizeof(double) * (size_t)(L + 1) * nc * 4);
+            if (n - i0 < GRP) { /* padding lanes */
+                double *d = data_at(p, i0, 0, 0, 0);
+                for (size_t r = 0; r < (size_t)(L + 1) * nc * 4; r++)
+                    for (int g = n - i0 > 0 ? n - i0 : 0; g < GRP; g++) d[r * GRP + g] = 0.0;
+            }
             for (int g = 0; g < GRP && i0 + g < n; g++)
                 for (int side = 0; side < 2; side++) {
                     const int r = side ? p->ps[q0 + i0 + g] : p->pn[q0 + i0 + g];
@@ -607,17 +579,16 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
                     }
                     for (int c = 0; c < nc; c++) {
                         fftw_execute_dft_r2c(p->r2c, p->ring[t] + (size_t)c * N, p->spec[t]);
-                        scatter_ring(p, t, (const fftw_complex *)p->spec[t], p->w[r], c, g, side);
+                        scatter_ring(p, (const fftw_complex *)p->spec[t], p->w[r], c, i0, g, side);
                     }
                 }
-            stage_flush(p, t, i0);
         }
         if (err.st) break;
         /* (2) Legendre sums, m by m, added to the m-major coefficients */
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
         for (int m = 0; m <= L; m++) {
             sht_kjob j = job_for(p, m, npad);
-            j.in = p->cdata + (size_t)m * nc * 4 * p->chunk;
+            j.in = data_at(p, 0, m, 0, 0);
             j.out = p->alm + p->moff[m] * nc;
             j.acc = p->acc[thread_id()];
             p->ana(&j);
@@ -632,18 +603,19 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
 
 /* ------------------------------------------------------------ synthesis */
 
-/* Ring values from the staged m-data of lane g (side 0 north, 1 south),
+/* Ring values from the m-data of lane i0 + g (side 0 north, 1 south),
  * channel c, into out[0..N): f_j = Re Σ_m z_m e^{imφ0} e^{2πijm/N}. */
-static void gather_ring(sh_sht *p, int t, int c, int g, int side, double *out)
+static void gather_ring(sh_sht *p, int t, int c, int i0, int g, int side, double *out)
 {
     const int L = p->lmax, N = p->nphi;
     fftw_complex *H = p->spec[t];
     memset(H, 0, sizeof(fftw_complex) * (size_t)(N / 2 + 1));
     fftw_complex *Z = p->fold[t];
     if (Z) memset(Z, 0, sizeof(fftw_complex) * (size_t)N);
-    const double *d = stage_at(p, t, g, 0, c) + 2 * side;
-    for (int m = 0; m <= L; m++, d += 4 * p->nchan) {
-        const double a = d[0], b = d[1];
+    const size_t step = (size_t)p->nchan * 4 * GRP;
+    const double *d = data_at(p, i0, 0, c, 2 * side) + g;
+    for (int m = 0; m <= L; m++, d += step) {
+        const double a = d[0], b = d[GRP];
         /* z e^{imφ0} with z = a − ib */
         const double zr = a * p->cph[m] + b * p->sph[m], zi = a * p->sph[m] - b * p->cph[m];
         if (Z) {
@@ -685,19 +657,18 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
         for (int m = 0; m <= L; m++) {
             sht_kjob j = job_for(p, m, npad);
             j.in = p->alm + p->moff[m] * nc;
-            j.out = p->cdata + (size_t)m * nc * 4 * p->chunk;
+            j.out = data_at(p, 0, m, 0, 0);
             p->syn(&j);
         }
-        /* (2) rings, a group of lanes at a time: stage, fold, inverse FFT, hand out */
+        /* (2) rings, a group of lanes at a time: fold, inverse FFT, hand out */
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
         for (int i0 = 0; i0 < n; i0 += GRP) {
             const int t = thread_id();
-            stage_load(p, t, i0);
             for (int g = 0; g < GRP && i0 + g < n; g++)
                 for (int side = 0; side < 2; side++) {
                     const int r = side ? p->ps[q0 + i0 + g] : p->pn[q0 + i0 + g];
                     if (r < 0) break;
-                    for (int c = 0; c < nc; c++) gather_ring(p, t, c, g, side, p->ring[t] + (size_t)c * N);
+                    for (int c = 0; c < nc; c++) gather_ring(p, t, c, i0, g, side, p->ring[t] + (size_t)c * N);
                     const int st = put(ctx, r, p->ring[t]);
                     if (st) {
                         note_err(&err, st, r);

@@ -18,18 +18,25 @@
 #define SHT_SCALE 800
 #define SHT_RESCALE 400
 
-/* One job of the Legendre stage: one m, every ring pair of one chunk. */
+/* Lanes (ring pairs) are stored in groups of SHT_GRP, one cache line of
+ * doubles: the chunk buffers are group-major, [group][m][row][SHT_GRP], so
+ * that the ring stage writes and reads one group's region contiguously and
+ * the Legendre stage reads, for one m, a line per group and row. */
+#define SHT_GRP 8
+
+/* One job of the Legendre stage: one m, every ring pair of one chunk.  Lane
+ * i of a per-m array A lives at A[(i / SHT_GRP)·stride + i % SHT_GRP]. */
 typedef struct {
     int m, lmax, nchan, npad;   /* npad: lanes, a multiple of SHT_LANES */
-    int ld;                     /* row stride of the [nchan][4][·] lane arrays (≥ npad) */
     const double *x;            /* [npad] cosθ of the pair's north ring (0 for padding) */
-    const double *mant, *scl;   /* [npad] Q_m^m(x) = mant · 2^(SHT_SCALE·scl) */
+    const double *mant, *scl;   /* Q_m^m(x) = mant · 2^(SHT_SCALE·scl), group stride sstride */
+    size_t sstride, dstride;    /* group strides of the seeds and of in/out */
     const double *alpha, *g;    /* scaled recursion of this m (sht_kern.c), indexed by l − m */
-    /* analysis: in  = [nchan][4][ld] (S_re, S_im, D_re, D_im: north ± south),
-     *           out[(l−m)·nchan·2 + 2c + k] += Σ_lanes Q_l^m · (S or D)_k, k = re, im;
-     *           acc: scratch of (lmax−m+1)·nchan·2·8 doubles.
-     * synthesis: in = [(l−m)·nchan·2 + 2c + k] coefficients of this m,
-     *           out = [nchan][4][ld] (north re, north im, south re, south im). */
+    /* analysis: in  = rows (4c + k)·SHT_GRP, k = S_re, S_im, D_re, D_im (north ± south),
+     *           out[(l−m)·nchan·2 + 2c + k] += g_{l−m} Σ_lanes Q_l^m · (S or D)_k, k = re, im;
+     *           acc: scratch of (lmax−m+1)·nchan·2·8 doubles, 64-byte aligned.
+     * synthesis: in = [(l−m)·nchan·2 + 2c + k] coefficients of this m (times g),
+     *           out = rows (4c + k)·SHT_GRP, k = north re, north im, south re, south im. */
     const double *in;
     double *out, *acc;
 } sht_kjob;

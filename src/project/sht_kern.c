@@ -57,6 +57,7 @@
 #endif
 #define BLK (VL * NV)
 _Static_assert(SHT_LANES % BLK == 0, "a chunk must hold whole kernel blocks");
+_Static_assert(SHT_GRP % VL == 0, "a vector must lie in one group of lanes");
 
 typedef double vd __attribute__((vector_size(VL * 8)));
 typedef long long vm __attribute__((vector_size(VL * 8)));
@@ -95,10 +96,15 @@ static inline double hsum(vd v)
 static inline int all_set(vm m) { return msk_bits(m) == (1u << VL) - 1; }
 static inline int any_set(vm m) { return msk_bits(m) != 0; }
 
-/* State of one block: NV vectors of lanes. */
+/* State of one block: NV vectors of lanes; off[v]: where vector v's lanes
+ * start in a group-major array of group stride 1 row (see lane_off). */
 typedef struct {
     vd x[NV], p1[NV], p2[NV], sc[NV];
+    size_t doff[NV];
 } blk_t;
+
+/* Offset of lane i in a group-major array with group stride `stride`. */
+static inline size_t lane_off(int i, size_t stride) { return (size_t)(i / SHT_GRP) * stride + i % SHT_GRP; }
 
 /* Returns 0 if every seed of the block is zero (padding, poles), 1 if no lane
  * lives yet, 2 if some do, 3 if all do. */
@@ -106,9 +112,11 @@ static inline int blk_load(blk_t *B, const sht_kjob *j, int b)
 {
     vm nz = {0}, live = (vm){0} - 1, some = {0};
     for (int v = 0; v < NV; v++) {
+        const size_t so = lane_off(b + v * VL, j->sstride);
+        B->doff[v] = lane_off(b + v * VL, j->dstride);
         B->x[v] = vload(j->x + b + v * VL);
-        B->p1[v] = vload(j->mant + b + v * VL);
-        B->sc[v] = vload(j->scl + b + v * VL);
+        B->p1[v] = vload(j->mant + so);
+        B->sc[v] = vload(j->scl + so);
         B->p2[v] = bc(0.0);
         nz |= B->p1[v] != 0.0;
         live &= B->sc[v] == 0.0;
@@ -165,15 +173,16 @@ static inline int run_dead(blk_t *B, const double *al, int i, int nl)
 
 /* ------------------------------------------------------------ analysis */
 
-/* acc[2c + k] += Σ_v q[v] · in[(4c + 2·odd + k)·ld + v·VL] */
-static inline void acc_analysis(vd *acc, const vd *q, const double *in, int ld, int nc, int odd)
+/* acc[2c + k] += Σ_v q[v] · in[doff[v] + (4c + 2·odd + k)·SHT_GRP] */
+static inline void acc_analysis(vd *acc, const vd *q, const double *in, const size_t *doff, int nc,
+                                int odd)
 {
     for (int c = 0; c < nc; c++) {
-        const double *dr = in + (size_t)(4 * c + 2 * odd) * ld, *di = dr + ld;
+        const double *dr = in + (size_t)(4 * c + 2 * odd) * SHT_GRP, *di = dr + SHT_GRP;
         vd sr = acc[2 * c], si = acc[2 * c + 1];
         for (int v = 0; v < NV; v++) {
-            sr += q[v] * vload(dr + v * VL);
-            si += q[v] * vload(di + v * VL);
+            sr += q[v] * vload(dr + doff[v]);
+            si += q[v] * vload(di + doff[v]);
         }
         acc[2 * c] = sr;
         acc[2 * c + 1] = si;
@@ -182,52 +191,51 @@ static inline void acc_analysis(vd *acc, const vd *q, const double *in, int ld, 
 
 /* The plain loop (every lane lives) from i (odd_first: parity of i) to nl − 1. */
 static inline __attribute__((always_inline)) void
-plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int ld, int nc,
+plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int nc,
                int odd_first)
 {
     const int s = 2 * nc;
     for (; i + 1 < nl; i += 2) {
         const double a0 = al[i], a1 = al[i + 1];
         for (int v = 0; v < NV; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
-        acc_analysis(acc + (size_t)i * s, B->p2, in, ld, nc, odd_first);
+        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first);
         for (int v = 0; v < NV; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
-        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, ld, nc, !odd_first);
+        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, B->doff, nc, !odd_first);
     }
     if (i < nl) {
         for (int v = 0; v < NV; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
-        acc_analysis(acc + (size_t)i * s, B->p2, in, ld, nc, odd_first);
+        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first);
     }
 }
 
 void KN(sh__sht_analysis)(const sht_kjob *j)
 {
-    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, ld = j->ld, s = 2 * nc;
-    const double *al = j->alpha;
+    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
+    const double *al = j->alpha, *in = j->in;
     vd *acc = (vd *)j->acc;
     memset(acc, 0, sizeof(vd) * (size_t)nl * s);
     for (int b = 0; b < np; b += BLK) {
         blk_t B;
         const int kind = blk_load(&B, j, b);
         if (!kind) continue;
-        const double *in = j->in + b;
         vd q[NV];
         int i = 1;
         if (kind == 1) i = run_dead(&B, al, 0, nl);
         else {
             for (int v = 0; v < NV; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
-            acc_analysis(acc, q, in, ld, nc, 0); /* i = 0: l = m */
+            acc_analysis(acc, q, in, B.doff, nc, 0); /* i = 0: l = m */
         }
         if (kind != 3) /* some lanes still scaled: checked steps, live lanes accumulated */
             while (i < nl) {
                 const int e = i + 4 < nl ? i + 4 : nl;
                 for (; i < e; i++) {
                     step_checked(&B, al[i], q);
-                    acc_analysis(acc + (size_t)i * s, q, in, ld, nc, i & 1);
+                    acc_analysis(acc + (size_t)i * s, q, in, B.doff, nc, i & 1);
                 }
                 if (blk_all_live(&B)) break;
             }
-        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, ld, nc, 1);
-        else plain_analysis(&B, al, i, nl, acc, in, ld, nc, 0);
+        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, nc, 1);
+        else plain_analysis(&B, al, i, nl, acc, in, nc, 0);
     }
     /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i) */
     for (int i = 0; i < nl; i++)
@@ -267,7 +275,7 @@ plain_synthesis(blk_t *B, const double *al, int i, int nl, vd (*E)[NV], vd (*O)[
 /* cin[i·2nc + 2c + k]: the coefficients of this m already multiplied by g_i. */
 void KN(sh__sht_synthesis)(const sht_kjob *j)
 {
-    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, ld = j->ld, s = 2 * nc;
+    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
     const double *al = j->alpha, *cin = j->in;
     for (int b = 0; b < np; b += BLK) {
         blk_t B;
@@ -298,11 +306,11 @@ void KN(sh__sht_synthesis)(const sht_kjob *j)
         /* north = E + O, south = E − O */
         for (int c = 0; c < nc; c++)
             for (int k = 0; k < 2; k++) {
-                double *north = j->out + (size_t)(4 * c + k) * ld + b;
-                double *south = j->out + (size_t)(4 * c + 2 + k) * ld + b;
+                double *north = j->out + (size_t)(4 * c + k) * SHT_GRP;
+                double *south = j->out + (size_t)(4 * c + 2 + k) * SHT_GRP;
                 for (int v = 0; v < NV; v++) {
-                    vstore(north + v * VL, E[2 * c + k][v] + O[2 * c + k][v]);
-                    vstore(south + v * VL, E[2 * c + k][v] - O[2 * c + k][v]);
+                    vstore(north + B.doff[v], E[2 * c + k][v] + O[2 * c + k][v]);
+                    vstore(south + B.doff[v], E[2 * c + k][v] - O[2 * c + k][v]);
                 }
             }
     }
