@@ -78,6 +78,7 @@ struct sh_sht {
     double **ring;              /* nchan·nphi (fftw_malloc) */
     fftw_complex **spec;        /* nphi/2+1 (fftw_malloc) */
     fftw_complex **fold;        /* nphi, when nphi ≤ 2·lmax (aliasing), else NULL */
+    double **gsp;               /* the m-spectra of one group's rings: [(2g + side)·nchan + c][m][2] */
     double **acc;               /* analysis lane accumulators, 64-byte aligned */
     sh_progress_fn progress;
     void *pctx;
@@ -221,7 +222,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
          ((double)nchan * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
-          L1 * nchan * 2 * 8 + 8);
+          L1 * nchan * 2 * 8 + 8 + 2.0 * 8 * nchan * L1 * 2);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
 }
@@ -241,9 +242,10 @@ void sh_sht_destroy(sh_sht *p)
         if (p->ring) fftw_free(p->ring[t]);
         if (p->spec) fftw_free(p->spec[t]);
         if (p->fold) fftw_free(p->fold[t]);
+        if (p->gsp) free(p->gsp[t]);
         if (p->acc) free(p->acc[t]);
     }
-    free(p->ring), free(p->spec), free(p->fold), free(p->acc);
+    free(p->ring), free(p->spec), free(p->fold), free(p->gsp), free(p->acc);
     free(p->pn), free(p->ps), free(p->px), free(p->psin), free(p->w), free(p->rc), free(p->moff);
     free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->alm);
     free(p);
@@ -304,17 +306,19 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->ring = calloc(T, sizeof *p->ring);
     p->spec = calloc(T, sizeof *p->spec);
     p->fold = calloc(T, sizeof *p->fold);
+    p->gsp = calloc(T, sizeof *p->gsp);
     p->acc = calloc(T, sizeof *p->acc);
     int bad = !p->pn || !p->ps || !p->px || !p->psin || (g->weight && !p->w) || !p->rc || !p->moff ||
               !p->fm || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
-              !p->ring || !p->spec || !p->fold || !p->acc || !p->alm;
+              !p->ring || !p->spec || !p->fold || !p->gsp || !p->acc || !p->alm;
     const size_t accn = (size_t)(L + 1) * nchan * 2 * 8;
     for (int t = 0; t < T && !bad; t++) {
         p->ring[t] = fftw_malloc(sizeof(double) * (size_t)nchan * N);
         p->spec[t] = fftw_malloc(sizeof(fftw_complex) * (size_t)(N / 2 + 1));
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
-        bad = !p->ring[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t];
+        p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)(L + 1) * 2);
+        bad = !p->ring[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->gsp[t];
     }
     if (bad) {
         sh_sht_destroy(p);
@@ -520,29 +524,37 @@ static void flat_to_alm(sh_sht *p, sh_convention conv, const double *coeffs, con
 
 /* ------------------------------------------------------------- analysis */
 
-/* Spectrum X of ring r, channel c, scaled by the ring weight and the φ0
- * phase, written for every m into lane i0 + g of the chunk as S (+) and D (±). */
-static void scatter_ring(sh_sht *p, const fftw_complex *X, double w, int c, int i0, int g, int south)
+/* One group's rings, spectra in gsp (first min(N/2, lmax) + 1 bins; have[g][side]
+ * = 0 where there is no ring), scaled by the ring weights and the φ0 phase and
+ * written m by m into the chunk as S = north + south and D = north − south,
+ * eight lanes (one cache line) per row. */
+static void scatter_group(sh_sht *p, int t, int i0, int n, const double (*w)[2])
 {
-    const int L = p->lmax, N = p->nphi;
-    const size_t step = (size_t)p->nchan * 4 * GRP;
-    double *d = data_at(p, i0, 0, c, 0) + g;
-    for (int m = 0; m <= L; m++, d += step) {
-        double fr, fi; /* F_m = Σ_j f_j e^{−2πijm/N}, aliased for m > N/2 */
-        if (2 * m <= N) {
-            fr = X[m][0], fi = X[m][1];
-        } else {
-            const int k = m % N;
-            if (2 * k <= N) fr = X[k][0], fi = X[k][1];
-            else fr = X[N - k][0], fi = -X[N - k][1];
-        }
-        /* A = Re(e^{−imφ0} F), B = −Im(e^{−imφ0} F) */
-        const double A = w * (p->cph[m] * fr + p->sph[m] * fi);
-        const double B = -w * (p->cph[m] * fi - p->sph[m] * fr);
-        if (!south) {
-            d[0] = A, d[GRP] = B, d[2 * GRP] = A, d[3 * GRP] = B;
-        } else {
-            d[0] += A, d[GRP] += B, d[2 * GRP] -= A, d[3 * GRP] -= B;
+    const int L = p->lmax, N = p->nphi, nc = p->nchan;
+    const size_t M = (size_t)L + 1;
+    const double *X = p->gsp[t];
+    for (int m = 0; m <= L; m++) {
+        /* F_m = Σ_j f_j e^{−2πijm/N}: bin k, conjugated above N/2 (aliasing) */
+        int k = m % N, cj = 0;
+        if (2 * k > N) k = N - k, cj = 1;
+        const double cp = p->cph[m], sp = p->sph[m];
+        for (int c = 0; c < nc; c++) {
+            double *d = data_at(p, i0, m, c, 0);
+            for (int g = 0; g < GRP; g++) {
+                double A[2] = {0.0, 0.0}, B[2] = {0.0, 0.0};
+                for (int side = 0; side < 2 && i0 + g < n; side++) {
+                    if (w[g][side] == 0.0) continue;
+                    const double *F = X + (((size_t)(2 * g + side) * nc + c) * M + k) * 2;
+                    const double fr = F[0], fi = cj ? -F[1] : F[1];
+                    /* A = Re(e^{−imφ0} F), B = −Im(e^{−imφ0} F) */
+                    A[side] = w[g][side] * (cp * fr + sp * fi);
+                    B[side] = -w[g][side] * (cp * fi - sp * fr);
+                }
+                d[g] = A[0] + A[1];
+                d[GRP + g] = B[0] + B[1];
+                d[2 * GRP + g] = A[0] - A[1];
+                d[3 * GRP + g] = B[0] - B[1];
+            }
         }
     }
 }
@@ -563,11 +575,8 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
         for (int i0 = 0; i0 < npad; i0 += GRP) {
             const int t = thread_id();
             seeds_group(p, q0, n, i0);
-            if (n - i0 < GRP) { /* padding lanes */
-                double *d = data_at(p, i0, 0, 0, 0);
-                for (size_t r = 0; r < (size_t)(L + 1) * nc * 4; r++)
-                    for (int g = n - i0 > 0 ? n - i0 : 0; g < GRP; g++) d[r * GRP + g] = 0.0;
-            }
+            const int kmax = N / 2 < L ? N / 2 : L;
+            double w[GRP][2] = {{0}};
             for (int g = 0; g < GRP && i0 + g < n; g++)
                 for (int side = 0; side < 2; side++) {
                     const int r = side ? p->ps[q0 + i0 + g] : p->pn[q0 + i0 + g];
@@ -579,9 +588,12 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
                     }
                     for (int c = 0; c < nc; c++) {
                         fftw_execute_dft_r2c(p->r2c, p->ring[t] + (size_t)c * N, p->spec[t]);
-                        scatter_ring(p, (const fftw_complex *)p->spec[t], p->w[r], c, i0, g, side);
+                        memcpy(p->gsp[t] + ((size_t)(2 * g + side) * nc + c) * (L + 1) * 2, p->spec[t],
+                               sizeof(fftw_complex) * (size_t)(kmax + 1));
                     }
+                    w[g][side] = p->w[r]; /* 0: no ring (or a ring of weight 0, which adds nothing) */
                 }
+            scatter_group(p, t, i0, n, (const double (*)[2])w);
         }
         if (err.st) break;
         /* (2) Legendre sums, m by m, added to the m-major coefficients */
@@ -603,37 +615,54 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
 
 /* ------------------------------------------------------------ synthesis */
 
-/* Ring values from the m-data of lane i0 + g (side 0 north, 1 south),
- * channel c, into out[0..N): f_j = Re Σ_m z_m e^{imφ0} e^{2πijm/N}. */
-static void gather_ring(sh_sht *p, int t, int c, int i0, int g, int side, double *out)
+/* z_m e^{imφ0} (z = a − ib) of every ring of a group, from the chunk's rows
+ * (north, south re/im, eight lanes per line), into gsp. */
+static void spectra_group(sh_sht *p, int t, int i0)
+{
+    const int L = p->lmax, nc = p->nchan;
+    const size_t M = (size_t)L + 1;
+    double *Z = p->gsp[t];
+    for (int m = 0; m <= L; m++) {
+        const double cp = p->cph[m], sp = p->sph[m];
+        for (int c = 0; c < nc; c++) {
+            const double *d = data_at(p, i0, m, c, 0);
+            for (int g = 0; g < GRP; g++)
+                for (int side = 0; side < 2; side++) {
+                    const double a = d[2 * side * GRP + g], b = d[(2 * side + 1) * GRP + g];
+                    double *z = Z + (((size_t)(2 * g + side) * nc + c) * M + m) * 2;
+                    z[0] = a * cp + b * sp;
+                    z[1] = a * sp - b * cp;
+                }
+        }
+    }
+}
+
+/* Ring values from z_m e^{imφ0} (m = 0..lmax) into out[0..N):
+ * f_j = Re Σ_m z_m e^{imφ0} e^{2πijm/N}, folded into N bins, inverse real FFT. */
+static void ring_from_spectrum(sh_sht *p, int t, const double *z, double *out)
 {
     const int L = p->lmax, N = p->nphi;
     fftw_complex *H = p->spec[t];
     memset(H, 0, sizeof(fftw_complex) * (size_t)(N / 2 + 1));
     fftw_complex *Z = p->fold[t];
-    if (Z) memset(Z, 0, sizeof(fftw_complex) * (size_t)N);
-    const size_t step = (size_t)p->nchan * 4 * GRP;
-    const double *d = data_at(p, i0, 0, c, 2 * side) + g;
-    for (int m = 0; m <= L; m++, d += step) {
-        const double a = d[0], b = d[GRP];
-        /* z e^{imφ0} with z = a − ib */
-        const double zr = a * p->cph[m] + b * p->sph[m], zi = a * p->sph[m] - b * p->cph[m];
-        if (Z) {
-            Z[m % N][0] += zr;
-            Z[m % N][1] += zi;
-        } else if (m == 0) {
-            H[0][0] = zr;
-        } else {
-            H[m][0] = 0.5 * zr;
-            H[m][1] = 0.5 * zi;
+    if (Z) {
+        memset(Z, 0, sizeof(fftw_complex) * (size_t)N);
+        for (int m = 0; m <= L; m++) {
+            Z[m % N][0] += z[2 * m];
+            Z[m % N][1] += z[2 * m + 1];
         }
-    }
-    if (Z) /* H_k = (Z_k + conj Z_{N−k}) / 2 */
-        for (int k = 0; 2 * k <= N; k++) {
+        for (int k = 0; 2 * k <= N; k++) { /* H_k = (Z_k + conj Z_{N−k}) / 2 */
             const int kk = (N - k) % N;
             H[k][0] = 0.5 * (Z[k][0] + Z[kk][0]);
             H[k][1] = 0.5 * (Z[k][1] - Z[kk][1]);
         }
+    } else {
+        H[0][0] = z[0];
+        for (int m = 1; m <= L; m++) {
+            H[m][0] = 0.5 * z[2 * m];
+            H[m][1] = 0.5 * z[2 * m + 1];
+        }
+    }
     fftw_execute_dft_c2r(p->c2r, H, out);
 }
 
@@ -664,11 +693,14 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
         for (int i0 = 0; i0 < n; i0 += GRP) {
             const int t = thread_id();
+            spectra_group(p, t, i0);
             for (int g = 0; g < GRP && i0 + g < n; g++)
                 for (int side = 0; side < 2; side++) {
                     const int r = side ? p->ps[q0 + i0 + g] : p->pn[q0 + i0 + g];
                     if (r < 0) break;
-                    for (int c = 0; c < nc; c++) gather_ring(p, t, c, i0, g, side, p->ring[t] + (size_t)c * N);
+                    for (int c = 0; c < nc; c++)
+                        ring_from_spectrum(p, t, p->gsp[t] + ((size_t)(2 * g + side) * nc + c) * (L + 1) * 2,
+                                           p->ring[t] + (size_t)c * N);
                     const int st = put(ctx, r, p->ring[t]);
                     if (st) {
                         note_err(&err, st, r);
