@@ -5,6 +5,7 @@
 #include "cli.h"
 
 #include "measure/peers/peer_sharp.h"
+#include "project/sht_internal.h"
 
 #include <getopt.h>
 #include <math.h>
@@ -37,6 +38,8 @@ static const char help[] =
     "  --latlong W        also a W × W/2 lat-long map of 3 channels (2..8192)\n"
     "  --repeat R         timed repeats (default 11)\n"
     "  --threads N        threads of both libraries (default 1; 0: all cores)\n"
+    "  --kernel K         shlab's Legendre kernels: baseline, avx2+fma or avx512f\n"
+    "                     (default: the widest this CPU runs)\n"
     "  --quiet            no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help             this text\n"
@@ -98,7 +101,8 @@ static double lcg(unsigned long *s)
 }
 
 /* Time one case; rows[0] analysis, rows[1] synthesis. */
-static int time_case(const peer_case *pc, int repeat, int threads, const char **kernel, peer_row rows[2])
+static int time_case(const peer_case *pc, int repeat, int threads, sht_isa isa, const char **kernel,
+                     peer_row rows[2])
 {
     const int lmax = pc->lmax, order = lmax + 1, nn = order * order, nc = pc->nchan;
     sh_peer_sharp *ps = NULL;
@@ -139,7 +143,7 @@ static int time_case(const peer_case *pc, int repeat, int threads, const char **
         rc = cli_fail("bench --peers: out of memory at lmax %d", lmax);
         goto out;
     }
-    if ((st = sh_sht_create(order, &g, nc, threads, &p))) {
+    if ((st = sh_sht_create(order, &g, nc, threads, &p)) || (isa && (st = sh__sht_set_isa(p, isa)))) {
         rc = cli_fail_status(st);
         goto out;
     }
@@ -223,10 +227,12 @@ int cli_bench_peers(const cli_command *bench, int argc, char **argv)
                                          {"repeat", required_argument, 0, 'r'},
                                          {"threads", required_argument, 0, 'T'},
                                          {"latlong", required_argument, 0, 'W'},
+                                         {"kernel", required_argument, 0, 'K'},
                                          {"quiet", no_argument, 0, 'q'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     int lmaxs[16] = {255, 511}, nl = 2, repeat = 11, threads = 1, quiet = 0, width = 0;
+    sht_isa isa = SHT_ISA_AUTO;
     opterr = 0;
     optind = 1;
     int o;
@@ -264,6 +270,14 @@ int cli_bench_peers(const cli_command *bench, int argc, char **argv)
             if (cli_int("--latlong", optarg, &width)) return CLI_EXIT_USAGE;
             if (width < 2 || width > 8192) return cli_fail("--latlong must be in 2..8192, got %d", width);
             break;
+        case 'K': {
+            int found = 0;
+            for (int k = SHT_ISA_BASE; k <= SHT_ISA_AVX512; k++)
+                if (!strcmp(optarg, sh__sht_isa_name((sht_isa)k))) isa = (sht_isa)k, found = 1;
+            if (!found) return cli_fail("--kernel: '%s' (expected baseline, avx2+fma or avx512f)", optarg);
+            if (!sh__sht_isa_usable(isa)) return cli_fail("--kernel %s: not built in or not run by this CPU", optarg);
+            break;
+        }
         case 'q': quiet = 1; break;
         default: {
             const int r = cli_common_opt(bench, o, argv, &com);
@@ -283,7 +297,7 @@ int cli_bench_peers(const cli_command *bench, int argc, char **argv)
     for (int k = 0; k < ncase && rows; k++) {
         const peer_case pc = {lmaxs[k % nl], k < nl ? 0 : width, k < nl ? 1 : 3};
         peer_row pr[2];
-        const int rc = time_case(&pc, repeat, threads, &kernel, pr);
+        const int rc = time_case(&pc, repeat, threads, isa, &kernel, pr);
         if (rc) {
             json_decref(rows);
             return rc;

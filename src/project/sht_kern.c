@@ -42,21 +42,29 @@
 #include <immintrin.h>
 #endif
 
+/* VL doubles a vector; a block is NVA (analysis) or NVS (synthesis) vectors,
+ * as many as the registers hold (measured with `shlab bench --peers --kernel`). */
 #if defined(SHT_KERN_AVX512)
 #define VL 8
-#define NV 4
+#define NVA 4
+#define NVS 4
 #define KN(name) name##_avx512
 #elif defined(SHT_KERN_AVX2)
 #define VL 4
-#define NV 4
+#define NVA 4
+#define NVS 2
 #define KN(name) name##_avx2
 #else
 #define VL 2
-#define NV 4
+#define NVA 4
+#define NVS 4
 #define KN(name) name##_base
 #endif
-#define BLK (VL * NV)
-_Static_assert(SHT_LANES % BLK == 0, "a chunk must hold whole kernel blocks");
+#define NVMAX 4
+_Static_assert(NVA <= NVMAX && NVS <= NVMAX, "block too wide");
+_Static_assert(SHT_LANES % (VL * NVA) == 0 && SHT_LANES % (VL * NVS) == 0,
+               "a chunk must hold whole kernel blocks");
+#define AI static inline __attribute__((always_inline))
 _Static_assert(SHT_GRP % VL == 0, "a vector must lie in one group of lanes");
 
 typedef double vd __attribute__((vector_size(VL * 8)));
@@ -96,11 +104,11 @@ static inline double hsum(vd v)
 static inline int all_set(vm m) { return msk_bits(m) == (1u << VL) - 1; }
 static inline int any_set(vm m) { return msk_bits(m) != 0; }
 
-/* State of one block: NV vectors of lanes; off[v]: where vector v's lanes
+/* State of one block: nv ≤ NVMAX vectors of lanes; off[v]: where vector v's lanes
  * start in a group-major array of group stride 1 row (see lane_off). */
 typedef struct {
-    vd x[NV], p1[NV], p2[NV], sc[NV];
-    size_t doff[NV];
+    vd x[NVMAX], p1[NVMAX], p2[NVMAX], sc[NVMAX];
+    size_t doff[NVMAX];
 } blk_t;
 
 /* Offset of lane i in a group-major array with group stride `stride`. */
@@ -108,10 +116,10 @@ static inline size_t lane_off(int i, size_t stride) { return (size_t)(i / SHT_GR
 
 /* Returns 0 if every seed of the block is zero (padding, poles), 1 if no lane
  * lives yet, 2 if some do, 3 if all do. */
-static inline int blk_load(blk_t *B, const sht_kjob *j, int b)
+AI int blk_load(blk_t *B, const sht_kjob *j, int b, const int nv)
 {
     vm nz = {0}, live = (vm){0} - 1, some = {0};
-    for (int v = 0; v < NV; v++) {
+    for (int v = 0; v < nv; v++) {
         const size_t so = lane_off(b + v * VL, j->sstride);
         B->doff[v] = lane_off(b + v * VL, j->dstride);
         B->x[v] = vload(j->x + b + v * VL);
@@ -129,9 +137,9 @@ static inline int blk_load(blk_t *B, const sht_kjob *j, int b)
 /* One step with rescaling: T_i = α_i x T_{i−1} − T_{i−2}; a lane whose
  * mantissa passes 2^400 while its scale k < 0 is multiplied by 2^−800 and
  * k += 1.  q (if not NULL) gets the new values of the live lanes, 0 elsewhere. */
-static inline void step_checked(blk_t *B, double alpha, vd *q)
+AI void step_checked(blk_t *B, double alpha, vd *q, const int nv)
 {
-    for (int v = 0; v < NV; v++) {
+    for (int v = 0; v < nv; v++) {
         vd pn = alpha * B->x[v] * B->p1[v] - B->p2[v];
         const vm big = (vabs(pn) > 0x1p400) & (B->sc[v] < 0.0);
         const vd f = sel(big, bc(0x1p-800), bc(1.0));
@@ -144,29 +152,29 @@ static inline void step_checked(blk_t *B, double alpha, vd *q)
     }
 }
 
-static inline int blk_any_live(const blk_t *B)
+AI int blk_any_live(const blk_t *B, const int nv)
 {
     vm m = {0};
-    for (int v = 0; v < NV; v++) m |= B->sc[v] == 0.0;
+    for (int v = 0; v < nv; v++) m |= B->sc[v] == 0.0;
     return any_set(m);
 }
 
-static inline int blk_all_live(const blk_t *B)
+AI int blk_all_live(const blk_t *B, const int nv)
 {
     vm m = (vm){0} - 1;
-    for (int v = 0; v < NV; v++) m &= B->sc[v] == 0.0;
+    for (int v = 0; v < nv; v++) m &= B->sc[v] == 0.0;
     return all_set(m);
 }
 
 /* Steps while no lane lives: nothing to accumulate.  The test for a live lane
  * is made every 4 steps; a lane that came alive in between is then ≤ 2^−400
  * times the growth of 3 steps (< 2^−340), and those terms are dropped. */
-static inline int run_dead(blk_t *B, const double *al, int i, int nl)
+AI int run_dead(blk_t *B, const double *al, int i, int nl, const int nv)
 {
     while (i < nl) {
         const int e = i + 4 < nl ? i + 4 : nl;
-        for (; i < e; i++) step_checked(B, al[i], NULL);
-        if (blk_any_live(B)) break;
+        for (; i < e; i++) step_checked(B, al[i], NULL, nv);
+        if (blk_any_live(B, nv)) break;
     }
     return i;
 }
@@ -174,13 +182,13 @@ static inline int run_dead(blk_t *B, const double *al, int i, int nl)
 /* ------------------------------------------------------------ analysis */
 
 /* acc[2c + k] += Σ_v q[v] · in[doff[v] + (4c + 2·odd + k)·SHT_GRP] */
-static inline void acc_analysis(vd *acc, const vd *q, const double *in, const size_t *doff, int nc,
-                                int odd)
+AI void acc_analysis(vd *acc, const vd *q, const double *in, const size_t *doff, int nc, int odd,
+                     const int nv)
 {
     for (int c = 0; c < nc; c++) {
         const double *dr = in + (size_t)(4 * c + 2 * odd) * SHT_GRP, *di = dr + SHT_GRP;
         vd sr = acc[2 * c], si = acc[2 * c + 1];
-        for (int v = 0; v < NV; v++) {
+        for (int v = 0; v < nv; v++) {
             sr += q[v] * vload(dr + doff[v]);
             si += q[v] * vload(di + doff[v]);
         }
@@ -190,21 +198,20 @@ static inline void acc_analysis(vd *acc, const vd *q, const double *in, const si
 }
 
 /* The plain loop (every lane lives) from i (odd_first: parity of i) to nl − 1. */
-static inline __attribute__((always_inline)) void
-plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int nc,
-               int odd_first)
+AI void plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int nc,
+                       int odd_first, const int nv)
 {
     const int s = 2 * nc;
     for (; i + 1 < nl; i += 2) {
         const double a0 = al[i], a1 = al[i + 1];
-        for (int v = 0; v < NV; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
-        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first);
-        for (int v = 0; v < NV; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
-        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, B->doff, nc, !odd_first);
+        for (int v = 0; v < nv; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
+        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first, nv);
+        for (int v = 0; v < nv; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
+        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, B->doff, nc, !odd_first, nv);
     }
     if (i < nl) {
-        for (int v = 0; v < NV; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
-        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first);
+        for (int v = 0; v < nv; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
+        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first, nv);
     }
 }
 
@@ -214,28 +221,28 @@ void KN(sh__sht_analysis)(const sht_kjob *j)
     const double *al = j->alpha, *in = j->in;
     vd *acc = (vd *)j->acc;
     memset(acc, 0, sizeof(vd) * (size_t)nl * s);
-    for (int b = 0; b < np; b += BLK) {
+    for (int b = 0; b < np; b += VL * NVA) {
         blk_t B;
-        const int kind = blk_load(&B, j, b);
+        const int kind = blk_load(&B, j, b, NVA);
         if (!kind) continue;
-        vd q[NV];
+        vd q[NVMAX];
         int i = 1;
-        if (kind == 1) i = run_dead(&B, al, 0, nl);
+        if (kind == 1) i = run_dead(&B, al, 0, nl, NVA);
         else {
-            for (int v = 0; v < NV; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
-            acc_analysis(acc, q, in, B.doff, nc, 0); /* i = 0: l = m */
+            for (int v = 0; v < NVA; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
+            acc_analysis(acc, q, in, B.doff, nc, 0, NVA); /* i = 0: l = m */
         }
         if (kind != 3) /* some lanes still scaled: checked steps, live lanes accumulated */
             while (i < nl) {
                 const int e = i + 4 < nl ? i + 4 : nl;
                 for (; i < e; i++) {
-                    step_checked(&B, al[i], q);
-                    acc_analysis(acc + (size_t)i * s, q, in, B.doff, nc, i & 1);
+                    step_checked(&B, al[i], q, NVA);
+                    acc_analysis(acc + (size_t)i * s, q, in, B.doff, nc, i & 1, NVA);
                 }
-                if (blk_all_live(&B)) break;
+                if (blk_all_live(&B, NVA)) break;
             }
-        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, nc, 1);
-        else plain_analysis(&B, al, i, nl, acc, in, nc, 0);
+        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, nc, 1, NVA);
+        else plain_analysis(&B, al, i, nl, acc, in, nc, 0, NVA);
     }
     /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i) */
     for (int i = 0; i < nl; i++)
@@ -245,30 +252,29 @@ void KN(sh__sht_analysis)(const sht_kjob *j)
 /* ----------------------------------------------------------- synthesis */
 
 /* e[2c + k] += q · cin[2c + k]  (e: E or O of every channel) */
-static inline void acc_synthesis(vd (*e)[NV], const vd *q, const double *cin, int nc)
+AI void acc_synthesis(vd (*e)[NVMAX], const vd *q, const double *cin, int nc, const int nv)
 {
     for (int ck = 0; ck < 2 * nc; ck++) {
         const double cv = cin[ck];
-        for (int v = 0; v < NV; v++) e[ck][v] += q[v] * cv;
+        for (int v = 0; v < nv; v++) e[ck][v] += q[v] * cv;
     }
 }
 
-static inline __attribute__((always_inline)) void
-plain_synthesis(blk_t *B, const double *al, int i, int nl, vd (*E)[NV], vd (*O)[NV],
-                const double *cin, int nc, int odd_first)
+AI void plain_synthesis(blk_t *B, const double *al, int i, int nl, vd (*E)[NVMAX], vd (*O)[NVMAX],
+                        const double *cin, int nc, int odd_first, const int nv)
 {
     const int s = 2 * nc;
-    vd (*e0)[NV] = odd_first ? O : E, (*e1)[NV] = odd_first ? E : O;
+    vd (*e0)[NVMAX] = odd_first ? O : E, (*e1)[NVMAX] = odd_first ? E : O;
     for (; i + 1 < nl; i += 2) {
         const double a0 = al[i], a1 = al[i + 1];
-        for (int v = 0; v < NV; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
-        acc_synthesis(e0, B->p2, cin + (size_t)i * s, nc);
-        for (int v = 0; v < NV; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
-        acc_synthesis(e1, B->p1, cin + (size_t)(i + 1) * s, nc);
+        for (int v = 0; v < nv; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
+        acc_synthesis(e0, B->p2, cin + (size_t)i * s, nc, nv);
+        for (int v = 0; v < nv; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
+        acc_synthesis(e1, B->p1, cin + (size_t)(i + 1) * s, nc, nv);
     }
     if (i < nl) {
-        for (int v = 0; v < NV; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
-        acc_synthesis(e0, B->p2, cin + (size_t)i * s, nc);
+        for (int v = 0; v < nv; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
+        acc_synthesis(e0, B->p2, cin + (size_t)i * s, nc, nv);
     }
 }
 
@@ -277,38 +283,38 @@ void KN(sh__sht_synthesis)(const sht_kjob *j)
 {
     const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
     const double *al = j->alpha, *cin = j->in;
-    for (int b = 0; b < np; b += BLK) {
+    for (int b = 0; b < np; b += VL * NVS) {
         blk_t B;
-        vd E[2 * SH_IMAGE_MAX_CHANNELS][NV], O[2 * SH_IMAGE_MAX_CHANNELS][NV];
+        vd E[2 * SH_IMAGE_MAX_CHANNELS][NVMAX], O[2 * SH_IMAGE_MAX_CHANNELS][NVMAX];
         for (int ck = 0; ck < s; ck++)
-            for (int v = 0; v < NV; v++) E[ck][v] = O[ck][v] = bc(0.0);
-        const int kind = blk_load(&B, j, b);
+            for (int v = 0; v < NVS; v++) E[ck][v] = O[ck][v] = bc(0.0);
+        const int kind = blk_load(&B, j, b, NVS);
         if (kind) {
-            vd q[NV];
+            vd q[NVMAX];
             int i = 1;
-            if (kind == 1) i = run_dead(&B, al, 0, nl);
+            if (kind == 1) i = run_dead(&B, al, 0, nl, NVS);
             else {
-                for (int v = 0; v < NV; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
-                acc_synthesis(E, q, cin, nc); /* l = m */
+                for (int v = 0; v < NVS; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
+                acc_synthesis(E, q, cin, nc, NVS); /* l = m */
             }
             if (kind != 3)
                 while (i < nl) {
                     const int e = i + 4 < nl ? i + 4 : nl;
                     for (; i < e; i++) {
-                        step_checked(&B, al[i], q);
-                        acc_synthesis((i & 1) ? O : E, q, cin + (size_t)i * s, nc);
+                        step_checked(&B, al[i], q, NVS);
+                        acc_synthesis((i & 1) ? O : E, q, cin + (size_t)i * s, nc, NVS);
                     }
-                    if (blk_all_live(&B)) break;
+                    if (blk_all_live(&B, NVS)) break;
                 }
-            if (i & 1) plain_synthesis(&B, al, i, nl, E, O, cin, nc, 1);
-            else plain_synthesis(&B, al, i, nl, E, O, cin, nc, 0);
+            if (i & 1) plain_synthesis(&B, al, i, nl, E, O, cin, nc, 1, NVS);
+            else plain_synthesis(&B, al, i, nl, E, O, cin, nc, 0, NVS);
         }
         /* north = E + O, south = E − O */
         for (int c = 0; c < nc; c++)
             for (int k = 0; k < 2; k++) {
                 double *north = j->out + (size_t)(4 * c + k) * SHT_GRP;
                 double *south = j->out + (size_t)(4 * c + 2 + k) * SHT_GRP;
-                for (int v = 0; v < NV; v++) {
+                for (int v = 0; v < NVS; v++) {
                     vstore(north + B.doff[v], E[2 * c + k][v] + O[2 * c + k][v]);
                     vstore(south + B.doff[v], E[2 * c + k][v] - O[2 * c + k][v]);
                 }
