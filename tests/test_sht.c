@@ -93,6 +93,26 @@ static void kernel_coeffs(const kernel_fn *K, int order, sh_convention conv, dou
     free(y);
 }
 
+/* A Gauss grid of nr × np with a seeded map f and coefficient vector c (one
+ * channel); free with case_free. */
+typedef struct {
+    int order, nr, np, nn;
+    double *x, *f, *c;
+    sh_grid g;
+} rcase;
+
+static rcase case_make(int order, int nr, int np, unsigned seed)
+{
+    rcase k = {order, nr, np, order * order, malloc(sizeof(double) * nr * 2),
+               malloc(sizeof(double) * nr * np), malloc(sizeof(double) * order * order), {0}};
+    ck_assert_int_eq(sh_grid_gauss(nr, np, k.x, k.x + nr, &k.g), SH_OK);
+    for (int i = 0; i < nr * np; i++) k.f[i] = urand(&seed);
+    for (int i = 0; i < k.nn; i++) k.c[i] = urand(&seed);
+    return k;
+}
+
+static void case_free(rcase *k) { free(k->x), free(k->f), free(k->c); }
+
 /* ------------------------------------------------------------------ tests */
 
 /* sh_project (QUAD) against the direct sum on Green's kinked light: both
@@ -328,29 +348,23 @@ END_TEST
  * 2e−3).  70 pairs in chunks of 64: the second holds 6 (32 padded). */
 START_TEST(partial_last_chunk)
 {
-    const int order = 40, nr = 140, np = 81, nn = order * order;
-    unsigned seed = 21;
-    double *x = malloc(sizeof(double) * nr * 2);
-    sh_grid g;
-    ck_assert_int_eq(sh_grid_gauss(nr, np, x, x + nr, &g), SH_OK);
-    double *f = malloc(sizeof(double) * nr * np), *c = malloc(sizeof(double) * nn);
+    rcase k = case_make(40, 140, 81, 21);
+    const int nn = k.nn, nm = k.nr * k.np;
     double *a[2], *m[2];
-    for (int i = 0; i < nr * np; i++) f[i] = urand(&seed);
-    for (int i = 0; i < nn; i++) c[i] = urand(&seed);
-    for (int k = 0; k < 2; k++) {
+    for (int t = 0; t < 2; t++) {
         sh_sht *p;
-        ck_assert_int_eq(sh_sht_create(order, &g, 1, 1, &p), SH_OK);
-        if (k) ck_assert_int_eq(sh__sht_set_chunk(p, 2 * SHT_LANES), SH_OK);
-        a[k] = malloc(sizeof(double) * nn);
-        m[k] = malloc(sizeof(double) * nr * np);
-        ck_assert_int_eq(sh_sht_analysis(p, SH_CS, f, a[k]), SH_OK);
-        ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, c, m[k]), SH_OK);
+        ck_assert_int_eq(sh_sht_create(k.order, &k.g, 1, 1, &p), SH_OK);
+        if (t) ck_assert_int_eq(sh__sht_set_chunk(p, 2 * SHT_LANES), SH_OK);
+        a[t] = malloc(sizeof(double) * nn);
+        m[t] = malloc(sizeof(double) * nm);
+        ck_assert_int_eq(sh_sht_analysis(p, SH_CS, k.f, a[t]), SH_OK);
+        ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, k.c, m[t]), SH_OK);
         sh_sht_destroy(p);
     }
     ck_assert_msg(rel_l2(a[1], a[0], nn) <= 1e-15, "analysis: two chunks vs one %.3g", rel_l2(a[1], a[0], nn));
-    ck_assert_msg(!memcmp(m[0], m[1], sizeof(double) * nr * np), "synthesis: two chunks vs one");
-    for (int k = 0; k < 2; k++) free(a[k]), free(m[k]);
-    free(x), free(f), free(c);
+    ck_assert_msg(!memcmp(m[0], m[1], sizeof(double) * nm), "synthesis: two chunks vs one");
+    for (int t = 0; t < 2; t++) free(a[t]), free(m[t]);
+    case_free(&k);
 }
 END_TEST
 
@@ -358,21 +372,15 @@ END_TEST
  * kernels (they differ by FMA rounding only). */
 START_TEST(isa_kernels_agree)
 {
-    const int order = 150, nr = 151, np = 300, nn = order * order;
-    unsigned seed = 13;
-    double *x = malloc(sizeof(double) * nr * 2);
-    sh_grid g;
-    ck_assert_int_eq(sh_grid_gauss(nr, np, x, x + nr, &g), SH_OK);
-    double *f = malloc(sizeof(double) * nr * np), *c = malloc(sizeof(double) * nn);
+    rcase k = case_make(150, 151, 300, 13);
+    const int nn = k.nn, nm = k.nr * k.np;
     double *a0 = malloc(sizeof(double) * nn), *a1 = malloc(sizeof(double) * nn);
-    double *s0 = malloc(sizeof(double) * nr * np), *s1 = malloc(sizeof(double) * nr * np);
-    for (int i = 0; i < nr * np; i++) f[i] = urand(&seed);
-    for (int i = 0; i < nn; i++) c[i] = urand(&seed);
+    double *s0 = malloc(sizeof(double) * nm), *s1 = malloc(sizeof(double) * nm);
     sh_sht *p;
-    ck_assert_int_eq(sh_sht_create(order, &g, 1, 1, &p), SH_OK);
+    ck_assert_int_eq(sh_sht_create(k.order, &k.g, 1, 1, &p), SH_OK);
     ck_assert_int_eq(sh__sht_set_isa(p, SHT_ISA_BASE), SH_OK);
-    ck_assert_int_eq(sh_sht_analysis(p, SH_CS, f, a0), SH_OK);
-    ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, c, s0), SH_OK);
+    ck_assert_int_eq(sh_sht_analysis(p, SH_CS, k.f, a0), SH_OK);
+    ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, k.c, s0), SH_OK);
     int tried = 0;
     for (int isa = SHT_ISA_AVX2; isa <= SHT_ISA_AVX512; isa++) {
         if (!sh__sht_isa_usable(isa)) {
@@ -381,16 +389,17 @@ START_TEST(isa_kernels_agree)
         }
         tried++;
         ck_assert_int_eq(sh__sht_set_isa(p, isa), SH_OK);
-        ck_assert_int_eq(sh_sht_analysis(p, SH_CS, f, a1), SH_OK);
-        ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, c, s1), SH_OK);
+        ck_assert_int_eq(sh_sht_analysis(p, SH_CS, k.f, a1), SH_OK);
+        ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, k.c, s1), SH_OK);
         ck_assert_msg(rel_l2(a1, a0, nn) <= 1e-14, "%s analysis vs baseline %.3g", sh__sht_isa_name(isa),
                       rel_l2(a1, a0, nn));
-        ck_assert_msg(rel_l2(s1, s0, (size_t)nr * np) <= 1e-14, "%s synthesis vs baseline %.3g",
-                      sh__sht_isa_name(isa), rel_l2(s1, s0, (size_t)nr * np));
+        ck_assert_msg(rel_l2(s1, s0, nm) <= 1e-14, "%s synthesis vs baseline %.3g", sh__sht_isa_name(isa),
+                      rel_l2(s1, s0, nm));
     }
     printf("test_sht: %d instruction set(s) beyond the baseline compared\n", tried);
     sh_sht_destroy(p);
-    free(x), free(f), free(c), free(a0), free(a1), free(s0), free(s1);
+    free(a0), free(a1), free(s0), free(s1);
+    case_free(&k);
 }
 END_TEST
 

@@ -17,17 +17,16 @@ static double urand(unsigned *s)
     return ((*s >> 8) & 0xffffff) / (double)0x1000000 - 0.5;
 }
 
-static void diffs(const double *a, const double *b, size_t n, double *l2, double *mx)
+/* libsharp's own Gauss grid of lmax and its rings (cosθ, weights: x, x + nr). */
+static sh_peer_sharp *sharp_gauss(int lmax, int *nr, int *np, double **x, double *phi0)
 {
-    double d = 0.0, nb = 0.0, dm = 0.0, bm = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        d += (a[i] - b[i]) * (a[i] - b[i]);
-        nb += b[i] * b[i];
-        dm = fmax(dm, fabs(a[i] - b[i]));
-        bm = fmax(bm, fabs(b[i]));
-    }
-    *l2 = sqrt(d / nb);
-    *mx = dm / bm;
+    sh_peer_sharp *s;
+    ck_assert_int_eq(sh_peer_sharp_gauss(lmax, &s), SH_OK);
+    sh_peer_sharp_threads(1);
+    ck_assert_int_eq(sh_peer_sharp_rings(s, nr, np, NULL, NULL, phi0), SH_OK);
+    *x = malloc(sizeof(double) * *nr * 2);
+    ck_assert_int_eq(sh_peer_sharp_rings(s, nr, np, *x, *x + *nr, phi0), SH_OK);
+    return s;
 }
 
 /* f(s) = Σ_k P_r(s·v_k), the Poisson kernel
@@ -61,14 +60,10 @@ START_TEST(project_vs_map2alm_255)
     for (int k = 0; k < 3; k++) sh_dir_from_angles(ang[k][0], ang[k][1], K.v[k]);
     double *c = malloc(sizeof(double) * nn), *ref = malloc(sizeof(double) * nn);
     ck_assert_int_eq(sh_project(order, SH_CS, kfn_eval, &K, SH_RULE_QUAD, order, 0, c), SH_OK);
-    sh_peer_sharp *s;
-    ck_assert_int_eq(sh_peer_sharp_gauss(lmax, &s), SH_OK);
-    sh_peer_sharp_threads(1);
     int nr, np;
-    double phi0;
-    ck_assert_int_eq(sh_peer_sharp_rings(s, &nr, &np, NULL, NULL, &phi0), SH_OK);
-    double *x = malloc(sizeof(double) * nr), *map = malloc(sizeof(double) * nr * np);
-    ck_assert_int_eq(sh_peer_sharp_rings(s, &nr, &np, x, NULL, &phi0), SH_OK);
+    double phi0, *x;
+    sh_peer_sharp *s = sharp_gauss(lmax, &nr, &np, &x, &phi0);
+    double *map = malloc(sizeof(double) * nr * np);
     for (int r = 0; r < nr; r++)
         for (int j = 0; j < np; j++) {
             const double th = acos(x[r]), ph = phi0 + 2.0 * M_PI * j / np;
@@ -79,7 +74,7 @@ START_TEST(project_vs_map2alm_255)
     ck_assert_int_eq(sh_peer_sharp_map2alm(s, map), SH_OK);
     sh_peer_sharp_get_cs(s, ref);
     double l2, mx;
-    diffs(c, ref, nn, &l2, &mx);
+    sh_peer_agreement(c, ref, nn, &l2, &mx);
     printf("test_sht_sharp: sh_project vs map2alm, lmax 255: rel L2 %.3g, max/max %.3g\n", l2, mx);
     ck_assert_msg(l2 <= 1e-13, "sh_project vs libsharp map2alm at lmax 255: rel L2 %.3g (max %.3g)", l2, mx);
     ck_assert_msg(mx <= 1e-13, "sh_project vs libsharp map2alm at lmax 255: max %.3g", mx);
@@ -97,16 +92,11 @@ START_TEST(transforms_on_sharp_rings)
     unsigned seed = 17;
     for (int k = 0; k < 2; k++) {
         const int lmax = lmaxs[k], order = lmax + 1, nn = order * order;
-        sh_peer_sharp *s;
-        ck_assert_int_eq(sh_peer_sharp_gauss(lmax, &s), SH_OK);
-        sh_peer_sharp_threads(1);
         int nr, np;
-        double phi0;
-        ck_assert_int_eq(sh_peer_sharp_rings(s, &nr, &np, NULL, NULL, &phi0), SH_OK);
-        double *x = malloc(sizeof(double) * nr * 2), *map = malloc(sizeof(double) * nr * np);
-        double *m2 = malloc(sizeof(double) * nr * np);
+        double phi0, *x;
+        sh_peer_sharp *s = sharp_gauss(lmax, &nr, &np, &x, &phi0);
+        double *map = malloc(sizeof(double) * nr * np), *m2 = malloc(sizeof(double) * nr * np);
         double *c = malloc(sizeof(double) * nn), *a = malloc(sizeof(double) * nn), *b = malloc(sizeof(double) * nn);
-        ck_assert_int_eq(sh_peer_sharp_rings(s, &nr, &np, x, x + nr, &phi0), SH_OK);
         sh_grid g = {nr, np, x, x + nr, phi0};
         sh_sht *p;
         ck_assert_int_eq(sh_sht_create(order, &g, 1, 1, &p), SH_OK);
@@ -117,14 +107,14 @@ START_TEST(transforms_on_sharp_rings)
         ck_assert_int_eq(sh_peer_sharp_map2alm(s, map), SH_OK);
         sh_peer_sharp_get_cs(s, b);
         double l2, mx;
-        diffs(a, b, nn, &l2, &mx);
+        sh_peer_agreement(a, b, nn, &l2, &mx);
         printf("test_sht_sharp: analysis vs map2alm, lmax %d: rel L2 %.3g, max/max %.3g\n", lmax, l2, mx);
         ck_assert_msg(l2 <= 1e-13, "analysis vs map2alm, lmax %d: rel L2 %.3g", lmax, l2);
         /* synthesis */
         ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, c, map), SH_OK);
         sh_peer_sharp_set_cs(s, c);
         ck_assert_int_eq(sh_peer_sharp_alm2map(s, m2), SH_OK);
-        diffs(map, m2, (size_t)nr * np, &l2, &mx);
+        sh_peer_agreement(map, m2, (size_t)nr * np, &l2, &mx);
         printf("test_sht_sharp: synthesis vs alm2map, lmax %d: rel L2 %.3g, max/max %.3g\n", lmax, l2, mx);
         ck_assert_msg(l2 <= 1e-13, "synthesis vs alm2map, lmax %d: rel L2 %.3g", lmax, l2);
         /* the conversion of conventions round-trips */
@@ -156,7 +146,7 @@ START_TEST(latlong_vs_map2alm)
     ck_assert_int_eq(sh_peer_sharp_map2alm(s, map), SH_OK);
     sh_peer_sharp_get_cs(s, b);
     double l2, mx;
-    diffs(a, b, nn, &l2, &mx);
+    sh_peer_agreement(a, b, nn, &l2, &mx);
     printf("test_sht_sharp: lat-long %dx%d order %d vs map2alm: rel L2 %.3g, max/max %.3g\n", W, H, order, l2, mx);
     ck_assert_msg(l2 <= 1e-13, "lat-long projection vs map2alm: rel L2 %.3g (max %.3g)", l2, mx);
     sh_peer_sharp_destroy(s);

@@ -71,19 +71,6 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-static void agreement(const double *a, const double *b, size_t n, double *l2, double *mx)
-{
-    double d = 0.0, nb = 0.0, dm = 0.0, bm = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        d += (a[i] - b[i]) * (a[i] - b[i]);
-        nb += b[i] * b[i];
-        dm = fmax(dm, fabs(a[i] - b[i]));
-        bm = fmax(bm, fabs(b[i]));
-    }
-    *l2 = nb > 0.0 ? sqrt(d / nb) : sqrt(d);
-    *mx = bm > 0.0 ? dm / bm : dm;
-}
-
 typedef struct {
     double shlab_ms, peer_ms, ratio, ratio_min, ratio_max, min_ratio, agree, max_rel;
 } peer_row;
@@ -163,8 +150,8 @@ static int time_case(const peer_case *pc, int repeat, int threads, sht_isa isa, 
         sh_peer_sharp_set_cs(ps, c + (size_t)ch * nn);
         sh_peer_sharp_alm2map(ps, m1 + ch * nm);
     }
-    agreement(c2, k1, (size_t)nn * nc, &rows[0].agree, &rows[0].max_rel);
-    agreement(map2, m1, nm * nc, &rows[1].agree, &rows[1].max_rel);
+    sh_peer_agreement(c2, k1, (size_t)nn * nc, &rows[0].agree, &rows[0].max_rel);
+    sh_peer_agreement(map2, m1, nm * nc, &rows[1].agree, &rows[1].max_rel);
     double *ts = t, *tp = t + repeat, *us = t + 2 * repeat, *up = t + 3 * repeat;
     double *ra = t + 4 * repeat, *rs = t + 5 * repeat;
     for (int r = -1; r < repeat; r++) { /* r = −1: warm-up */

@@ -479,7 +479,10 @@ static inline double mfactor(sh_convention conv, int m)
     return m ? ((conv == SH_NOCS && (m & 1)) ? -M_SQRT2 : M_SQRT2) : 1.0;
 }
 
-static void alm_to_flat(sh_sht *p, sh_convention conv, double *coeffs)
+/* to_flat: coeffs = the analysis sums in alm, times √2 (m > 0, odd m negated
+ * in nocs).  Otherwise: alm = coeffs times the same factor, the window σ_l and
+ * the recursion scale g (sht_kern.c), ready for the synthesis kernel. */
+static void alm_convert(sh_sht *p, sh_convention conv, double *coeffs, const double *sigma, int to_flat)
 {
     const int L = p->lmax, nc = p->nchan;
     const size_t nn = (size_t)p->order * p->order;
@@ -487,35 +490,19 @@ static void alm_to_flat(sh_sht *p, sh_convention conv, double *coeffs)
     for (int l0 = 0; l0 <= L; l0 += LBLK) {
         const int l1 = l0 + LBLK - 1 < L ? l0 + LBLK - 1 : L;
         for (int m = 0; m <= l1; m++) {
-            const double f = mfactor(conv, m);
-            const double *a = p->alm + p->moff[m] * nc;
-            for (int l = m > l0 ? m : l0; l <= l1; l++)
-                for (int c = 0; c < nc; c++) {
-                    double *cc = coeffs + c * nn;
-                    cc[sh_index(l, m)] = f * a[((size_t)(l - m) * nc + c) * 2];
-                    if (m) cc[sh_index(l, -m)] = f * a[((size_t)(l - m) * nc + c) * 2 + 1];
-                }
-        }
-    }
-}
-
-static void flat_to_alm(sh_sht *p, sh_convention conv, const double *coeffs, const double *sigma)
-{
-    const int L = p->lmax, nc = p->nchan;
-    const size_t nn = (size_t)p->order * p->order;
-#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
-    for (int l0 = 0; l0 <= L; l0 += LBLK) {
-        const int l1 = l0 + LBLK - 1 < L ? l0 + LBLK - 1 : L;
-        for (int m = 0; m <= l1; m++) {
-            const int nl = L - m + 1;
-            const double f = mfactor(conv, m), *gg = p->rc + p->moff[m] + nl;
+            const double f = mfactor(conv, m), *gg = p->rc + p->moff[m] + (L - m + 1);
             double *a = p->alm + p->moff[m] * nc;
             for (int l = m > l0 ? m : l0; l <= l1; l++) {
-                const double s = f * gg[l - m] * (sigma ? sigma[l] : 1.0);
+                const double s = to_flat ? f : f * gg[l - m] * (sigma ? sigma[l] : 1.0);
                 for (int c = 0; c < nc; c++) {
-                    const double *cc = coeffs + c * nn;
-                    a[((size_t)(l - m) * nc + c) * 2] = s * cc[sh_index(l, m)];
-                    a[((size_t)(l - m) * nc + c) * 2 + 1] = m ? s * cc[sh_index(l, -m)] : 0.0;
+                    double *cc = coeffs + c * nn, *am = a + ((size_t)(l - m) * nc + c) * 2;
+                    if (to_flat) {
+                        cc[sh_index(l, m)] = s * am[0];
+                        if (m) cc[sh_index(l, -m)] = s * am[1];
+                    } else {
+                        am[0] = s * cc[sh_index(l, m)];
+                        am[1] = m ? s * cc[sh_index(l, -m)] : 0.0;
+                    }
                 }
             }
         }
@@ -609,7 +596,7 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     }
     if (err.st) return sh_error(err.st, "%s", err.msg);
     /* c_l^{±m} = √2·Σ (m > 0), odd m negated in nocs */
-    alm_to_flat(p, conv, coeffs);
+    alm_convert(p, conv, coeffs, NULL, 1);
     return SH_OK;
 }
 
@@ -674,7 +661,7 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
     const int L = p->lmax, nc = p->nchan, N = p->nphi;
     /* the coefficients m-major, times √2 (m > 0, odd m negated in nocs), the
      * window σ_l and the recursion scale g (sht_kern.c) */
-    flat_to_alm(p, conv, coeffs, sigma);
+    alm_convert(p, conv, (double *)coeffs, sigma, 0); /* reads coeffs only */
     first_err err = {0, 0, ""};
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;

@@ -8,6 +8,19 @@
 #include <math.h>
 #include <stdlib.h>
 
+void sh_peer_agreement(const double *a, const double *b, size_t n, double *rel_l2, double *max_rel)
+{
+    double d = 0.0, nb = 0.0, dm = 0.0, bm = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        d += (a[i] - b[i]) * (a[i] - b[i]);
+        nb += b[i] * b[i];
+        dm = fmax(dm, fabs(a[i] - b[i]));
+        bm = fmax(bm, fabs(b[i]));
+    }
+    *rel_l2 = nb > 0.0 ? sqrt(d / nb) : sqrt(d);
+    *max_rel = bm > 0.0 ? dm / bm : dm;
+}
+
 #if defined(SHLAB_HAVE_SHARP)
 #include <libsharp/sharp.h>
 #include <libsharp/sharp_almhelpers.h>

@@ -46,4 +46,8 @@ void sh_peer_sharp_get_cs(const sh_peer_sharp *s, double *coeffs);
 void sh_peer_sharp_set_cs(sh_peer_sharp *s, const double *coeffs);
 void sh_peer_sharp_destroy(sh_peer_sharp *s);
 
+/* How far a result is from a peer's: *rel_l2 = ‖a − b‖₂ / ‖b‖₂ (normwise),
+ * *max_rel = max|a − b| / max|b|.  Available without libsharp too. */
+void sh_peer_agreement(const double *a, const double *b, size_t n, double *rel_l2, double *max_rel);
+
 #endif
