@@ -76,6 +76,8 @@ struct sh_sht {
                                    [(l−m)·nchan + c]·2 + {0, 1} for c_l^{m}, c_l^{−m} */
     /* per-thread scratch */
     double **ring;              /* nchan·nphi (fftw_malloc) */
+    double **fbuf;              /* nphi (fftw_malloc): FFT input/output when a channel of ring is
+                                   not aligned as FFTW planned (odd nphi) */
     fftw_complex **spec;        /* nphi/2+1 (fftw_malloc) */
     fftw_complex **fold;        /* nphi, when nphi ≤ 2·lmax (aliasing), else NULL */
     double **gsp;               /* the m-spectra of one group's rings: [(2g + side)·nchan + c][m][2] */
@@ -221,7 +223,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += L1 * (L1 + 1) * sizeof(double) + L1 * (sizeof(size_t) + 3 * sizeof(double));
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
-         ((double)nchan * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
+         ((double)(nchan + 1) * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
           L1 * nchan * 2 * 8 + 8 + 2.0 * 8 * nchan * L1 * 2);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
@@ -240,12 +242,13 @@ void sh_sht_destroy(sh_sht *p)
     pthread_mutex_unlock(&fftw_lock);
     for (int t = 0; t < p->nthreads; t++) {
         if (p->ring) fftw_free(p->ring[t]);
+        if (p->fbuf) fftw_free(p->fbuf[t]);
         if (p->spec) fftw_free(p->spec[t]);
         if (p->fold) fftw_free(p->fold[t]);
         if (p->gsp) free(p->gsp[t]);
         if (p->acc) free(p->acc[t]);
     }
-    free(p->ring), free(p->spec), free(p->fold), free(p->gsp), free(p->acc);
+    free(p->ring), free(p->fbuf), free(p->spec), free(p->fold), free(p->gsp), free(p->acc);
     free(p->pn), free(p->ps), free(p->px), free(p->psin), free(p->w), free(p->rc), free(p->moff);
     free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->alm);
     free(p);
@@ -304,21 +307,23 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->cdata = aligned_alloc(64, sizeof(double) * (size_t)(L + 1) * nchan * 4 * p->chunk);
     p->alm = malloc(sizeof(double) * 2 * nl_all * nchan);
     p->ring = calloc(T, sizeof *p->ring);
+    p->fbuf = calloc(T, sizeof *p->fbuf);
     p->spec = calloc(T, sizeof *p->spec);
     p->fold = calloc(T, sizeof *p->fold);
     p->gsp = calloc(T, sizeof *p->gsp);
     p->acc = calloc(T, sizeof *p->acc);
     int bad = !p->pn || !p->ps || !p->px || !p->psin || (g->weight && !p->w) || !p->rc || !p->moff ||
               !p->fm || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
-              !p->ring || !p->spec || !p->fold || !p->gsp || !p->acc || !p->alm;
+              !p->ring || !p->fbuf || !p->spec || !p->fold || !p->gsp || !p->acc || !p->alm;
     const size_t accn = (size_t)(L + 1) * nchan * 2 * 8;
     for (int t = 0; t < T && !bad; t++) {
         p->ring[t] = fftw_malloc(sizeof(double) * (size_t)nchan * N);
+        p->fbuf[t] = fftw_malloc(sizeof(double) * (size_t)N);
         p->spec[t] = fftw_malloc(sizeof(fftw_complex) * (size_t)(N / 2 + 1));
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
         p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)(L + 1) * 2);
-        bad = !p->ring[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->gsp[t];
+        bad = !p->ring[t] || !p->fbuf[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->gsp[t];
     }
     if (bad) {
         sh_sht_destroy(p);
@@ -574,7 +579,11 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
                         break;
                     }
                     for (int c = 0; c < nc; c++) {
-                        fftw_execute_dft_r2c(p->r2c, p->ring[t] + (size_t)c * N, p->spec[t]);
+                        /* FFTW's new-array execute needs the alignment it planned for */
+                        double *in = p->ring[t] + (size_t)c * N;
+                        if (fftw_alignment_of(in) != fftw_alignment_of(p->ring[t]))
+                            in = memcpy(p->fbuf[t], in, sizeof(double) * N);
+                        fftw_execute_dft_r2c(p->r2c, in, p->spec[t]);
                         memcpy(p->gsp[t] + ((size_t)(2 * g + side) * nc + c) * (L + 1) * 2, p->spec[t],
                                sizeof(fftw_complex) * (size_t)(kmax + 1));
                     }
@@ -650,7 +659,13 @@ static void ring_from_spectrum(sh_sht *p, int t, const double *z, double *out)
             H[m][1] = 0.5 * z[2 * m + 1];
         }
     }
-    fftw_execute_dft_c2r(p->c2r, H, out);
+    /* FFTW's new-array execute needs the alignment it planned for */
+    if (fftw_alignment_of(out) == fftw_alignment_of(p->ring[t])) {
+        fftw_execute_dft_c2r(p->c2r, H, out);
+    } else {
+        fftw_execute_dft_c2r(p->c2r, H, p->fbuf[t]);
+        memcpy(out, p->fbuf[t], sizeof(double) * N);
+    }
 }
 
 int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, const double *sigma,
