@@ -215,9 +215,9 @@ AI void plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const
     }
 }
 
-void KN(sh__sht_analysis)(const sht_kjob *j)
+AI void analysis_body(const sht_kjob *j, const int nc)
 {
-    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
+    const int nl = j->lmax - j->m + 1, np = j->npad, s = 2 * nc;
     const double *al = j->alpha, *in = j->in;
     vd *acc = (vd *)j->acc;
     memset(acc, 0, sizeof(vd) * (size_t)nl * s);
@@ -249,6 +249,9 @@ void KN(sh__sht_analysis)(const sht_kjob *j)
         for (int k = 0; k < s; k++) j->out[(size_t)i * s + k] += j->g[i] * hsum(acc[(size_t)i * s + k]);
 }
 
+/* (A constant channel count, as in synthesis, was measured slower here.) */
+void KN(sh__sht_analysis)(const sht_kjob *j) { analysis_body(j, j->nchan); }
+
 /* ----------------------------------------------------------- synthesis */
 
 /* e[2c + k] += q · cin[2c + k]  (e: E or O of every channel) */
@@ -279,9 +282,9 @@ AI void plain_synthesis(blk_t *B, const double *al, int i, int nl, vd (*E)[NVMAX
 }
 
 /* cin[i·2nc + 2c + k]: the coefficients of this m already multiplied by g_i. */
-void KN(sh__sht_synthesis)(const sht_kjob *j)
+AI void synthesis_body(const sht_kjob *j, const int nc)
 {
-    const int nl = j->lmax - j->m + 1, nc = j->nchan, np = j->npad, s = 2 * nc;
+    const int nl = j->lmax - j->m + 1, np = j->npad, s = 2 * nc;
     const double *al = j->alpha, *cin = j->in;
     for (int b = 0; b < np; b += VL * NVS) {
         blk_t B;
@@ -320,4 +323,13 @@ void KN(sh__sht_synthesis)(const sht_kjob *j)
                 }
             }
     }
+}
+
+/* The channel count as a constant for the common cases (one map, RGB), so
+ * that the channel loops unroll and the accumulators stay in registers. */
+void KN(sh__sht_synthesis)(const sht_kjob *j)
+{
+    if (j->nchan == 1) synthesis_body(j, 1);
+    else if (j->nchan == 3) synthesis_body(j, 3);
+    else synthesis_body(j, j->nchan);
 }
