@@ -487,7 +487,8 @@ static inline double mfactor(sh_convention conv, int m)
 /* to_flat: coeffs = the analysis sums in alm, times √2 (m > 0, odd m negated
  * in nocs).  Otherwise: alm = coeffs times the same factor, the window σ_l and
  * the recursion scale g (sht_kern.c), ready for the synthesis kernel. */
-static void alm_convert(sh_sht *p, sh_convention conv, double *coeffs, const double *sigma, int to_flat)
+static inline __attribute__((always_inline)) void alm_convert(sh_sht *p, sh_convention conv, double *coeffs,
+                                                               const double *sigma, const int to_flat)
 {
     const int L = p->lmax, nc = p->nchan;
     const size_t nn = (size_t)p->order * p->order;
@@ -605,7 +606,7 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     }
     if (err.st) return sh_error(err.st, "%s", err.msg);
     /* c_l^{±m} = √2·Σ (m > 0), odd m negated in nocs */
-    alm_convert(p, conv, coeffs, NULL, 1);
+    alm_convert(p, conv, coeffs, NULL, 1); /* inlined: one loop per direction */
     return SH_OK;
 }
 
