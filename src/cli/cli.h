@@ -78,7 +78,8 @@ void cli_progress_start(cli_progress *p, const char *cmd, int quiet);
 void cli_progress_step(void *ctx, int done, int total, const char *what);
 /* The same, and after the second step one line with the total time it
  * extrapolates from the second step, when that is over 2 s
- * ("cmd: about N s in all (...)"). */
+ * ("cmd: about N s in all (...)"); no closing line for a run that printed
+ * no progress on the way (a single step that took a second, say). */
 void cli_progress_step_est(void *ctx, int done, int total, const char *what);
 
 /* Memory this process could still get: MemAvailable, or the address-space

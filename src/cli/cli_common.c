@@ -301,6 +301,8 @@ void cli_progress_step_est(void *ctx, int done, int total, const char *what)
             p->estimated = 1;
         }
     }
+    /* a run that printed nothing on the way ends silently (the result follows) */
+    if (p && done >= total && !p->printed) return;
     cli_progress_step(ctx, done, total, what);
 }
 
