@@ -45,6 +45,46 @@ PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
+# ---- sht: fast spherical harmonic transforms and the libsharp peer (begin) ----
+# FFTW3 for the φ transforms, OpenMP across rings and m (src/project/sht*.c).
+# The Legendre kernels (src/project/sht_kern.c) are compiled once more per x86
+# instruction set; sht.c picks the widest one the CPU runs.  libsharp, when
+# installed, is a peer (oracle in tests, yardstick in `shlab bench --peers`),
+# linked into the CLI and its tests only, never into libshlab.
+PKGS     += fftw3
+CFLAGS   += -fopenmp
+LDLIBS   += -fopenmp
+.DEFAULT_GOAL := all
+SHT_KFLAGS := -O3 -ffp-contract=fast
+ifneq ($(filter x86_64%,$(shell $(CC) -dumpmachine)),)
+CFLAGS   += -DSHLAB_SHT_X86
+LIB_OBJ  += $(BUILD)/obj/project/sht_kern_avx2.o $(BUILD)/obj/project/sht_kern_avx512.o
+endif
+$(BUILD)/obj/project/sht_kern.o $(BUILD)/obj/project/sht.o: CFLAGS += -O3
+$(BUILD)/obj/project/sht_kern_avx2.o: src/project/sht_kern.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx2 -mfma -DSHT_KERN_AVX2 -c $< -o $@
+$(BUILD)/obj/project/sht_kern_avx512.o: src/project/sht_kern.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx512f -mfma -DSHT_KERN_AVX512 -c $< -o $@
+# libsharp peer: src/measure/peers/peer_sharp.c (stubs that say so without libsharp)
+HAVE_SHARP := $(shell pkg-config --exists libsharp 2>/dev/null && echo 1)
+PEER_SHARP_OBJ := $(BUILD)/obj/measure/peers/peer_sharp.o
+ifeq ($(HAVE_SHARP),1)
+SHARP_CFLAGS := -DSHLAB_HAVE_SHARP $(shell pkg-config --cflags libsharp)
+SHARP_LIBS := $(shell pkg-config --libs libsharp)
+endif
+$(PEER_SHARP_OBJ): CFLAGS += $(SHARP_CFLAGS)
+CLI_OBJ  += $(PEER_SHARP_OBJ)
+$(BUILD)/shlab: LDLIBS += $(SHARP_LIBS)
+$(BUILD)/tests/test_sht_sharp: tests/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
+.PHONY: bench-peers
+bench-peers: all
+	$(BUILD)/shlab bench --peers
+# ---- sht (end) ----
+
 .PHONY: all deps deps-quiet check report experiments probes install clean man FORCE
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
@@ -112,7 +152,7 @@ $(BUILD)/shlab.1: $(BUILD)/shlab tools/help2man.sh
 	tools/help2man.sh $(BUILD)/shlab > $@
 
 # the libraries libshlab links, for static linking (Libs.private; see the .pc.in)
-PC_PRIVATE = $(shell pkg-config --static --libs gsl OpenEXR 2>/dev/null) -lmpfr -lgmp -lstdc++ -lm
+PC_PRIVATE = $(shell pkg-config --static --libs gsl OpenEXR fftw3 2>/dev/null) -lmpfr -lgmp -lstdc++ -lm -fopenmp
 $(BUILD)/shlab.pc: tools/shlab.pc.in FORCE
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define SHLAB_VERSION "\(.*\)"/\1/p' src/shlab.h)|g' \
 	    -e 's|@PRIVATE_LIBS@|$(strip $(PC_PRIVATE))|g' $< > $@

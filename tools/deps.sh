@@ -4,6 +4,7 @@
 # the exact command to run and fails.  --quiet: say nothing when all is there.
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
+PKGS="$PKGS libfftw3-dev libsharp-dev"  # fast transforms (FFTW3); libsharp: the transforms' peer
 missing=""
 for p in $PKGS; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

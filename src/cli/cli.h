@@ -77,10 +77,27 @@ typedef struct {
     const char *cmd;
     int quiet, printed;
     double t0, last;
+    int estimated;
+    double t1; /* time of the first step (cli_progress_step_est) */
 } cli_progress;
 void cli_progress_start(cli_progress *p, const char *cmd, int quiet);
 /* An sh_progress_fn (ctx: cli_progress *). */
 void cli_progress_step(void *ctx, int done, int total, const char *what);
+/* The same, and after the second step one line with the total time it
+ * extrapolates from the second step, when that is over 2 s
+ * ("cmd: about N s in all (...)"); no closing line for a run that printed
+ * no progress on the way (a single step that took a second, say). */
+void cli_progress_step_est(void *ctx, int done, int total, const char *what);
+
+/* Memory this process could still get: MemAvailable, or the address-space
+ * limit (ulimit -v) when lower; in bytes, 0 if unknown. */
+double cli_mem_available(void);
+/* 0 if `bytes` fit; otherwise one line "cmd: WHAT needs X GB of memory, only
+ * Y GB is available" and CLI_EXIT_USAGE.  Call before allocating. */
+int cli_mem_check(const char *cmd, double bytes, const char *what);
+
+/* `shlab bench --peers` (cli_peers.c): shlab's transforms against libsharp. */
+int cli_bench_peers(const cli_command *bench, int argc, char **argv);
 
 /* Render `root` in `fmt` on stdout and release it. Returns an exit code. */
 int cli_emit(json_t *root, cli_format fmt);

@@ -12,6 +12,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 int cli_fail(const char *fmt, ...)
 {
@@ -36,6 +38,7 @@ void cli_progress_start(cli_progress *p, const char *cmd, int quiet)
     p->cmd = cmd;
     p->quiet = quiet;
     p->printed = 0;
+    p->estimated = 0;
     p->t0 = p->last = now_s();
 }
 
@@ -313,4 +316,58 @@ int cli_fail_json(const char *what, const char *path, int err_no, const json_err
         return cli_fail("%s '%s' is not valid JSON: %s (line %d, column %d)", what, path, err->text, err->line,
                         err->column);
     return cli_fail("%s '%s' is not valid JSON: %s", what, path, err->text);
+}
+
+void cli_progress_step_est(void *ctx, int done, int total, const char *what)
+{
+    cli_progress *p = ctx;
+    if (p && !p->quiet && !p->estimated && done < total) {
+        /* the first step carries the set-up: extrapolate from the second */
+        const double t = now_s() - p->t0;
+        if (done == 1) p->t1 = t;
+        if (done == 2) {
+            const double all = t + (t - p->t1) * (total - 2);
+            if (all > 2.0)
+                fprintf(stderr, "%s: about %.0f s in all (%d %s so far took %.1f s)\n", p->cmd, all, done,
+                        what ? what : "steps", t);
+            p->estimated = 1;
+        }
+    }
+    /* a run that printed nothing on the way ends silently (the result follows) */
+    if (p && done >= total && !p->printed) return;
+    cli_progress_step(ctx, done, total, what);
+}
+
+double cli_mem_available(void)
+{
+    double avail = 0.0;
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (f) {
+        char line[256];
+        unsigned long long kb;
+        while (fgets(line, sizeof line, f))
+            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
+                avail = (double)kb * 1024.0;
+                break;
+            }
+        fclose(f);
+    }
+    if (avail <= 0.0) {
+        const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+        avail = pages > 0 && size > 0 ? (double)pages * size : 0.0;
+    }
+    /* an address-space limit (ulimit -v) binds first */
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && (avail <= 0.0 || (double)rl.rlim_cur < avail))
+        avail = (double)rl.rlim_cur;
+    return avail;
+}
+
+int cli_mem_check(const char *cmd, double bytes, const char *what)
+{
+    const double avail = cli_mem_available();
+    if (avail > 0.0 && bytes > avail)
+        return cli_fail("%s: %s needs %.3g GB of memory, only %.3g GB is available", cmd, what, bytes / 1e9,
+                        avail / 1e9);
+    return 0;
 }

@@ -47,6 +47,8 @@ static const char help[] =
     "  --quiet            no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help             this text\n"
+    "  --peers            instead: shlab's spherical harmonic transforms against\n"
+    "                     libsharp's (see 'shlab bench --peers --help')\n"
     "\n"
     "JSON: {\"convention\",\"repeat\",\"setup_ns\",\"rows\":[{\"method\",\"order\",\"precision\",\"mode\",\n"
     "       \"ns_per_rotation\",\"ns_median\",\"ns_min\",\"ns_max\",\"mults\",\"mults_per_ns\",\n"
@@ -79,6 +81,8 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
 
 static int run(int argc, char **argv)
 {
+    for (int k = 1; k < argc; k++)
+        if (!strcmp(argv[k], "--peers")) return cli_bench_peers(&cmd_bench, argc, argv);
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_PRECISION,
                                          CLI_LONGOPT_DEGREES,
