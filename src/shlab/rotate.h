@@ -64,6 +64,7 @@ typedef enum {
     SH_ROT_TAYLOR1,   /* approximate: Z(α)·(I + βJ)·Z(γ)  (Krivánek et al. 2005) */
     SH_ROT_TAYLOR15,  /* approximate: Z(α)·(I + βJ + β²/2·diag(J²))·Z(γ) */
     SH_ROT_TAYLOR2,   /* approximate: Z(α)·(I + βJ + β²/2·J²)·Z(γ) */
+    SH_ROT_HALFPI,    /* d^l(π/2) generated band by band (O(l²) each), Z·Δ·Z(β)·Δ·Z; high bands */
     SH_ROT_NMETHODS
 } sh_rot_method;
 typedef enum { SH_PREC_DOUBLE = 0, SH_PREC_FLOAT = 1 } sh_precision;
