@@ -29,6 +29,9 @@ CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
             -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
 LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
+# OpenMP: threads across bands and rotations (src/rotate/rotation_stream.c)
+CFLAGS   += -fopenmp
+LDLIBS   += -fopenmp
 
 # src/ is grouped by concept, one folder each (README "Layout"): the library is
 # every src/<concept>/*.c except src/cli/ (the command-line tool).

@@ -93,25 +93,37 @@ SH__ROT_DECLARE_APPLY(halfpi);
 #define HP_FLUSH_K 1000
 #endif
 
-/* One 16-byte vector: NL lanes (2 doubles or 4 floats), columns c, c+1, …
- * alternately even and odd.  Lane arithmetic is defined element by element,
- * so the result does not depend on the instructions the compiler picks. */
-#define NL ((int)(16 / sizeof(sh_real)))
-typedef sh_real SH_R(hp_v) __attribute__((vector_size(16)));
+/* One vector of HP_VBYTES: NL lanes (4 doubles or 8 floats), columns c,
+ * c+1, … alternately even and odd.  Lane arithmetic is defined element by
+ * element (and ISO C mode keeps the compiler from contracting a·b + c into
+ * an FMA), so the result does not depend on the instructions used: the
+ * hot functions are compiled for AVX-512, AVX2 and the baseline
+ * (HP_CLONES, chosen at load time) and all give the same bits. */
+#define HP_VBYTES 32
+#define NL ((int)(HP_VBYTES / sizeof(sh_real)))
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi" /* only inline helpers pass these vectors */
+typedef sh_real SH_R(hp_v) __attribute__((vector_size(HP_VBYTES)));
 #define VR SH_R(hp_v)
-static inline VR SH_R(hp_ld)(const sh_real *p)
+#define HP_INLINE static inline __attribute__((always_inline))
+HP_INLINE VR SH_R(hp_ld)(const sh_real *p)
 {
     VR v;
     memcpy(&v, p, sizeof v);
     return v;
 }
-static inline void SH_R(hp_st)(sh_real *p, VR v) { memcpy(p, &v, sizeof v); }
+HP_INLINE void SH_R(hp_st)(sh_real *p, VR v) { memcpy(p, &v, sizeof v); }
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define HP_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define HP_CLONES
+#endif
 
 /* Over columns c = 0..n−1 of a wedge row: the dot product Σ row[c]·z[c],
  * even c into *se and odd c into *so, and the axpy T[c] += row[c]·(ke or ko
  * for even or odd c).  Fixed summation order: four vectors of partial sums
  * (8 doubles, 16 floats), combined pairwise at the end, then the tail. */
-static inline void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh_real *T,
+HP_INLINE void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh_real *T,
                                      sh_real ke, sh_real ko, sh_real *se, sh_real *so)
 {
     VR k, a0, a1, a2, a3;
@@ -147,13 +159,14 @@ static inline void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z
 }
 
 /* ---- scratch ------------------------------------------------------------ */
-/* Per band l ≤ L and nj ≤ J jobs: the wedge, three recursion rows, B, 1/B,
- * 2m, the column scales, ten per-job vectors, kexp.  Either precision. */
+/* Per band l ≤ L and nj ≤ J jobs: three wedge rows, three recursion rows,
+ * B, 1/B, 2m, the column scales, ten per-job vectors, kexp: O(l), either
+ * precision. */
 #ifndef SH_REAL_FLOAT
 static size_t hp_nreal(int L, int J)
 {
     const size_t n = (size_t)L + 1;
-    return n * (n + 1) / 2 + 3 * n + 2 * (n + 1) + 2 * n + 10 * n * (size_t)J + 16;
+    return 3 * n + 3 * n + 2 * (n + 1) + 2 * n + 10 * n * (size_t)J + 16;
 }
 size_t sh__rot_halfpi_work_bytes(int L, int J)
 {
@@ -163,7 +176,7 @@ size_t sh__rot_halfpi_work_bytes(int L, int J)
 
 typedef struct {
     int l, ms;          /* band; first scaled column (l+1: none) */
-    sh_real *wedge;     /* row r at r(r+1)/2 */
+    sh_real *w[3];      /* wedge rows (true values) by r mod 3 */
     sh_real *rec[3];    /* recursion rows of the scaled columns, by r mod 3 */
     sh_real *B, *iB;    /* B_j, 1/B_j, j = 0..l+1 */
     sh_real *twom;      /* 2m */
@@ -178,7 +191,9 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     const size_t n = (size_t)l + 1;
     sh_real *p = work;
     g->l = l;
-    g->wedge = p, p += n * (n + 1) / 2;
+    g->w[0] = p, p += n;
+    g->w[1] = p, p += n;
+    g->w[2] = p, p += n;
     g->rec[0] = p, p += n;
     g->rec[1] = p, p += n;
     g->rec[2] = p, p += n;
@@ -194,7 +209,7 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
 static void SH_R(hp_init)(HPGEN *g)
 {
     const int l = g->l;
-    sh_real *w0 = g->wedge + (size_t)l * (l + 1) / 2;
+    sh_real *w0 = g->w[l % 3];
     long double e2 = 1;
     for (int k = 1; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
     long double e = sqrtl(e2);
@@ -218,6 +233,7 @@ static void SH_R(hp_init)(HPGEN *g)
             w0[m] = (sh_real)f * g->scale[m];
         }
     }
+    memset(g->w[(l + 1) % 3], 0, ((size_t)l + 1) * sizeof(sh_real)); /* row l+1 */
     for (int j = 0; j <= l + 1; j++) {
         const double b = sqrt((double)(l + j) * (double)(l - j + 1));
         g->B[j] = (sh_real)b;
@@ -225,32 +241,35 @@ static void SH_R(hp_init)(HPGEN *g)
     }
 }
 
-/* Wedge row r < l from rows r+1 and r+2 (row l+1 is zero). */
-static void SH_R(hp_row)(HPGEN *g, int r)
+/* out[m] = (2m·x1[m] − b2·x2[m])·ib for m in [m0, m1): the recursion, a vector
+ * at a time (the same operations on every column). */
+HP_INLINE void SH_R(hp_rec3)(int m0, int m1, const sh_real *tm, const sh_real *x1,
+                             const sh_real *x2, sh_real b2, sh_real ib, sh_real *out)
 {
-    const int l = g->l, nu = r + 1 < g->ms ? r + 1 : g->ms; /* unscaled columns 0..nu−1 */
-    sh_real *w = g->wedge + (size_t)r * (r + 1) / 2;
-    const sh_real *w1 = g->wedge + (size_t)(r + 1) * (r + 2) / 2;
-    const sh_real b2 = g->B[r + 2], ib = g->iB[r + 1], *tm = g->twom;
+    VR vb, vi;
+    for (int i = 0; i < NL; i++) vb[i] = b2, vi[i] = ib;
+    int m = m0;
+    for (; m + NL <= m1; m += NL)
+        SH_R(hp_st)(out + m, (SH_R(hp_ld)(tm + m) * SH_R(hp_ld)(x1 + m) - vb * SH_R(hp_ld)(x2 + m)) * vi);
+    for (; m < m1; m++) out[m] = (tm[m] * x1[m] - b2 * x2[m]) * ib;
+}
+
+/* Wedge row r < l from rows r+1 and r+2 (row l+1 is zero). */
+HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
+{
+    const int nu = r + 1 < g->ms ? r + 1 : g->ms; /* unscaled columns 0..nu−1 */
+    sh_real *w = g->w[r % 3];
+    const sh_real b2 = g->B[r + 2], ib = g->iB[r + 1];
     /* Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1} */
-    if (r + 1 == l) {
-        for (int m = 0; m < nu; m++) w[m] = (tm[m] * w1[m]) * ib;
-    } else {
-        const sh_real *w2 = g->wedge + (size_t)(r + 2) * (r + 3) / 2;
-        for (int m = 0; m < nu; m++) w[m] = (tm[m] * w1[m] - b2 * w2[m]) * ib;
-    }
+    SH_R(hp_rec3)(0, nu, g->twom, g->w[(r + 1) % 3], g->w[(r + 2) % 3], b2, ib, w);
     if (nu > r) return;
     /* scaled columns ms..r: the same recursion on the mantissas */
     sh_real *x = g->rec[r % 3];
-    const sh_real *x1 = g->rec[(r + 1) % 3], *x2 = g->rec[(r + 2) % 3];
-    sh_real big = 0;
-    for (int m = nu; m <= r; m++) {
-        x[m] = (tm[m] * x1[m] - b2 * x2[m]) * ib;
-        big = SH_FABS(x[m]) > big ? SH_FABS(x[m]) : big;
-    }
-    const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP);
-    if (big > lim) {
-        const sh_real down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
+    SH_R(hp_rec3)(nu, r + 1, g->twom, g->rec[(r + 1) % 3], g->rec[(r + 2) % 3], b2, ib, x);
+    /* a row grows by at most ~2√(2l) < 2^7.5 (l < 4097), so a check every
+     * 8 rows keeps the mantissas below 2^(HP_RESCALE_EXP + 60), far from overflow */
+    if (!(r & 7)) {
+        const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP), down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
         sh_real *y1 = g->rec[(r + 1) % 3];
         for (int m = nu; m <= r; m++)
             if (SH_FABS(x[m]) > lim) {
@@ -259,7 +278,44 @@ static void SH_R(hp_row)(HPGEN *g, int r)
                 g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->kexp[m]);
             }
     }
-    for (int m = nu; m <= r; m++) w[m] = x[m] * g->scale[m];
+    int m = nu;
+    for (; m + NL <= r + 1; m += NL)
+        SH_R(hp_st)(w + m, SH_R(hp_ld)(x + m) * SH_R(hp_ld)(g->scale + m));
+    for (; m <= r; m++) w[m] = x[m] * g->scale[m];
+}
+
+/* Columns 0..n−1 of wedge row r (n ≤ r+1) hold every entry of magnitude
+ * ≥ HP_TINY; the stages skip the rest.  Entries beyond the turning point
+ * m² + r² ≈ l² decay fast (and the flushed scaled columns are 0), so near
+ * r = l most of a row is skipped.  Skipping |Δ| < HP_TINY changes a stage's
+ * sum by less than l·HP_TINY·max|z| (≤ 1e-23 relative). */
+#ifdef SH_REAL_FLOAT
+#define HP_TINY 0x1p-45f
+typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffff
+#else
+#define HP_TINY 0x1p-90
+typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffffffffffffLL
+#endif
+HP_INLINE int SH_R(hp_active)(const sh_real *w, int r)
+{
+    int n = r + 1;
+    SH_R(hp_vi) mask, tau;
+    VR t;
+    for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = HP_TINY;
+    memcpy(&tau, &t, sizeof tau);
+    while (n >= NL) { /* a vector of |w| < HP_TINY (compared as integers: |w| ≥ 0) */
+        SH_R(hp_vi) a;
+        memcpy(&a, w + n - NL, sizeof a);
+        const SH_R(hp_vi) big = (a & mask) >= tau;
+        int any = 0;
+        for (int i = 0; i < NL; i++) any |= big[i] != 0;
+        if (any) break;
+        n -= NL;
+    }
+    while (n > 0 && !(SH_FABS(w[n - 1]) >= HP_TINY)) n--;
+    return n;
 }
 
 /* ---- the band kernel ------------------------------------------------------ */
@@ -268,7 +324,7 @@ static void SH_R(hp_row)(HPGEN *g, int r)
  * + 4(M+1); M ≥ l), input in[j] and output out[j] (2l+1 values each; out
  * may equal in).  nocs: the vectors are in the nocs convention (odd m
  * negated on the way in and out).  work: sh__rot_halfpi_work_bytes(≥ l, ≥ nj). */
-void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs, int M,
+HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs, int M,
                                const sh_real *const *in, sh_real *const *out, void *work,
                                uint64_t *mults)
 {
@@ -300,7 +356,8 @@ void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs
             SH_R(hp_row)(&g, r);
             count += 3u * (uint64_t)(r + 1);
         }
-        const sh_real *row = g.wedge + (size_t)r * (r + 1) / 2, sr = (r & 1) ? -1 : 1;
+        const sh_real *row = g.w[r % 3], sr = (r & 1) ? -1 : 1;
+        const int na = nj ? SH_R(hp_active)(row, r) : 0, off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
             sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
             const sh_real *z = ((l - r) & 1) ? zs : zc;
@@ -308,12 +365,14 @@ void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs
             sh_real se, so;
             /* (k, m) = (r, c): dot into E_r, O_r; (k, m) = (c, r), c < r, by (S):
              * (−1)^{r−c} Δ_{rc} z^{(c)}_r into E_c (r even) or O_c (r odd) */
-            SH_R(hp_dot_axpy)(r, row, z, (r & 1) ? O : E, sr * zev[r], -sr * zod[r], &se, &so);
-            if (r & 1) so += row[r] * z[r];
-            else se += row[r] * z[r];
+            SH_R(hp_dot_axpy)(off, row, z, (r & 1) ? O : E, sr * zev[r], -sr * zod[r], &se, &so);
+            if (na > r) {
+                if (r & 1) so += row[r] * z[r];
+                else se += row[r] * z[r];
+            }
             E[r] += se;
             O[r] += so;
-            count += 2u * (uint64_t)r + 1;
+            count += 2u * (uint64_t)off + 1;
         }
     }
     /* B: t_k, e^{−ikβ}, and the stage-5 coefficients h (hE for even m', hO
@@ -335,10 +394,15 @@ void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs
         memset(U, 0, 2 * n * sizeof *U);
         count += 6u * (uint64_t)(l + 1);
     }
-    /* stage 5 over the stored wedge */
-    for (int r = 0; r <= l; r++) {
-        const sh_real *row = g.wedge + (size_t)r * (r + 1) / 2, sr = (r & 1) ? -1 : 1;
-        const int same = !((l - r) & 1);
+    /* stage 5: the wedge generated again (rows l..0) */
+    SH_R(hp_init)(&g);
+    for (int r = l; r >= 0; r--) {
+        if (r < l) {
+            SH_R(hp_row)(&g, r);
+            count += 3u * (uint64_t)(r + 1);
+        }
+        const sh_real *row = g.w[r % 3], sr = (r & 1) ? -1 : 1;
+        const int same = !((l - r) & 1), na = nj ? SH_R(hp_active)(row, r) : 0, off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
             sh_real *hE = g.job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
             sh_real *U = GO + n, *V = U + n;
@@ -346,11 +410,11 @@ void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs
             /* (k, m') = (r, c): U/V_c += Δ_{rc} h_r; (k, m') = (c, r), c < r:
              * (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r (c ≢ l) */
             sh_real *T = same ? U : V;
-            SH_R(hp_dot_axpy)(r, row, (r & 1) ? GO : GE, T, hE[r], hO[r], &se, &so);
-            T[r] += row[r] * ((r & 1) ? hO[r] : hE[r]);
+            SH_R(hp_dot_axpy)(off, row, (r & 1) ? GO : GE, T, hE[r], hO[r], &se, &so);
+            if (na > r) T[r] += row[r] * ((r & 1) ? hO[r] : hE[r]);
             if (l & 1) U[r] += sr * so, V[r] += sr * se;
             else U[r] += sr * se, V[r] += sr * so;
-            count += 2u * (uint64_t)r + 1;
+            count += 2u * (uint64_t)off + 1;
         }
     }
     /* D: a'' = 2 i^{m'} (R + iI), b = e^{−im'α} a'', out */
@@ -376,19 +440,20 @@ void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs
 
 /* d^l_{m'm}(π/2) for m', m = 0..l into d[m'(l+1) + m] (the wedge generated
  * as for a rotation, the rest by (S)).  work: sh__rot_halfpi_work_bytes(l, 0). */
-void SH_R(sh__rot_halfpi_delta)(int l, void *work, sh_real *d)
+HP_CLONES void SH_R(sh__rot_halfpi_delta)(int l, void *work, sh_real *d)
 {
     HPGEN g;
     SH_R(hp_layout)(l, 0, work, &g);
     SH_R(hp_init)(&g);
-    for (int r = l - 1; r >= 0; r--) SH_R(hp_row)(&g, r);
     const int n = l + 1;
-    for (int r = 0; r <= l; r++)
+    for (int r = l; r >= 0; r--) {
+        if (r < l) SH_R(hp_row)(&g, r);
         for (int c = 0; c <= r; c++) {
-            const sh_real v = g.wedge[(size_t)r * (r + 1) / 2 + c];
+            const sh_real v = g.w[r % 3][c];
             d[(size_t)r * n + c] = v;
             d[(size_t)c * n + r] = ((r - c) & 1) ? -v : v;
         }
+    }
 }
 
 /* ---- the method's plan interface ---------------------------------------- */
