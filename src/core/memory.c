@@ -37,9 +37,11 @@ const char *sh__bytes_str(double bytes, char *buf, size_t n)
 
 int sh__mem_check(double bytes, const char *what)
 {
+    /* an eighth of what is available is left to everything else running */
     const size_t avail = sh__mem_available();
-    if (bytes <= (double)avail) return SH_OK;
+    const double usable = (double)avail - (double)(avail / 8);
+    if (bytes <= usable) return SH_OK;
     char a[32], b[32];
-    return sh_error(SH_ENOMEM, "%s needs %s of memory, more than the %s available", what,
+    return sh_error(SH_ENOMEM, "%s needs %s of memory; %s is available", what,
                     sh__bytes_str(bytes, a, sizeof a), sh__bytes_str((double)avail, b, sizeof b));
 }

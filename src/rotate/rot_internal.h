@@ -22,6 +22,7 @@ typedef struct {
     int max_order;
     int approximate; /* 1: a Taylor approximation (not held to the reference) */
     /* per-order tables: NULL if the method needs none */
+    size_t (*tables_bytes)(int order); /* their size in double (NULL: small, O(order²)) */
     int (*tables_new_d)(int order, void **tables);
     int (*tables_new_f)(int order, void **tables);
     void (*tables_free)(void *tables);
