@@ -47,7 +47,7 @@ static const char help[] =
 #define ROTATE_NOTE_ORDER 128
 /* Bytes per coefficient for its parsed JSON number and printed text, on top
  * of the double (measured: peak RSS of rotate --in at order 1001). */
-#define ROTATE_JSON_BYTES 96
+#define ROTATE_JSON_BYTES 105
 
 static int run(int argc, char **argv)
 {
@@ -146,7 +146,8 @@ static int run(int argc, char **argv)
         }
         sh_rot_stream_free(s);
     } else {
-        if (order >= ROTATE_NOTE_ORDER && !sh_check_order(order)) {
+        st = sh_rot_plan_check(order, method, prec);
+        if (!st && order >= ROTATE_NOTE_ORDER) {
             const double pb = (double)sh_rot_plan_bytes(order, method, prec);
             fprintf(stderr,
                     "shlab: rotate: order %d, %d channel%s, method %s (%s, one thread): %.1f MB for the "
@@ -155,7 +156,7 @@ static int run(int argc, char **argv)
                     pb / 1e6, (pb + vec_bytes) / 1e6);
         }
         sh_rot_plan *p = NULL;
-        st = sh_rot_plan_create(order, method, prec, com.conv, &p);
+        if (!st) st = sh_rot_plan_create(order, method, prec, com.conv, &p);
         if (!st) st = sh_rot_plan_set(p, &rot);
         for (int k = 0; !st && k < nchan; k++) st = sh_rot_plan_apply(p, c + (size_t)k * n, c + (size_t)k * n);
         sh_rot_plan_free(p);

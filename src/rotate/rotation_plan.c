@@ -131,16 +131,23 @@ size_t sh_rot_plan_bytes(int order, sh_rot_method method, sh_precision prec)
     return b >= (double)SIZE_MAX ? SIZE_MAX : (size_t)b;
 }
 
+int sh_rot_plan_check(int order, sh_rot_method method, sh_precision prec)
+{
+    int st = check_args(order, method, prec, SH_CS);
+    if (st) return st;
+    char what[96];
+    snprintf(what, sizeof what, "rotation plan (method %s, %s, order %d)", method_names[method],
+             sh_precision_name(prec), order);
+    return sh__mem_check(plan_bytes(order, methods[method], prec), what);
+}
+
 int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                        sh_rot_plan **out)
 {
     *out = NULL;
     int st = check_args(order, method, prec, conv);
     if (st) return st;
-    char what[96];
-    snprintf(what, sizeof what, "rotation plan (method %s, %s, order %d)", method_names[method],
-             sh_precision_name(prec), order);
-    if ((st = sh__mem_check(plan_bytes(order, methods[method], prec), what))) return st;
+    if ((st = sh_rot_plan_check(order, method, prec))) return st;
     sh_rot_plan *p = calloc(1, sizeof *p);
     if (!p) return sh_error(SH_ENOMEM, "rotation plan: out of memory");
     p->order = order;

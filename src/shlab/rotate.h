@@ -102,6 +102,9 @@ void sh_rot_plan_free(sh_rot_plan *p);
  * refuses (SH_ENOMEM, one line naming the size) a plan larger than the
  * memory available. */
 size_t sh_rot_plan_bytes(int order, sh_rot_method method, sh_precision prec);
+/* The checks sh_rot_plan_create makes before allocating (arguments, size
+ * against the memory available), alone: SH_OK or its error. */
+int sh_rot_plan_check(int order, sh_rot_method method, sh_precision prec);
 /* Set the rotation (computes the block matrix, or for ZXZXZ the angles). */
 int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot);
 /* out = R_sh in (in-place allowed).  in and out have order² entries. */
