@@ -134,8 +134,9 @@ int sh_rot_bands_get(sh_rot_bands *it, int l, double *block);
 void sh_rot_bands_free(sh_rot_bands *it);
 /* All bands at high order (rotation_stream.c): the halfpi method — d^l(π/2)
  * generated band by band, nothing kept between bands — run on threads across
- * bands and across batches of rotations, in O(order²) memory per thread
- * (sh_rot_stream_bytes; 4.1 MB per thread at order 1001, 64 MB at 4001).
+ * bands and across batches of rotations, with O(order) scratch per thread
+ * (sh_rot_stream_bytes: 0.7 MB per thread at order 1001, 3 MB at 4097) and
+ * no memory beyond the caller's vectors.
  * Results are bit for bit the same for any number of threads.  Create once
  * for (order, convention, threads) and apply to any number of rotations and
  * vectors; the per-order scratch is all it keeps.  threads ≤ 0: all cores

@@ -171,6 +171,25 @@ int main(int argc, char **argv)
                    median(t2), median(t3), rng(q1).c_str(), rng(q2).c_str(), rng(q3).c_str());
             fflush(stdout);
         }
+        /* thread scaling of shlab alone: 1 and T threads, interleaved */
+        for (int t : threads) {
+            if (t == 1) continue;
+            sh_rot_stream *s1, *st;
+            if (sh_rot_stream_create(order, SH_CS, 1, &s1) || sh_rot_stream_create(order, SH_CS, t, &st)) fail("create");
+            std::vector<double> q;
+            for (int rep = 0; rep < R + 2; rep++) {
+                double t0 = now();
+                sh_rot_stream_apply(s1, 1, &r, 0, 1, x.data(), y.data());
+                const double a1 = now() - t0;
+                t0 = now();
+                sh_rot_stream_apply(st, 1, &r, 0, 1, x.data(), y.data());
+                q.push_back(a1 / (now() - t0));
+            }
+            sh_rot_stream_free(s1);
+            sh_rot_stream_free(st);
+            printf("%5d shlab speed-up on %d threads (1-thread time / %d-thread time, interleaved): %.2f [%.2f, %.2f]\n",
+                   lmax, t, t, median(q), *std::min_element(q.begin(), q.end()), *std::max_element(q.begin(), q.end()));
+        }
         /* accuracy of the round trip, both sides */
         omp_set_num_threads(1);
         sh_rot_stream *s;
