@@ -109,9 +109,13 @@ int sh_rot_stream_apply(sh_rot_stream *s, int nrot, const sh_rotation *rots, int
     const long njobs = (long)nrot * nvec, nbatch = (njobs + SH_STREAM_JB - 1) / SH_STREAM_JB;
     const long nitems = (long)order * nbatch;
     const int nocs = s->conv == SH_NOCS;
+    /* small jobs on one thread: waking the others costs more than the work
+     * (≈ order³/3 multiply-adds a job; 2e6 is about a millisecond) */
+    const double work = (double)order * order * order / 3 * (double)njobs;
+    const int nt = work < 2e6 ? 1 : s->threads;
     long done = 0;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(s->threads)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
 #endif
     for (long it = 0; it < nitems; it++) {
         int tid = 0;

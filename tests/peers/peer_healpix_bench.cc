@@ -14,7 +14,10 @@
  * process that only runs shlab's one-shot rotation (vectors included).
  *
  * Usage: peer_healpix_bench [--lmax 100,300,1000] [--threads 1,2] [--repeat R]
+ *                           [--shlab-only]
  * (R default: 7; 3 at lmax ≥ 1000).  Times in seconds, CLOCK_MONOTONIC.
+ * --shlab-only: no HEALPix (at lmax 4000 one rotate_alm takes many minutes):
+ * shlab's times, its round trip and its peak RSS.
  */
 #include "peer_healpix.h"
 
@@ -103,14 +106,15 @@ static double child_rss(int lmax, int threads)
 int main(int argc, char **argv)
 {
     std::vector<int> lmaxes = {100, 300, 1000}, threads = {1, 2};
-    int repeat = 0;
+    int repeat = 0, peer = 1;
     if (argc == 4 && !strcmp(argv[1], "--rss-child")) return rss_child(atoi(argv[2]), atoi(argv[3]));
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--lmax") && i + 1 < argc) lmaxes = ints(argv[++i]);
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = ints(argv[++i]);
         else if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--shlab-only")) peer = 0;
         else {
-            fprintf(stderr, "usage: peer_healpix_bench [--lmax L1,L2,..] [--threads T1,T2,..] [--repeat R]\n");
+            fprintf(stderr, "usage: peer_healpix_bench [--lmax L1,L2,..] [--threads T1,T2,..] [--repeat R] [--shlab-only]\n");
             return 2;
         }
     }
@@ -128,8 +132,8 @@ int main(int argc, char **argv)
         sh_rotation r, rb[nb];
         sh_rotation_from_euler(0.3, 1.1, -0.7, &r);
         for (int k = 0; k < nb; k++) sh_rotation_from_euler(0.3 + 0.1 * k, 1.1 - 0.05 * k, -0.7 + 0.2 * k, &rb[k]);
-        peer_alm a0(lmax, lmax), a(lmax, lmax);
-        peer_to_alm(lmax, x.data(), a0);
+        peer_alm a0(peer ? lmax : 0, peer ? lmax : 0), a(peer ? lmax : 0, peer ? lmax : 0);
+        if (peer) peer_to_alm(lmax, x.data(), a0);
         const int R = repeat > 0 ? repeat : (lmax >= 1000 ? 3 : 7);
         for (int t : threads) {
             omp_set_num_threads(t);
@@ -137,14 +141,14 @@ int main(int argc, char **argv)
             if (sh_rot_stream_create(order, SH_CS, t, &keep)) fail("create");
             /* warm-up: one of each */
             a = a0;
-            peer_rotate(a, r);
+            if (peer) peer_rotate(a, r);
             if (sh_rot_stream_apply(keep, 1, &r, 0, 1, x.data(), y.data())) fail("apply");
             std::vector<double> th, t1, t2, t3, q1, q2, q3;
             for (int rep = 0; rep < R; rep++) {
                 a = a0;
                 double t0 = now();
-                peer_rotate(a, r);
-                const double h = now() - t0;
+                if (peer) peer_rotate(a, r);
+                const double h = peer ? now() - t0 : NAN;
                 t0 = now();
                 sh_rot_stream *s;
                 if (sh_rot_stream_create(order, SH_CS, t, &s) || sh_rot_stream_apply(s, 1, &r, 0, 1, x.data(), y.data()))
@@ -197,11 +201,13 @@ int main(int argc, char **argv)
         sh_rot_stream_apply(s, 1, &r, 0, 1, x.data(), y.data());
         sh_rot_stream_apply(s, 1, &r, 1, 1, y.data(), z.data());
         sh_rot_stream_free(s);
-        a = a0;
-        peer_rotate(a, r);
-        peer_rotate(a, r, true);
-        std::vector<double> hz(n);
-        peer_from_alm(lmax, a, hz.data());
+        std::vector<double> hz(n, NAN);
+        if (peer) {
+            a = a0;
+            peer_rotate(a, r);
+            peer_rotate(a, r, true);
+            peer_from_alm(lmax, a, hz.data());
+        }
         double es = 0, eh = 0, ns = 0, nh = 0, nx = 0;
         for (size_t i = 0; i < n; i++) {
             es = std::fmax(es, std::fabs(z[i] - x[i]));
@@ -210,8 +216,11 @@ int main(int argc, char **argv)
             nh += (hz[i] - x[i]) * (hz[i] - x[i]);
             nx += x[i] * x[i];
         }
-        printf("%5d round trip: shlab max %.3g rel-L2 %.3g | healpix max %.3g rel-L2 %.3g\n", lmax, es,
-               std::sqrt(ns / nx), eh, std::sqrt(nh / nx));
+        if (peer)
+            printf("%5d round trip: shlab max %.3g rel-L2 %.3g | healpix max %.3g rel-L2 %.3g\n", lmax, es,
+                   std::sqrt(ns / nx), eh, std::sqrt(nh / nx));
+        else
+            printf("%5d round trip: shlab max %.3g rel-L2 %.3g\n", lmax, es, std::sqrt(ns / nx));
         for (int t : threads) printf("%5d peak RSS of a shlab one-shot child, %d thread(s): %.1f MB\n", lmax, t, child_rss(lmax, t));
         fflush(stdout);
     }
