@@ -324,6 +324,19 @@ HP_INLINE int SH_R(hp_active)(const sh_real *w, int r)
     return n;
 }
 
+/* The next wedge row, r = l, l−1, …, 0 in turn (row l is the seed row of
+ * hp_init), and in *na its active length for the stages (0 without jobs). */
+HP_INLINE const sh_real *SH_R(hp_next)(HPGEN *g, int r, int nj, int *na, uint64_t *count)
+{
+    if (r < g->l) {
+        SH_R(hp_row)(g, r);
+        *count += 3u * (uint64_t)(r + 1);
+    }
+    const sh_real *row = g->w[r % 3];
+    *na = nj ? SH_R(hp_active)(row, r) : 0;
+    return row;
+}
+
 /* ---- the band kernel ------------------------------------------------------ */
 /* Rotate band l of nj vectors: job j has the multiple-angle table cs[j]
  * (csa = cos, sin of mα at cs[j][2m], csb = of mβ at + 2(M+1), csg = of mγ at
@@ -358,12 +371,9 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
     /* generation with stage 3 (rows l..0) */
     SH_R(hp_init)(&g);
     for (int r = l; r >= 0; r--) {
-        if (r < l) {
-            SH_R(hp_row)(&g, r);
-            count += 3u * (uint64_t)(r + 1);
-        }
-        const sh_real *row = g.w[r % 3], sr = (r & 1) ? -1 : 1;
-        const int na = nj ? SH_R(hp_active)(row, r) : 0, off = na < r ? na : r;
+        int na;
+        const sh_real *row = SH_R(hp_next)(&g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const int off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
             sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
             const sh_real *z = ((l - r) & 1) ? zs : zc;
@@ -403,12 +413,9 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
     /* stage 5: the wedge generated again (rows l..0) */
     SH_R(hp_init)(&g);
     for (int r = l; r >= 0; r--) {
-        if (r < l) {
-            SH_R(hp_row)(&g, r);
-            count += 3u * (uint64_t)(r + 1);
-        }
-        const sh_real *row = g.w[r % 3], sr = (r & 1) ? -1 : 1;
-        const int same = !((l - r) & 1), na = nj ? SH_R(hp_active)(row, r) : 0, off = na < r ? na : r;
+        int na;
+        const sh_real *row = SH_R(hp_next)(&g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const int same = !((l - r) & 1), off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
             sh_real *hE = g.job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
             sh_real *U = GO + n, *V = U + n;
@@ -523,34 +530,47 @@ void SH_R(sh__rot_halfpi_apply)(int order, const void *tables, const void *state
     }
 }
 
-/* Blocks: each band applied to its unit vectors, HP_JB at a time. */
+/* The (2l+1)² block of band l: the band applied to its unit vectors, HP_JB
+ * at a time.  cs: the angle table (M ≥ l); e, col: HP_JB vectors of stride
+ * W ≥ 2l+1 each; bw: band work for HP_JB jobs. */
 #define HP_JB 16
+static void SH_R(hp_block)(int l, const sh_real *cs, int M, sh_real *B, sh_real *e, sh_real *col,
+                           int W, void *bw, uint64_t *mults)
+{
+    const int w = 2 * l + 1;
+    const sh_real *csj[HP_JB], *inj[HP_JB];
+    sh_real *outj[HP_JB];
+    for (int j0 = 0; j0 < w; j0 += HP_JB) {
+        const int nj = w - j0 < HP_JB ? w - j0 : HP_JB;
+        for (int j = 0; j < nj; j++) {
+            sh_real *u = e + (size_t)j * W;
+            for (int i = 0; i < w; i++) u[i] = 0;
+            u[j0 + j] = 1;
+            csj[j] = cs, inj[j] = u, outj[j] = col + (size_t)j * W;
+        }
+        SH_R(sh__rot_halfpi_band)(l, 0, nj, csj, M, inj, outj, bw, mults);
+        for (int j = 0; j < nj; j++)
+            for (int i = 0; i < w; i++) B[(size_t)i * w + j0 + j] = outj[j][i];
+    }
+}
+
+/* work of the blocks: the angles (room for set_f's double table), e, col,
+ * then the band work, 64-byte aligned */
+static void *SH_R(hp_block_work)(int order, void *work, sh_real **cs, sh_real **e, sh_real **col)
+{
+    const size_t W = 2 * (size_t)order + 1;
+    *cs = work, *e = *cs + 4 * hp_state_n(order), *col = *e + HP_JB * W;
+    return (void *)(((uintptr_t)(*col + HP_JB * W) + 63) & ~(uintptr_t)63);
+}
+
 int SH_R(sh__rot_halfpi_blocks)(int order, const sh_rotation *rot, const void *tables,
                                 sh_real *blocks, void *work, uint64_t *mults)
 {
-    const int L = order - 1, W = 2 * L + 1;
-    sh_real *cs = work, *e = cs + 4 * hp_state_n(order), *col = e + (size_t)HP_JB * W;
-    void *bw = col + (size_t)HP_JB * W;
-    bw = (void *)(((uintptr_t)bw + 63) & ~(uintptr_t)63);
+    sh_real *cs, *e, *col;
+    void *bw = SH_R(hp_block_work)(order, work, &cs, &e, &col);
     SH_R(sh__rot_halfpi_set)(order, rot, NULL, cs, mults);
-    const sh_real *csj[HP_JB], *inj[HP_JB];
-    sh_real *outj[HP_JB];
-    for (int l = 0; l < order; l++) {
-        const int w = 2 * l + 1;
-        sh_real *B = blocks + sh_rot_block_offset(l);
-        for (int j0 = 0; j0 < w; j0 += HP_JB) {
-            const int nj = w - j0 < HP_JB ? w - j0 : HP_JB;
-            for (int j = 0; j < nj; j++) {
-                sh_real *u = e + (size_t)j * W;
-                for (int i = 0; i < w; i++) u[i] = 0;
-                u[j0 + j] = 1;
-                csj[j] = cs, inj[j] = u, outj[j] = col + (size_t)j * W;
-            }
-            SH_R(sh__rot_halfpi_band)(l, 0, nj, csj, L, inj, outj, bw, mults);
-            for (int j = 0; j < nj; j++)
-                for (int i = 0; i < w; i++) B[(size_t)i * w + j0 + j] = outj[j][i];
-        }
-    }
+    for (int l = 0; l < order; l++)
+        SH_R(hp_block)(l, cs, order - 1, blocks + sh_rot_block_offset(l), e, col, 2 * order + 1, bw, mults);
     return SH_OK;
 }
 
@@ -568,25 +588,10 @@ static size_t hp_state(int order) { return 3 * hp_state_n(order) * sizeof(double
 static size_t hp_band_work(int l) { return hp_blocks_work(l + 1); }
 static int hp_band_d(int l, const sh_rotation *rot, double *block, void *work)
 {
-    const int W = 2 * l + 1;
-    double *cs = work, *e = cs + 4 * hp_state_n(l + 1), *col = e + (size_t)HP_JB * W;
-    void *bw = col + (size_t)HP_JB * W;
-    bw = (void *)(((uintptr_t)bw + 63) & ~(uintptr_t)63);
+    double *cs, *e, *col;
+    void *bw = hp_block_work_d(l + 1, work, &cs, &e, &col);
     sh__rot_halfpi_set_angles(rot, 0, l, cs);
-    const double *csj[HP_JB], *inj[HP_JB];
-    double *outj[HP_JB];
-    for (int j0 = 0; j0 < W; j0 += HP_JB) {
-        const int nj = W - j0 < HP_JB ? W - j0 : HP_JB;
-        for (int j = 0; j < nj; j++) {
-            double *u = e + (size_t)j * W;
-            memset(u, 0, (size_t)W * sizeof *u);
-            u[j0 + j] = 1;
-            csj[j] = cs, inj[j] = u, outj[j] = col + (size_t)j * W;
-        }
-        sh__rot_halfpi_band_d(l, 0, nj, csj, l, inj, outj, bw, NULL);
-        for (int j = 0; j < nj; j++)
-            for (int i = 0; i < W; i++) block[(size_t)i * W + j0 + j] = outj[j][i];
-    }
+    hp_block_d(l, cs, l, block, e, col, 2 * l + 3, bw, NULL);
     return SH_OK;
 }
 
