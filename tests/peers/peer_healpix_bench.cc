@@ -38,6 +38,12 @@ static double now()
     clock_gettime(CLOCK_MONOTONIC, &t);
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
+static double cpu()
+{
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
 static double median(std::vector<double> v)
 {
     std::sort(v.begin(), v.end());
@@ -180,19 +186,25 @@ int main(int argc, char **argv)
             if (t == 1) continue;
             sh_rot_stream *s1, *st;
             if (sh_rot_stream_create(order, SH_CS, 1, &s1) || sh_rot_stream_create(order, SH_CS, t, &st)) fail("create");
-            std::vector<double> q;
+            std::vector<double> q, qc;
             for (int rep = 0; rep < R + 2; rep++) {
-                double t0 = now();
+                double t0 = now(), c0 = cpu();
                 sh_rot_stream_apply(s1, 1, &r, 0, 1, x.data(), y.data());
-                const double a1 = now() - t0;
-                t0 = now();
+                const double a1 = now() - t0, c1 = cpu() - c0;
+                t0 = now(), c0 = cpu();
                 sh_rot_stream_apply(st, 1, &r, 0, 1, x.data(), y.data());
                 q.push_back(a1 / (now() - t0));
+                qc.push_back((cpu() - c0) / c1);
             }
             sh_rot_stream_free(s1);
             sh_rot_stream_free(st);
             printf("%5d shlab speed-up on %d threads (1-thread time / %d-thread time, interleaved): %.2f [%.2f, %.2f]\n",
                    lmax, t, t, median(q), *std::min_element(q.begin(), q.end()), *std::max_element(q.begin(), q.end()));
+            /* the CPU time the threads spent (busy or spinning) against one
+             * thread's: ~1 means no work was added by splitting, so on idle
+             * cores the speed-up would be close to t / this */
+            printf("%5d shlab CPU time on %d threads / on 1: %.2f [%.2f, %.2f]\n", lmax, t, median(qc),
+                   *std::min_element(qc.begin(), qc.end()), *std::max_element(qc.begin(), qc.end()));
         }
         /* accuracy of the round trip, both sides */
         omp_set_num_threads(1);
