@@ -81,7 +81,7 @@ $(BUILD)/tests/test_sht_sharp: tests/test_sht_sharp.c tests/testutil.h $(PEER_SH
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
 .PHONY: bench-peers
-bench-peers: all
+bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
@@ -182,3 +182,32 @@ clean:
 	rm -rf build
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+
+# ---- peer: HEALPix C++ (begin peer_healpix block) --------------------------
+# Oracle test and benchmark of the all-band rotation against HEALPix's
+# rotate_alm (Debian libhealpix-cxx-dev, optional: `make deps` installs it).
+# C++ stays here, at the edge: tests/peers/*.cc link libshlab.a.
+CXX      ?= c++
+HEALPIX_PC := $(shell pkg-config --exists healpix_cxx 2>/dev/null && echo yes)
+PEER_HEALPIX_FLAGS = -std=c++17 $(OPT) -Wall $(SANFLAGS) -Isrc -Itests $(shell pkg-config --cflags healpix_cxx 2>/dev/null)
+PEER_HEALPIX_LIBS  = $(BUILD)/libshlab.a $(shell pkg-config --libs healpix_cxx 2>/dev/null) $(CHECK_LIBS) $(LDLIBS)
+.PHONY: bench-peers check-peer-healpix
+ifeq ($(HEALPIX_PC),yes)
+TEST_BIN += $(BUILD)/tests/test_peer_healpix
+check: $(BUILD)/tests/test_peer_healpix
+$(BUILD)/tests/test_peer_healpix: tests/peers/test_peer_healpix.cc tests/peers/peer_healpix.h tests/testutil.h $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PEER_HEALPIX_FLAGS) -o $@ $< $(PEER_HEALPIX_LIBS)
+$(BUILD)/peers/peer_healpix_bench: tests/peers/peer_healpix_bench.cc tests/peers/peer_healpix.h $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PEER_HEALPIX_FLAGS) -o $@ $< $(PEER_HEALPIX_LIBS)
+bench-peers:: $(BUILD)/peers/peer_healpix_bench
+	$(BUILD)/peers/peer_healpix_bench $(PEER_ARGS)
+else
+check: check-peer-healpix
+check-peer-healpix:
+	@echo "test_peer_healpix: skipped: HEALPix C++ not found (pkg-config healpix_cxx; Debian libhealpix-cxx-dev, make deps)"
+bench-peers::
+	@echo "peer_healpix_bench: skipped: HEALPix C++ not found (pkg-config healpix_cxx; Debian libhealpix-cxx-dev, make deps)"
+endif
+# ---- end peer_healpix block --------------------------------------------------

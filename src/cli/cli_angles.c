@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 /* Warnings are kept until the command has finished: printed when it
@@ -26,7 +27,15 @@ void cli_warn(const char *fmt, ...)
     va_list ap;
     va_start(ap, fmt);
     char *msg = NULL;
-    if (vasprintf(&msg, fmt, ap) >= 0) warnings[nwarn++] = msg;
+    if (vasprintf(&msg, fmt, ap) >= 0) {
+        /* the same warning once, however often the input is read */
+        for (int i = 0; i < nwarn && msg; i++)
+            if (!strcmp(warnings[i], msg)) {
+                free(msg);
+                msg = NULL;
+            }
+        if (msg) warnings[nwarn++] = msg;
+    }
     va_end(ap);
 }
 

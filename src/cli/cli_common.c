@@ -78,6 +78,10 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
     case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_DEGREES: c->degrees = 1; return -1;
     case CLI_OPT_METHOD:
+        if (!strcmp(optarg, "auto")) { /* the command's default (rotate, rotmat: by band) */
+            c->have_method = 0;
+            return -1;
+        }
         if (cli_method(optarg, &c->method)) return CLI_EXIT_USAGE;
         c->have_method = 1;
         return -1;

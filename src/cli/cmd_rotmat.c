@@ -33,14 +33,16 @@ static const char help[] =
     "\n"
     "  --order N            bands 0..N-1 (1..32 for the printed matrix)\n"
     "  --band L             one band only (0..1000; below --order if both are given);\n"
-    "                       blanco, zxzxz, wigner and reference compute it without\n"
-    "                       the lower bands, ivanic streams through them, the others\n"
-    "                       need all lower blocks in memory (refused above 1.1 GB)\n"
-    "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
-    "                       (exact; default ivanic) or taylor1 | taylor1.5 |\n"
-    "                       taylor2 (Krivánek et al.'s approximations; a warning on\n"
-    "                       stderr, with the estimated error, when β is beyond the\n"
-    "                       angle where their lobe error reaches 1e-2)\n"
+    "                       blanco, zxzxz, halfpi, wigner and reference compute it\n"
+    "                       without the lower bands, ivanic streams through them, the\n"
+    "                       others need all lower blocks in memory (refused above 1.1 GB)\n"
+    "  --method M           auto (default) | z | ivanic | zxzxz | choi | blanco | wigner |\n"
+    "                       reference | halfpi (exact) or taylor1 | taylor1.5 | taylor2\n"
+    "                       (Krivánek et al.'s approximations).  auto: zxzxz for\n"
+    "                       --order, blanco for --band (O(l²)) — exact at every band;\n"
+    "                       ivanic and choi drift from l ~ 50 and are used only when named.\n"
+    "                       The Taylor methods warn on stderr, with the estimated error,\n"
+    "                       when β is beyond the angle where their lobe error reaches 1e-2\n"
     "  --precision P        double (default) | float (computed in float)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
@@ -59,7 +61,7 @@ static void warn_if_inaccurate(sh_rot_method m, sh_precision p, int band, double
     const double limit = p == SH_PREC_FLOAT ? 1e-3 : 1e-8;
     if (sh_rot_method_is_exact(m) && !(orth <= limit))
         cli_warn("method %s is inaccurate here: orthogonality error %.2g at band %d "
-                 "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)",
+                 "(see 'shlab stability --method %s'; blanco, zxzxz and halfpi stay accurate)",
                  sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
 }
 
@@ -72,9 +74,9 @@ static int run(int argc, char **argv)
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_rotation_args ra = {0};
-    sh_rot_method method = SH_ROT_IVANIC;
+    sh_rot_method method;
     sh_precision prec = SH_PREC_DOUBLE;
-    int band = -1, have_method = 0;
+    int band = -1;
     opterr = 0;
     optind = 1;
     int o;
@@ -94,11 +96,8 @@ static int run(int argc, char **argv)
         }
     }
     /* --method and --precision are kept by cli_common_opt */
-    method = com.method;
     prec = com.prec;
-    have_method = com.have_method;
     if (optind < argc) return cli_fail("rotmat: unexpected argument '%s'", argv[optind]);
-    (void)have_method;
     if (band >= 0 && com.order && band >= com.order)
         return cli_fail("rotmat: --band %d is not below --order %d", band, com.order);
     if (band < 0 && !com.order) return cli_fail("rotmat: --order (or --band) is required");
@@ -106,6 +105,7 @@ static int run(int argc, char **argv)
         return cli_fail("rotmat: --order %d too large for a printed N²×N² matrix (max %d; use --band)",
                         com.order, ROTMAT_MAX_ORDER);
     const int order = com.order ? com.order : band + 1;
+    method = com.have_method ? com.method : sh_rot_method_default(order, band >= 0);
     if ((band >= 0 ? band + 1 : order) > sh_rot_method_max_order(method))
         return cli_fail("rotmat: method %s is limited to order %d", sh_rot_method_name(method),
                         sh_rot_method_max_order(method));

@@ -335,8 +335,10 @@ int sh__rot_blanco_band_d(int l, const sh_rotation *rot, double *block, void *wo
 
 static size_t blanco_band_work(int band) { return sh__rot_blanco_band_work(band); }
 
+static size_t blanco_tables_bytes(int order) { return blanco_table_len(order) * sizeof(double); }
 const sh__rot_ops sh__rot_blanco_ops = {
     .name = "blanco",
+    .tables_bytes = blanco_tables_bytes,
     .max_order = SHLAB_MAX_ORDER,
     .tables_new_d = sh__rot_blanco_tables_new_d,
     .tables_new_f = sh__rot_blanco_tables_new_f,

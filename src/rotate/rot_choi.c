@@ -250,8 +250,10 @@ int SH_R(sh__rot_choi_blocks)(int order, const sh_rotation *rot, const void *tab
 }
 
 #ifndef SH_REAL_FLOAT
+static size_t choi_tables_bytes(int order) { return choi_table_len(order) * sizeof(double); }
 const sh__rot_ops sh__rot_choi_ops = {
     .name = "choi",
+    .tables_bytes = choi_tables_bytes,
     .max_order = SHLAB_MAX_ORDER,
     .tables_new_d = sh__rot_choi_tables_new_d,
     .tables_new_f = sh__rot_choi_tables_new_f,

@@ -22,6 +22,7 @@ typedef struct {
     int max_order;
     int approximate; /* 1: a Taylor approximation (not held to the reference) */
     /* per-order tables: NULL if the method needs none */
+    size_t (*tables_bytes)(int order); /* their size in double (NULL: small, O(order²)) */
     int (*tables_new_d)(int order, void **tables);
     int (*tables_new_f)(int order, void **tables);
     void (*tables_free)(void *tables);
@@ -129,5 +130,26 @@ int sh__rot_reference_selfcheck(int band, const sh_rotation *rot, int digits, do
 extern const sh__rot_ops sh__rot_z_ops, sh__rot_ivanic_ops, sh__rot_zxzxz_ops, sh__rot_choi_ops,
     sh__rot_blanco_ops, sh__rot_wigner_ops, sh__rot_reference_ops;
 extern const sh__rot_ops sh__rot_taylor1_ops, sh__rot_taylor15_ops, sh__rot_taylor2_ops;
+extern const sh__rot_ops sh__rot_halfpi_ops;
+
+/* ---- rot_halfpi.c: the band kernel of `halfpi`, shared with the threaded
+ * all-band rotation (rotation_stream.c).  Band l of nj vectors (job j: the
+ * multiple-angle table cs[j] of sh__rot_halfpi_set_angles with M ≥ l, input
+ * in[j], output out[j], 2l+1 values each, out may be in); nocs: the vectors
+ * are in the nocs convention.  work: sh__rot_halfpi_work_bytes(≥ l, ≥ nj)
+ * bytes.  Bands are independent: no state passes from one to the next. */
+size_t sh__rot_halfpi_work_bytes(int L, int J);
+void sh__rot_halfpi_band_d(int l, int nocs, int nj, const double *const *cs, int M,
+                           const double *const *in, double *const *out, void *work,
+                           uint64_t *mults);
+void sh__rot_halfpi_band_f(int l, int nocs, int nj, const float *const *cs, int M,
+                           const float *const *in, float *const *out, void *work, uint64_t *mults);
+/* cos, sin of mθ, m = 0..M (to an ulp for any m), into cs[2m], cs[2m+1] */
+void sh__rot_halfpi_angles(double theta, int M, double *cs);
+/* A job's table: the multiple angles of α, β, γ at cs, cs + 2(M+1),
+ * cs + 4(M+1) (6(M+1) values); inverse: those of Rᵀ, angles −γ, −β, −α. */
+void sh__rot_halfpi_set_angles(const sh_rotation *rot, int inverse, int M, double *cs);
+/* d^l_{m'm}(π/2), m', m = 0..l, into d[m'(l+1) + m]; work as for nj = 0. */
+void sh__rot_halfpi_delta_d(int l, void *work, double *d);
 
 #endif

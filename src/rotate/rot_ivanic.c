@@ -335,8 +335,10 @@ static int ivanic_stream_init(int lmax, void *state)
     *(size_t *)state = (size_t)(2 * lmax + 1) * (2 * lmax + 1);
     return SH_OK;
 }
+static size_t ivanic_tables_bytes(int order) { return 3 * sh_rot_block_offset(order) * sizeof(double); }
 const sh__rot_ops sh__rot_ivanic_ops = {
     .name = "ivanic",
+    .tables_bytes = ivanic_tables_bytes,
     .max_order = SHLAB_MAX_ORDER,
     .tables_new_d = sh__rot_ivanic_tables_new_d,
     .tables_new_f = sh__rot_ivanic_tables_new_f,

@@ -497,9 +497,11 @@ static size_t zx_work(int order) /* blocks: angles, e, col, u, t; apply: u, t */
     return (3 * zx_na(order) + 8 * (size_t)order) * sizeof(double);
 }
 static size_t zx_state(int order) { return 3 * zx_na(order) * sizeof(double); }
+static size_t zx_tables_bytes(int order) { return zx_off(order) * sizeof(double); }
 const sh__rot_ops sh__rot_zxzxz_ops = {
     .name = "zxzxz",
     .max_order = ZX_MAX_ORDER,
+    .tables_bytes = zx_tables_bytes,
     .tables_new_d = sh__rot_zxzxz_tables_new_d,
     .tables_new_f = sh__rot_zxzxz_tables_new_f,
     .tables_free = zx_tables_free,

@@ -9,6 +9,8 @@
 #include "rotate/rot_internal.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,13 +23,14 @@ static const sh__rot_ops *const methods[SH_ROT_NMETHODS] = {
     [SH_ROT_WIGNER] = &sh__rot_wigner_ops,
     [SH_ROT_REFERENCE] = &sh__rot_reference_ops,
     [SH_ROT_TAYLOR1] = &sh__rot_taylor1_ops, [SH_ROT_TAYLOR15] = &sh__rot_taylor15_ops, [SH_ROT_TAYLOR2] = &sh__rot_taylor2_ops,
+    [SH_ROT_HALFPI] = &sh__rot_halfpi_ops,
 };
 
 static const char *const method_names[SH_ROT_NMETHODS] = {
     [SH_ROT_Z] = "z",           [SH_ROT_IVANIC] = "ivanic", [SH_ROT_ZXZXZ] = "zxzxz",
     [SH_ROT_CHOI] = "choi",     [SH_ROT_BLANCO] = "blanco", [SH_ROT_WIGNER] = "wigner",
     [SH_ROT_REFERENCE] = "reference", [SH_ROT_TAYLOR1] = "taylor1", [SH_ROT_TAYLOR15] = "taylor1.5",
-    [SH_ROT_TAYLOR2] = "taylor2",
+    [SH_ROT_TAYLOR2] = "taylor2", [SH_ROT_HALFPI] = "halfpi",
 };
 
 const char *sh_rot_method_name(sh_rot_method m)
@@ -45,8 +48,14 @@ int sh_rot_method_parse(const char *s, sh_rot_method *out)
         }
     return sh_error(SH_EINVAL,
                     "unknown method '%s' (z, ivanic, zxzxz, choi, blanco, wigner, reference, "
-                    "taylor1, taylor1.5, taylor2)",
+                    "halfpi, taylor1, taylor1.5, taylor2)",
                     s ? s : "");
+}
+
+sh_rot_method sh_rot_method_default(int order, int one_band)
+{
+    if (one_band) return SH_ROT_BLANCO;
+    return order <= SH_ROT_DEFAULT_ZXZXZ_MAX ? SH_ROT_ZXZXZ : SH_ROT_HALFPI;
 }
 
 int sh_rot_method_is_exact(sh_rot_method m)
@@ -101,12 +110,44 @@ static int check_args(int order, sh_rot_method method, sh_precision prec, sh_con
     return SH_OK;
 }
 
+/* What a plan allocates: the blocks (methods without a sparse apply; the
+ * sparse ones build blocks only when asked), the method's tables, scratch,
+ * per-rotation state and the vector copies. */
+static double plan_bytes(int order, const sh__rot_ops *ops, sh_precision prec)
+{
+    const double esz = prec == SH_PREC_FLOAT ? sizeof(float) : sizeof(double);
+    const double nb = (double)sh_rot_block_offset(order), nc = (double)order * order;
+    double b = (ops->apply_d ? 0 : nb * esz) + nc * sizeof(double) + (prec == SH_PREC_FLOAT ? 2 * nc * esz : 0);
+    if (ops->tables_bytes) b += (double)ops->tables_bytes(order) * (esz / sizeof(double));
+    if (ops->work_bytes) b += (double)ops->work_bytes(order);
+    if (ops->state_bytes) b += (double)ops->state_bytes(order);
+    return b;
+}
+
+size_t sh_rot_plan_bytes(int order, sh_rot_method method, sh_precision prec)
+{
+    if (order < 1 || method < 0 || method >= SH_ROT_NMETHODS || !methods[method]) return 0;
+    const double b = plan_bytes(order, methods[method], prec);
+    return b >= (double)SIZE_MAX ? SIZE_MAX : (size_t)b;
+}
+
+int sh_rot_plan_check(int order, sh_rot_method method, sh_precision prec)
+{
+    int st = check_args(order, method, prec, SH_CS);
+    if (st) return st;
+    char what[96];
+    snprintf(what, sizeof what, "rotation plan (method %s, %s, order %d)", method_names[method],
+             sh_precision_name(prec), order);
+    return sh__mem_check(plan_bytes(order, methods[method], prec), what);
+}
+
 int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                        sh_rot_plan **out)
 {
     *out = NULL;
     int st = check_args(order, method, prec, conv);
     if (st) return st;
+    if ((st = sh_rot_plan_check(order, method, prec))) return st;
     sh_rot_plan *p = calloc(1, sizeof *p);
     if (!p) return sh_error(SH_ENOMEM, "rotation plan: out of memory");
     p->order = order;
@@ -116,7 +157,7 @@ int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_co
     p->ops = methods[method];
     const size_t esz = prec == SH_PREC_FLOAT ? sizeof(float) : sizeof(double);
     const size_t nb = sh_rot_block_offset(order), nc = (size_t)order * order;
-    p->blocks = malloc(nb * esz);
+    if (!p->ops->apply_d) p->blocks = malloc(nb * esz); /* sparse methods: only on request */
     p->work = malloc((p->ops->work_bytes ? p->ops->work_bytes(order) : 0) + 64);
     p->vtmp = malloc(nc * sizeof(double));
     if (p->ops->state_bytes) p->state = malloc(p->ops->state_bytes(order) + 64);
@@ -124,7 +165,8 @@ int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_co
         p->vin = malloc(nc * sizeof(float));
         p->vout = malloc(nc * sizeof(float));
     }
-    if (!p->blocks || !p->work || !p->vtmp || (p->ops->state_bytes && !p->state) || (prec == SH_PREC_FLOAT && (!p->vin || !p->vout))) {
+    if ((!p->ops->apply_d && !p->blocks) || !p->work || !p->vtmp || (p->ops->state_bytes && !p->state) ||
+        (prec == SH_PREC_FLOAT && (!p->vin || !p->vout))) {
         sh_rot_plan_free(p);
         return sh_error(SH_ENOMEM, "rotation plan: out of memory (order %d)", order);
     }
@@ -150,16 +192,17 @@ void sh_rot_plan_free(sh_rot_plan *p)
     free(p);
 }
 
-/* Blocks for the current rotation, in the plan's precision and convention. */
-static int compute_blocks(sh_rot_plan *p, uint64_t *mults)
+/* Blocks for the current rotation, in the plan's precision and convention,
+ * into `blocks` (double or float as the plan). */
+static int compute_blocks(sh_rot_plan *p, void *blocks, uint64_t *mults)
 {
     int st;
     if (p->prec == SH_PREC_FLOAT) {
-        st = p->ops->blocks_f(p->order, &p->rot, p->tables, p->blocks, p->work, mults);
-        if (!st && p->conv == SH_NOCS) sh__rot_blocks_nocs_f(p->order, p->blocks);
+        st = p->ops->blocks_f(p->order, &p->rot, p->tables, blocks, p->work, mults);
+        if (!st && p->conv == SH_NOCS) sh__rot_blocks_nocs_f(p->order, blocks);
     } else {
-        st = p->ops->blocks_d(p->order, &p->rot, p->tables, p->blocks, p->work, mults);
-        if (!st && p->conv == SH_NOCS) sh__rot_blocks_nocs_d(p->order, p->blocks);
+        st = p->ops->blocks_d(p->order, &p->rot, p->tables, blocks, p->work, mults);
+        if (!st && p->conv == SH_NOCS) sh__rot_blocks_nocs_d(p->order, blocks);
     }
     return st;
 }
@@ -178,7 +221,7 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
         else
             st = p->ops->set_d(p->order, rot, p->tables, p->state, &p->set_mults);
     } else {
-        st = compute_blocks(p, &p->set_mults);
+        st = compute_blocks(p, p->blocks, &p->set_mults);
     }
     if (st == SH_OK) p->have_rot = 1;
     return st;
@@ -240,8 +283,13 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks)
     if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
     const size_t nb = sh_rot_block_offset(p->order);
     if (p->ops->apply_d) { /* sparse methods build their blocks on request */
-        int st = compute_blocks(p, NULL);
-        if (st) return st;
+        if (p->prec == SH_PREC_DOUBLE) return compute_blocks(p, blocks, NULL);
+        float *fb = malloc(nb * sizeof *fb);
+        if (!fb) return sh_error(SH_ENOMEM, "rotation plan: out of memory (blocks, order %d)", p->order);
+        const int st = compute_blocks(p, fb, NULL);
+        for (size_t i = 0; !st && i < nb; i++) blocks[i] = fb[i];
+        free(fb);
+        return st;
     }
     if (p->prec == SH_PREC_FLOAT)
         for (size_t i = 0; i < nb; i++) blocks[i] = ((float *)p->blocks)[i];
