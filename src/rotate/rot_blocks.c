@@ -83,6 +83,27 @@ void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
     }
 }
 
+void SH_R(sh__rot_multiple_angles_cs)(sh_real c1, sh_real s1, int mmax, sh_real *cs)
+{
+    /* the recurrence of sh__rot_multiple_angles from the seeds c1, s1 (a
+     * rotation given as a matrix: no angle); past the reseeding distance the
+     * angle is taken once, θ = atan2(s1, c1), and the reseeded routine used */
+    if (mmax >= SH_ANGLE_RESEED) {
+        SH_R(sh__rot_multiple_angles)((sh_real)atan2(s1, c1), mmax, cs);
+        return;
+    }
+    const sh_real two_c = 2 * c1;
+    cs[0] = 1;
+    cs[1] = 0;
+    if (mmax < 1) return;
+    cs[2] = c1;
+    cs[3] = s1;
+    for (int m = 2; m <= mmax; m++) {
+        cs[2 * m] = two_c * cs[2 * (m - 1)] - cs[2 * (m - 2)];
+        cs[2 * m + 1] = two_c * cs[2 * (m - 1) + 1] - cs[2 * (m - 2) + 1];
+    }
+}
+
 void SH_R(sh__rot_z_band)(int l, const sh_real *cs, sh_real *c, uint64_t *mults)
 {
     /* c points at band l's first coefficient (m = −l); index m+l. */

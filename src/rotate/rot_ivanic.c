@@ -350,5 +350,6 @@ const sh__rot_ops sh__rot_ivanic_ops = {
     .stream_init = ivanic_stream_init,
     .stream_d = sh__rot_ivanic_stream_d,
     .stream_f = sh__rot_ivanic_stream_f,
+    .matrix_only = 1,
 };
 #endif

@@ -69,6 +69,125 @@ int sh_rot_method_max_order(sh_rot_method m)
     return (m >= 0 && m < SH_ROT_NMETHODS && methods[m]) ? methods[m]->max_order : 0;
 }
 
+/* ---------------------------------------------------------------- kernels
+ * Which code runs a plan (sh_rot_kernel, rotate.h).  The unrolled kernels
+ * (rot_fast.c, generated straight-line code for zxzxz and the Taylor methods
+ * up to order SH_UNROLLED_MAX_ORDER) exist as one object per variant: the
+ * plain one (default flags, one lane) and, on x86-64, one per ISA — `avx2`
+ * (one lane, AVX2 + FMA) and the SIMD-lane objects `sse2v`, `avx2v`,
+ * `avx512v` used for batches (rot_simd.h).  A variant is used only if it is
+ * compiled in and the CPU runs it (CPUID, and XGETBV for the OS saving the
+ * YMM/ZMM registers); the choice is made in plan create and kept in the
+ * plan, so no global state is written after start-up. */
+extern const sh__rot_fast_d sh__rot_fast_base_d;
+extern const sh__rot_fast_f sh__rot_fast_base_f;
+#if defined(__x86_64__)
+#define SH_FAST_X86 1
+#include <cpuid.h>
+extern const sh__rot_fast_d sh__rot_fast_avx2_d, sh__rot_fast_sse2v_d, sh__rot_fast_avx2v_d,
+    sh__rot_fast_avx512v_d;
+extern const sh__rot_fast_f sh__rot_fast_avx2_f, sh__rot_fast_sse2v_f, sh__rot_fast_avx2v_f,
+    sh__rot_fast_avx512v_f;
+
+static unsigned long long xcr0(void)
+{
+    unsigned a, d;
+    __asm__ volatile("xgetbv" : "=a"(a), "=d"(d) : "c"(0));
+    return ((unsigned long long)d << 32) | a;
+}
+#endif
+
+static const char *const kernel_names[SH_KERNEL_N] = {
+    [SH_KERNEL_AUTO] = "auto",  [SH_KERNEL_SCALAR] = "scalar", [SH_KERNEL_UNROLLED] = "unrolled",
+    [SH_KERNEL_SSE2] = "sse2",  [SH_KERNEL_AVX2] = "avx2",     [SH_KERNEL_AVX512] = "avx512",
+};
+
+const char *sh_rot_kernel_name(sh_rot_kernel k)
+{
+    return (k >= 0 && k < SH_KERNEL_N) ? kernel_names[k] : "?";
+}
+
+int sh_rot_kernel_parse(const char *s, sh_rot_kernel *out)
+{
+    for (int k = 0; k < SH_KERNEL_N; k++)
+        if (s && !strcmp(s, kernel_names[k])) {
+            *out = (sh_rot_kernel)k;
+            return SH_OK;
+        }
+    return sh_error(SH_EINVAL, "unknown kernel '%s' (auto, scalar, unrolled, sse2, avx2, avx512)",
+                    s ? s : "");
+}
+
+int sh_rot_kernel_available(sh_rot_kernel k)
+{
+    switch (k) {
+    case SH_KERNEL_AUTO:
+    case SH_KERNEL_SCALAR:
+    case SH_KERNEL_UNROLLED: return 1;
+#ifdef SH_FAST_X86
+    case SH_KERNEL_SSE2: return 1; /* x86-64 baseline */
+    case SH_KERNEL_AVX2:
+    case SH_KERNEL_AVX512: {
+        unsigned a, b, c, d;
+        if (!__get_cpuid(1, &a, &b, &c, &d)) return 0;
+        const int fma = (c & bit_FMA) != 0, osxsave = (c & bit_OSXSAVE) != 0, avx = (c & bit_AVX) != 0;
+        if (!fma || !osxsave || !avx || __get_cpuid_max(0, NULL) < 7) return 0;
+        const unsigned long long x = xcr0();
+        __cpuid_count(7, 0, a, b, c, d);
+        if (k == SH_KERNEL_AVX2) return (x & 6) == 6 && (b & bit_AVX2) != 0; /* XMM, YMM saved */
+        return (x & 0xe6) == 0xe6 && (b & bit_AVX2) && (b & bit_AVX512F); /* + opmask, ZMM */
+    }
+#endif
+    default: return 0;
+    }
+}
+
+/* AUTO: AVX2 where the CPU has it (the widest lanes measured no faster for
+ * one rotation, README "Rotation speed"), else SSE2, else the plain
+ * unrolled code. */
+static sh_rot_kernel kernel_auto(void)
+{
+    if (sh_rot_kernel_available(SH_KERNEL_AVX2)) return SH_KERNEL_AVX2;
+    if (sh_rot_kernel_available(SH_KERNEL_SSE2)) return SH_KERNEL_SSE2;
+    return SH_KERNEL_UNROLLED;
+}
+
+/* the unrolled tables of kernel k: one lane (single vectors) and SIMD lanes
+ * (batches) */
+static void kernel_tables(sh_rot_kernel k, const sh__rot_fast_d **d1, const sh__rot_fast_d **dv,
+                          const sh__rot_fast_f **f1, const sh__rot_fast_f **fv)
+{
+    *d1 = *dv = &sh__rot_fast_base_d;
+    *f1 = *fv = &sh__rot_fast_base_f;
+#ifdef SH_FAST_X86
+    switch (k) {
+    case SH_KERNEL_SSE2: *dv = &sh__rot_fast_sse2v_d, *fv = &sh__rot_fast_sse2v_f; break;
+    case SH_KERNEL_AVX2:
+        *d1 = &sh__rot_fast_avx2_d, *f1 = &sh__rot_fast_avx2_f;
+        *dv = &sh__rot_fast_avx2v_d, *fv = &sh__rot_fast_avx2v_f;
+        break;
+    case SH_KERNEL_AVX512:
+        *d1 = &sh__rot_fast_avx2_d, *f1 = &sh__rot_fast_avx2_f;
+        *dv = &sh__rot_fast_avx512v_d, *fv = &sh__rot_fast_avx512v_f;
+        break;
+    default: break;
+    }
+#else
+    (void)k;
+#endif
+}
+
+static int fast_method(sh_rot_method m)
+{
+    switch (m) {
+    case SH_ROT_ZXZXZ: return SH__FAST_ZXZXZ;
+    case SH_ROT_TAYLOR1: return SH__FAST_TAYLOR1;
+    case SH_ROT_TAYLOR15: return SH__FAST_TAYLOR15;
+    case SH_ROT_TAYLOR2: return SH__FAST_TAYLOR2;
+    default: return -1;
+    }
+}
+
 struct sh_rot_plan {
     int order;
     sh_rot_method method;
@@ -79,11 +198,18 @@ struct sh_rot_plan {
     void *work;
     void *state;      /* sparse methods: the per-rotation state set_P fills */
     void *blocks;     /* double or float, sh_rot_block_offset(order) */
-    void *vin, *vout; /* float plans: the vector in float */
+    void *vin, *vout; /* vectors in the plan's precision (float plans: the converted ones) */
     double *vtmp;     /* a copy of the input vector */
     sh_rotation rot;
     int have_rot;
+    int have_angles;  /* rot has the Euler angles (a plan set from a matrix may not) */
     uint64_t set_mults, apply_mults;
+    sh_rot_kernel kernel; /* the kernel in use (never AUTO) */
+    int fmeth;            /* the unrolled method, or −1: the loop kernels */
+    const sh__rot_fast_d *fd1, *fdv; /* unrolled: one lane, SIMD lanes */
+    const sh__rot_fast_f *ff1, *ffv;
+    double par_d[SH__PAR_N]; /* unrolled: the rotation (nocs: β negated) */
+    float par_f[SH__PAR_N];
 };
 
 static int check_args(int order, sh_rot_method method, sh_precision prec, sh_convention conv)
@@ -104,9 +230,18 @@ static int check_args(int order, sh_rot_method method, sh_precision prec, sh_con
 int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                        sh_rot_plan **out)
 {
+    return sh_rot_plan_create_kernel(order, method, prec, conv, SH_KERNEL_AUTO, out);
+}
+
+int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
+                              sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out)
+{
     *out = NULL;
     int st = check_args(order, method, prec, conv);
     if (st) return st;
+    if (kernel < 0 || kernel >= SH_KERNEL_N) return sh_error(SH_EINVAL, "rotation: unknown kernel");
+    if (!sh_rot_kernel_available(kernel))
+        return sh_error(SH_ENOTSUP, "kernel %s is not available on this machine", kernel_names[kernel]);
     sh_rot_plan *p = calloc(1, sizeof *p);
     if (!p) return sh_error(SH_ENOMEM, "rotation plan: out of memory");
     p->order = order;
@@ -114,28 +249,36 @@ int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_co
     p->prec = prec;
     p->conv = conv;
     p->ops = methods[method];
+    p->kernel = kernel == SH_KERNEL_AUTO ? kernel_auto() : kernel;
+    kernel_tables(p->kernel, &p->fd1, &p->fdv, &p->ff1, &p->ffv);
+    p->fmeth = fast_method(method);
+    if (p->kernel == SH_KERNEL_SCALAR || p->fmeth < 0 || order > p->fd1->max_order ||
+        !p->fd1->fn[p->fmeth][order]) {
+        p->fmeth = -1; /* the loop kernels */
+        p->kernel = SH_KERNEL_SCALAR;
+    }
     const size_t esz = prec == SH_PREC_FLOAT ? sizeof(float) : sizeof(double);
     const size_t nb = sh_rot_block_offset(order), nc = (size_t)order * order;
     p->blocks = malloc(nb * esz);
     p->work = malloc((p->ops->work_bytes ? p->ops->work_bytes(order) : 0) + 64);
     p->vtmp = malloc(nc * sizeof(double));
     if (p->ops->state_bytes) p->state = malloc(p->ops->state_bytes(order) + 64);
-    if (prec == SH_PREC_FLOAT) {
-        p->vin = malloc(nc * sizeof(float));
-        p->vout = malloc(nc * sizeof(float));
-    }
-    if (!p->blocks || !p->work || !p->vtmp || (p->ops->state_bytes && !p->state) || (prec == SH_PREC_FLOAT && (!p->vin || !p->vout))) {
+    p->vin = malloc(nc * esz);
+    p->vout = malloc(nc * esz);
+    if (!p->blocks || !p->work || !p->vtmp || (p->ops->state_bytes && !p->state) || !p->vin || !p->vout) {
         sh_rot_plan_free(p);
         return sh_error(SH_ENOMEM, "rotation plan: out of memory (order %d)", order);
     }
     int (*tnew)(int, void **) = prec == SH_PREC_FLOAT ? p->ops->tables_new_f : p->ops->tables_new_d;
-    if (tnew && (st = tnew(order, &p->tables)) != SH_OK) {
+    if (p->fmeth < 0 && tnew && (st = tnew(order, &p->tables)) != SH_OK) {
         sh_rot_plan_free(p);
         return st;
     }
     *out = p;
     return SH_OK;
 }
+
+sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p) { return p->kernel; }
 
 void sh_rot_plan_free(sh_rot_plan *p)
 {
@@ -164,12 +307,41 @@ static int compute_blocks(sh_rot_plan *p, uint64_t *mults)
     return st;
 }
 
+/* The unrolled kernels: par in the plan's precision, nocs by β → −β
+ * (rot_fast.c), counted multiplications of one vector. */
+static void fast_par_done(sh_rot_plan *p, const double *pd)
+{
+    if (pd) for (int j = 0; j < SH__PAR_N; j++) p->par_d[j] = pd[j];
+    if (p->prec == SH_PREC_FLOAT && pd)
+        for (int j = 0; j < SH__PAR_N; j++) p->par_f[j] = (float)pd[j];
+    if (p->conv == SH_NOCS) {
+        p->par_d[3] = -p->par_d[3], p->par_d[6] = -p->par_d[6];
+        p->par_f[3] = -p->par_f[3], p->par_f[6] = -p->par_f[6];
+    }
+    p->have_rot = 1;
+}
+static uint64_t fast_mults(const sh_rot_plan *p)
+{
+    return p->prec == SH_PREC_FLOAT ? p->ff1->mults[p->fmeth][p->order] : p->fd1->mults[p->fmeth][p->order];
+}
+static int need_beta(const sh_rot_plan *p)
+{
+    return p->method == SH_ROT_TAYLOR1 || p->method == SH_ROT_TAYLOR15 || p->method == SH_ROT_TAYLOR2;
+}
+
 int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
 {
     p->rot = *rot;
     p->have_rot = 0;
+    p->have_angles = 1;
     p->set_mults = 0;
     int st = SH_OK;
+    if (p->fmeth >= 0) {
+        if (p->prec == SH_PREC_FLOAT) sh__rot_par_euler_f(rot, p->par_f);
+        else sh__rot_par_euler_d(rot, p->par_d);
+        fast_par_done(p, NULL);
+        return SH_OK;
+    }
     if (p->ops->apply_d) {
         /* sparse methods: the per-rotation state (validates the rotation;
          * z refuses a tilted one here) */
@@ -182,6 +354,81 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
     }
     if (st == SH_OK) p->have_rot = 1;
     return st;
+}
+
+static int check_finite(const double *v, int n, const char *what)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i])) return sh_error(SH_EINVAL, "rotation plan: %s entries must be finite", what);
+    return SH_OK;
+}
+
+/* A rotation given as a matrix R (quat = 0) or a quaternion (quat = 1), in
+ * double (rd) or float (rf, float plans only): the unrolled kernels and the
+ * methods with set_par take par by algebra (rot_fast.c), ivanic reads R;
+ * the others get the Euler angles extracted (sh_euler_from_matrix). */
+static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
+{
+    const int n = quat ? 4 : 9;
+    double v[9];
+    for (int i = 0; i < n; i++) v[i] = rd ? rd[i] : (double)rf[i];
+    int st = check_finite(v, n, quat ? "quaternion" : "matrix");
+    if (st) return st;
+    p->have_rot = 0;
+    p->set_mults = quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX;
+    const int nb = need_beta(p);
+    if (p->fmeth >= 0 || p->ops->set_par_d) {
+        double pd[SH__PAR_N];
+        if (rf) {
+            /* float in: par in float arithmetic */
+            quat ? sh__rot_par_quat_f(rf, nb, p->par_f) : sh__rot_par_matrix_f(rf, nb, p->par_f);
+        } else {
+            quat ? sh__rot_par_quat_d(rd, nb, pd) : sh__rot_par_matrix_d(rd, nb, pd);
+            for (int j = 0; j < SH__PAR_N; j++) p->par_d[j] = pd[j], p->par_f[j] = (float)pd[j];
+        }
+        p->have_angles = 0;
+        if (quat) {
+            if ((st = sh_rotation_from_quat(v, 1, &p->rot))) return st;
+            p->have_angles = 1;
+        } else {
+            memcpy(p->rot.R, v, sizeof p->rot.R);
+        }
+        if (p->fmeth >= 0) {
+            fast_par_done(p, NULL);
+            return SH_OK;
+        }
+        if (p->prec == SH_PREC_FLOAT)
+            st = p->ops->set_par_f(p->order, p->par_f, p->tables, p->state, &p->set_mults);
+        else
+            st = p->ops->set_par_d(p->order, p->par_d, p->tables, p->state, &p->set_mults);
+        if (st == SH_OK) p->have_rot = 1;
+        return st;
+    }
+    p->set_mults = 0;
+    sh_rotation r;
+    if (quat) {
+        if ((st = sh_rotation_from_quat(v, 1, &r))) return st;
+    } else {
+        memcpy(r.R, v, sizeof r.R);
+        if (p->ops->matrix_only) r.alpha = r.beta = r.gamma = 0; /* not read */
+        else sh_euler_from_matrix(v, &r.alpha, &r.beta, &r.gamma);
+    }
+    st = sh_rot_plan_set(p, &r);
+    p->have_angles = quat || !p->ops->matrix_only;
+    return st;
+}
+
+int sh_rot_plan_set_matrix(sh_rot_plan *p, const double R[9]) { return set_rot(p, R, NULL, 0); }
+int sh_rot_plan_set_quat(sh_rot_plan *p, const double q[4]) { return set_rot(p, q, NULL, 1); }
+int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
+{
+    if (p->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float matrix for a double plan");
+    return set_rot(p, NULL, R, 0);
+}
+int sh_rot_plan_set_quat_f(sh_rot_plan *p, const float q[4])
+{
+    if (p->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float quaternion for a double plan");
+    return set_rot(p, NULL, q, 1);
 }
 
 static void nocs_vec_d(int order, double *v)
@@ -201,6 +448,30 @@ static void nocs_vec_f(int order, float *v)
         }
 }
 
+/* y = R_sh x in float (float plans); x and y may be the same array. */
+static void apply_float(sh_rot_plan *p, const float *x, float *y, uint64_t *m)
+{
+    const size_t nc = (size_t)p->order * p->order;
+    if (p->fmeth >= 0) {
+        p->ff1->fn[p->fmeth][p->order](p->par_f, 1, x, y, 1);
+        *m += fast_mults(p);
+    } else if (p->ops->apply_f) { /* sparse: the kernel works in CS, on distinct arrays */
+        if (p->conv == SH_NOCS || x == y) {
+            if (x != p->vin) memcpy(p->vin, x, nc * sizeof *x);
+            x = p->vin;
+            if (p->conv == SH_NOCS) nocs_vec_f(p->order, p->vin);
+        }
+        p->ops->apply_f(p->order, p->tables, p->state, x, y, p->work, m);
+        if (p->conv == SH_NOCS) nocs_vec_f(p->order, y);
+    } else {
+        if (x == y) {
+            if (x != p->vin) memcpy(p->vin, x, nc * sizeof *x);
+            x = p->vin;
+        }
+        sh__rot_blocks_apply_f(p->order, p->blocks, x, y, m);
+    }
+}
+
 int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
 {
     if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
@@ -209,14 +480,11 @@ int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
     if (p->prec == SH_PREC_FLOAT) {
         float *x = p->vin, *y = p->vout;
         for (size_t i = 0; i < nc; i++) x[i] = (float)in[i];
-        if (p->ops->apply_f) { /* sparse: the kernel works in CS */
-            if (p->conv == SH_NOCS) nocs_vec_f(p->order, x);
-            p->ops->apply_f(p->order, p->tables, p->state, x, y, p->work, &m);
-            if (p->conv == SH_NOCS) nocs_vec_f(p->order, y);
-        } else {
-            sh__rot_blocks_apply_f(p->order, p->blocks, x, y, &m);
-        }
+        apply_float(p, x, y, &m);
         for (size_t i = 0; i < nc; i++) out[i] = y[i];
+    } else if (p->fmeth >= 0) {
+        p->fd1->fn[p->fmeth][p->order](p->par_d, 1, in, out, 1);
+        m = fast_mults(p);
     } else {
         /* kernels need distinct input and output: copy when in == out (and
          * for a sparse kernel in nocs, whose input is sign-flipped first) */
@@ -235,11 +503,144 @@ int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
     return SH_OK;
 }
 
+int sh_rot_plan_apply_f(sh_rot_plan *p, const float *in, float *out)
+{
+    if (p->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float vectors for a double plan");
+    if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
+    uint64_t m = 0;
+    apply_float(p, in, out, &m);
+    p->apply_mults = m;
+    return SH_OK;
+}
+
+/* ---- batches: structure of arrays, element i of vector k at [i·K + k] ---- */
+static int check_batch(const sh_rot_plan *p, size_t K, int fl, int need_rot)
+{
+    if (fl && p->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float vectors for a double plan");
+    if (!fl && p->prec != SH_PREC_DOUBLE) return sh_error(SH_EINVAL, "rotation plan: double vectors for a float plan (use the _f call)");
+    if (need_rot && !p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
+    if (K == 0 || K > ((size_t)1 << 40)) return sh_error(SH_EINVAL, "rotation plan: batch of %zu vectors", K);
+    return SH_OK;
+}
+
+/* the loop kernels, one vector at a time through the plan's buffers */
+static void many_loop(sh_rot_plan *p, size_t K, const void *in, void *out, size_t k)
+{
+    const size_t nc = (size_t)p->order * p->order;
+    uint64_t m = 0;
+    if (p->prec == SH_PREC_FLOAT) {
+        float *x = p->vin, *y = p->vout;
+        for (size_t i = 0; i < nc; i++) x[i] = ((const float *)in)[i * K + k];
+        apply_float(p, x, y, &m);
+        for (size_t i = 0; i < nc; i++) ((float *)out)[i * K + k] = y[i];
+    } else {
+        double *x = p->vin, *y = p->vout;
+        for (size_t i = 0; i < nc; i++) x[i] = ((const double *)in)[i * K + k];
+        sh_rot_plan_apply(p, x, y);
+        for (size_t i = 0; i < nc; i++) ((double *)out)[i * K + k] = y[i];
+        m = p->apply_mults;
+    }
+    p->apply_mults = m;
+}
+
+static int apply_many(sh_rot_plan *p, size_t K, const void *in, void *out, int fl)
+{
+    int st = check_batch(p, K, fl, 1);
+    if (st) return st;
+    if (p->fmeth >= 0) {
+        if (fl) p->ffv->many(p->fmeth, p->order, p->par_f, K, in, out);
+        else p->fdv->many(p->fmeth, p->order, p->par_d, K, in, out);
+        p->apply_mults = fast_mults(p);
+        return SH_OK;
+    }
+    for (size_t k = 0; k < K; k++) many_loop(p, K, in, out, k);
+    return SH_OK;
+}
+int sh_rot_plan_apply_many(sh_rot_plan *p, size_t K, const double *in, double *out)
+{
+    return apply_many(p, K, in, out, 0);
+}
+int sh_rot_plan_apply_many_f(sh_rot_plan *p, size_t K, const float *in, float *out)
+{
+    return apply_many(p, K, in, out, 1);
+}
+
+static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, const void *in, void *out,
+                       int fl)
+{
+    int st = check_batch(p, K, fl, 0);
+    if (st) return st;
+    const int nr = quat ? 4 : 9;
+    if (p->fmeth >= 0) {
+        /* unrolled, lanes of rotations; checked first: every entry finite */
+        for (size_t i = 0; i < (size_t)nr * K; i++)
+            if (!isfinite(fl ? ((const float *)rot)[i] : ((const double *)rot)[i]))
+                return sh_error(SH_EINVAL, "rotation plan: rotation %zu has an entry that is not finite", i % K);
+        const int nocs = p->conv == SH_NOCS;
+        if (fl) p->ffv->rotate(p->fmeth, p->order, nocs, K, rot, quat, in, out);
+        else p->fdv->rotate(p->fmeth, p->order, nocs, K, rot, quat, in, out);
+        p->set_mults = quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX;
+        p->apply_mults = fast_mults(p);
+        p->have_rot = 0; /* the plan's own rotation is not one of them */
+        return SH_OK;
+    }
+    for (size_t k = 0; k < K; k++) {
+        double rd[9];
+        float rf[9];
+        for (int j = 0; j < nr; j++) {
+            if (fl) rf[j] = ((const float *)rot)[(size_t)j * K + k];
+            else rd[j] = ((const double *)rot)[(size_t)j * K + k];
+        }
+        if ((st = set_rot(p, fl ? NULL : rd, fl ? rf : NULL, quat))) return st;
+        many_loop(p, K, in, out, k);
+    }
+    return SH_OK;
+}
+int sh_rot_plan_rotate_many(sh_rot_plan *p, size_t K, const double *R, const double *in, double *out)
+{
+    return rotate_many(p, K, R, 0, in, out, 0);
+}
+int sh_rot_plan_rotate_many_f(sh_rot_plan *p, size_t K, const float *R, const float *in, float *out)
+{
+    return rotate_many(p, K, R, 0, in, out, 1);
+}
+int sh_rot_plan_rotate_many_quat(sh_rot_plan *p, size_t K, const double *q, const double *in,
+                                 double *out)
+{
+    return rotate_many(p, K, q, 1, in, out, 0);
+}
+int sh_rot_plan_rotate_many_quat_f(sh_rot_plan *p, size_t K, const float *q, const float *in,
+                                   float *out)
+{
+    return rotate_many(p, K, q, 1, in, out, 1);
+}
+
 int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks)
 {
     if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
-    const size_t nb = sh_rot_block_offset(p->order);
+    const size_t nb = sh_rot_block_offset(p->order), nc = (size_t)p->order * p->order;
+    if (p->fmeth >= 0) {
+        /* the unrolled kernel on each unit vector: column j of band l */
+        double *e = malloc(2 * nc * sizeof *e), *col = e + nc;
+        if (!e) return sh_error(SH_ENOMEM, "rotation plan: out of memory");
+        for (int l = 0; l < p->order; l++) {
+            const int w = 2 * l + 1;
+            double *B = blocks + sh_rot_block_offset(l);
+            for (int j = 0; j < w; j++) {
+                memset(e, 0, nc * sizeof *e);
+                e[l * l + j] = 1;
+                sh_rot_plan_apply(p, e, col);
+                for (int i = 0; i < w; i++) B[(size_t)i * w + j] = col[l * l + i];
+            }
+        }
+        free(e);
+        return SH_OK;
+    }
     if (p->ops->apply_d) { /* sparse methods build their blocks on request */
+        if (!p->have_angles) {
+            sh_euler_from_matrix(p->rot.R, &p->rot.alpha, &p->rot.beta, &p->rot.gamma);
+            p->have_angles = 1;
+        }
         int st = compute_blocks(p, NULL);
         if (st) return st;
     }

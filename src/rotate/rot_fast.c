@@ -1,0 +1,234 @@
+/* rot_fast.c — the unrolled rotation kernels (zxzxz, taylor1, taylor1.5,
+ * taylor2 for orders ≤ SH_UNROLLED_MAX_ORDER) and their drivers: one
+ * rotation from a 3×3 matrix or a quaternion without trigonometric calls,
+ * one rotation applied to K vectors, K rotations applied to K vectors.
+ *
+ * Compiled once per precision and per variant (rot_simd.h; the Makefile's
+ * FAST_VARIANTS): the plain object has one lane (shk_t = sh_real), the SIMD
+ * objects have 2 to 16 lanes, each lane a rotation and a vector, the arrays
+ * laid out as structure of arrays (coefficient i of lane k at p[i·K + k]).
+ * Each object exports one table, sh__rot_fast_<variant>_<d|f>
+ * (rot_internal.h), which the plan picks when it is created
+ * (rotation_plan.c: compiled in, and the CPU runs it).
+ *
+ * References
+ *  [1] CONVENTIONS.md: R = Rz(α) Ry(β) Rz(γ) (ZYZ, active),
+ *        R = [[cαcβcγ − sαsγ, −cαcβsγ − sαcγ, cαsβ],
+ *             [sαcβcγ + cαsγ, −sαcβsγ + cαcγ, sαsβ],
+ *             [−sβcγ,          sβsγ,            cβ ]].
+ *  [2] the quaternion of Rz(θ) is (cos θ/2, 0, 0, sin θ/2), of Ry(θ)
+ *      (cos θ/2, 0, sin θ/2, 0); R = Rz(α)Ry(β)Rz(γ) ↔ q = qz(α) qy(β) qz(γ).
+ *  [3] rotation.c (sh_euler_from_matrix): the same well-conditioned entries,
+ *      there for atan2.
+ */
+#include "rotate/rot_internal.h"
+#include "rotate/rot_simd.h"
+
+#define SHK_FN_T SH_R(sh__fast_fn)
+#include "rotate/rot_unrolled_gen.h"
+
+#include <math.h>
+
+#if SH_UNROLLED_MAX_ORDER > SH__FAST_MAXO
+#error "rot_unrolled_gen.h has more orders than SH__FAST_MAXO"
+#endif
+
+/* ---- the rotation's par from a matrix, without trigonometric calls --------
+ *
+ * From [1]: cβ = R22 and
+ *   sβ e^{iα} = R02 + i R12,                                              (a)
+ *   (1 + cβ) e^{i(α+γ)} = (R00 + R11) + i (R10 − R01),                    (b)
+ *   (1 − cβ) e^{i(α−γ)} = (R11 − R00) − i (R10 + R01).                    (c)
+ * (b) and (c) follow from the sums and differences of the upper-left 2×2
+ * block, e.g. R00 + R11 = cβ(cαcγ − sαsγ) + (cαcγ − sαsγ).  So
+ *   sβ = |R02 + i R12|,  e^{iα} = (R02 + i R12)/sβ,
+ * and γ from (b) when cβ ≥ 0 (its modulus 1 + cβ ≥ 1) or from (c) when
+ * cβ < 0 (1 − cβ > 1): e^{iγ} = e^{i(α+γ)} e^{−iα} = e^{iα} e^{−i(α−γ)}.
+ * Near β = 0 (or π) e^{iα} from (a) is ill-conditioned (relative error ε/sβ)
+ * but R then depends on α+γ (α−γ) alone, which (b) ((c)) gives to ε, and
+ * γ is taken relative to the same α, so its error cancels in the rotation
+ * (the argument of rotation.c).  At sβ = 0 exactly — the gimbal cases
+ * β = 0, π, where only α ± γ is defined — α = 0 and γ = α ± γ.  cos and sin
+ * of the multiple angles then come from these by the Chebyshev recurrence
+ * (the kernels).  Cost: 12 multiplications, 2 square roots, 2 divisions.
+ * R must be a rotation (orthonormal, det +1); it is not checked here. */
+static inline void shk_par_matrix(const sh_real *R, size_t KR, sh_real *par, size_t KP)
+{
+    const shk_t r00 = SHK_LD(R, 0, KR), r01 = SHK_LD(R, 1, KR), r02 = SHK_LD(R, 2, KR);
+    const shk_t r10 = SHK_LD(R, 3, KR), r11 = SHK_LD(R, 4, KR), r12 = SHK_LD(R, 5, KR);
+    const shk_t r22 = SHK_LD(R, 8, KR);
+    const shk_t one = SHK_SPLAT(1), zero = SHK_SPLAT(0);
+    const shk_t s2 = r02 * r02 + r12 * r12, sb = SHK_SQRT(s2);
+    const shk_m has = s2 > zero; /* sβ ≠ 0: α from (a), else α = 0 */
+    const shk_t inv = SHK_SEL(has, one / SHK_SEL(has, sb, one), zero);
+    const shk_t ca = r02 * inv + SHK_SEL(has, zero, one), sa = r12 * inv;
+    const shk_m up = r22 >= zero; /* (b), else (c) */
+    const shk_t p = SHK_SEL(up, r00 + r11, r11 - r00), q = SHK_SEL(up, r10 - r01, -(r10 + r01));
+    const shk_t nrm = one / SHK_SQRT(p * p + q * q);
+    const shk_t cs = p * nrm, ss = q * nrm; /* e^{i(α+γ)}, or e^{i(α−γ)} */
+    const shk_t cg = cs * ca + ss * sa, t = ss * ca - cs * sa;
+    SHK_ST(par, 0, KP, ca);
+    SHK_ST(par, 1, KP, sa);
+    SHK_ST(par, 2, KP, r22);
+    SHK_ST(par, 3, KP, sb);
+    SHK_ST(par, 4, KP, cg);
+    SHK_ST(par, 5, KP, SHK_SEL(up, t, -t));
+    SHK_ST(par, 6, KP, zero);
+}
+
+/* ---- the same from a quaternion q = (w, x, y, z), unit or not ------------
+ *
+ * From [2]: q = qz(α) qy(β) qz(γ) =
+ *   (cos(β/2) cos((α+γ)/2), −sin(β/2) sin((α−γ)/2),
+ *    sin(β/2) cos((α−γ)/2),  cos(β/2) sin((α+γ)/2)),
+ * so with A = w + iz = cos(β/2) e^{i(α+γ)/2} and B = y − ix =
+ * sin(β/2) e^{i(α−γ)/2} (both products of half angles):
+ *   cβ = (|A|² − |B|²)/n,  sβ = 2|A||B|/n   (n = |q|² = |A|² + |B|²),
+ *   e^{iα} = AB/(|A||B|) = ((wy + zx) + i(zy − wx))/(|A||B|),
+ *   e^{iγ} = AB̄/(|A||B|) = ((wy − zx) + i(wx + zy))/(|A||B|).
+ * A product and a modulus, never a difference of nearly equal numbers:
+ * near β = 0 the direction of B is ill-defined, but α + γ = arg A², which is
+ * all R depends on there.  |B| = 0 (β = 0): α = 0, e^{iγ} = A²/|A|²;
+ * |A| = 0 (β = π): α = 0, e^{iγ} = B̄²/|B|².  q and −q give the same par.
+ * Cost: 18 multiplications, 1 square root, 3 divisions. */
+static inline void shk_par_quat(const sh_real *Q, size_t KQ, sh_real *par, size_t KP)
+{
+    const shk_t w = SHK_LD(Q, 0, KQ), x = SHK_LD(Q, 1, KQ), y = SHK_LD(Q, 2, KQ), z = SHK_LD(Q, 3, KQ);
+    const shk_t one = SHK_SPLAT(1), zero = SHK_SPLAT(0);
+    const shk_t ww = w * w, zz = z * z, xx = x * x, yy = y * y;
+    const shk_t a2 = ww + zz, b2 = xx + yy, in2 = one / (a2 + b2);
+    const shk_t ab = SHK_SQRT(a2 * b2);
+    const shk_m has = ab > zero;
+    const shk_t iab = SHK_SEL(has, one / SHK_SEL(has, ab, one), zero);
+    const shk_t wy = w * y, zx = z * x, zy = z * y, wx = w * x;
+    /* the degenerate cases: A²/|A|² (|B| = 0) or B̄²/|B|² (|A| = 0) */
+    const shk_m up = a2 >= b2;
+    const shk_t dn = one / SHK_SEL(up, a2, b2);
+    const shk_t dc = SHK_SEL(up, ww - zz, yy - xx) * dn;
+    const shk_t ds = SHK_SEL(up, w, x) * SHK_SEL(up, z, y) * (dn + dn);
+    SHK_ST(par, 0, KP, (wy + zx) * iab + SHK_SEL(has, zero, one));
+    SHK_ST(par, 1, KP, (zy - wx) * iab);
+    SHK_ST(par, 2, KP, (a2 - b2) * in2);
+    SHK_ST(par, 3, KP, (ab + ab) * in2);
+    SHK_ST(par, 4, KP, (wy - zx) * iab + SHK_SEL(has, zero, dc));
+    SHK_ST(par, 5, KP, (wx + zy) * iab + SHK_SEL(has, zero, ds));
+    SHK_ST(par, 6, KP, zero);
+}
+
+/* β = atan2(sin β, cos β) lane by lane: the Taylor kernels need the angle
+ * itself (one libm call per rotation; the exact methods need none). */
+static void shk_par_beta(sh_real *par, size_t KP, int lanes)
+{
+    for (int i = 0; i < lanes; i++) par[6 * KP + (size_t)i] = (sh_real)atan2(par[3 * KP + (size_t)i], par[2 * KP + (size_t)i]);
+}
+
+/* nocs = S·R_cs·S with S = diag((−1)^m) = Z(π), and Rz(π)Ry(β)Rz(π) =
+ * Ry(−β), so the nocs rotation is the cs kernel with β negated (sin β and β
+ * in par) — exact, no pass over the vectors. */
+static void shk_par_nocs(sh_real *par, size_t KP, int lanes)
+{
+    for (int i = 0; i < lanes; i++) {
+        par[3 * KP + (size_t)i] = -par[3 * KP + (size_t)i];
+        par[6 * KP + (size_t)i] = -par[6 * KP + (size_t)i];
+    }
+}
+
+/* K rotations of K vectors, SHK_LANES at a time; a last partial group is
+ * copied into padded buffers (identity rotations, zero vectors). */
+static void fast_rotate(int meth, int order, int nocs, size_t K, const sh_real *rot, int quat,
+                        const sh_real *in, sh_real *out)
+{
+    const SHK_FN_T f = unrolled_table[meth][order];
+    const int W = SHK_LANES, nr = quat ? 4 : 9, nc = order * order;
+    sh_real par[SH__PAR_N * SHK_LANES];
+    size_t k = 0;
+    for (; k + (size_t)W <= K; k += (size_t)W) {
+        if (quat) shk_par_quat(rot + k, K, par, (size_t)W);
+        else shk_par_matrix(rot + k, K, par, (size_t)W);
+        if (meth != SH__FAST_ZXZXZ) shk_par_beta(par, (size_t)W, W);
+        if (nocs) shk_par_nocs(par, (size_t)W, W);
+        f(par, (size_t)W, in + k, out + k, K);
+    }
+#if SHK_LANES > 1
+    if (k < K) {
+        const int nt = (int)(K - k);
+        sh_real rb[9 * SHK_LANES], xb[SH__FAST_MAXO * SH__FAST_MAXO * SHK_LANES];
+        static const sh_real id_m[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, id_q[4] = {1, 0, 0, 0};
+        for (int r = 0; r < nr; r++)
+            for (int i = 0; i < W; i++) rb[r * W + i] = i < nt ? rot[(size_t)r * K + k + (size_t)i] : (quat ? id_q : id_m)[r];
+        for (int c = 0; c < nc; c++)
+            for (int i = 0; i < W; i++) xb[c * W + i] = i < nt ? in[(size_t)c * K + k + (size_t)i] : 0;
+        if (quat) shk_par_quat(rb, (size_t)W, par, (size_t)W);
+        else shk_par_matrix(rb, (size_t)W, par, (size_t)W);
+        if (meth != SH__FAST_ZXZXZ) shk_par_beta(par, (size_t)W, W);
+        if (nocs) shk_par_nocs(par, (size_t)W, W);
+        f(par, (size_t)W, xb, xb, (size_t)W);
+        for (int c = 0; c < nc; c++)
+            for (int i = 0; i < nt; i++) out[(size_t)c * K + k + (size_t)i] = xb[c * W + i];
+    }
+#else
+    (void)nr, (void)nc;
+#endif
+}
+
+/* one rotation (par) applied to K vectors: par spread over the lanes */
+static void fast_many(int meth, int order, const sh_real *par1, size_t K, const sh_real *in,
+                      sh_real *out)
+{
+    const SHK_FN_T f = unrolled_table[meth][order];
+    const int W = SHK_LANES;
+    sh_real par[SH__PAR_N * SHK_LANES];
+    for (int j = 0; j < SH__PAR_N; j++)
+        for (int i = 0; i < W; i++) par[j * W + i] = par1[j];
+    size_t k = 0;
+    for (; k + (size_t)W <= K; k += (size_t)W) f(par, (size_t)W, in + k, out + k, K);
+#if SHK_LANES > 1
+    if (k < K) {
+        const int nt = (int)(K - k), nc = order * order;
+        sh_real xb[SH__FAST_MAXO * SH__FAST_MAXO * SHK_LANES];
+        for (int c = 0; c < nc; c++)
+            for (int i = 0; i < W; i++) xb[c * W + i] = i < nt ? in[(size_t)c * K + k + (size_t)i] : 0;
+        f(par, (size_t)W, xb, xb, (size_t)W);
+        for (int c = 0; c < nc; c++)
+            for (int i = 0; i < nt; i++) out[(size_t)c * K + k + (size_t)i] = xb[c * W + i];
+    }
+#endif
+}
+
+#define SHK_STR_(x) #x
+#define SHK_STR(x) SHK_STR_(x)
+const SH_R(sh__rot_fast) SHK_SYM(sh__rot_fast) = {
+    .name = SHK_STR(SHK_VARIANT),
+    .lanes = SHK_LANES,
+    .max_order = SH_UNROLLED_MAX_ORDER,
+    .fn = unrolled_table,
+    .mults = unrolled_mults,
+    .rotate = fast_rotate,
+    .many = fast_many,
+};
+
+#ifdef SHK_IS_BASE
+/* ---- one rotation, for the plan (the plain object only) ----------------- */
+void SH_R(sh__rot_par_matrix)(const sh_real *R, int need_beta, sh_real *par)
+{
+    shk_par_matrix(R, 1, par, 1);
+    if (need_beta) shk_par_beta(par, 1, 1);
+}
+
+void SH_R(sh__rot_par_quat)(const sh_real *q, int need_beta, sh_real *par)
+{
+    shk_par_quat(q, 1, par, 1);
+    if (need_beta) shk_par_beta(par, 1, 1);
+}
+
+/* From the Euler angles: libm's cos and sin of each (in the plan's precision,
+ * as the loop kernels' sh__rot_multiple_angles seeds them). */
+void SH_R(sh__rot_par_euler)(const sh_rotation *rot, sh_real *par)
+{
+    const sh_real a = (sh_real)rot->alpha, b = (sh_real)rot->beta, g = (sh_real)rot->gamma;
+    par[0] = SH_COS(a), par[1] = SH_SIN(a);
+    par[2] = SH_COS(b), par[3] = SH_SIN(b);
+    par[4] = SH_COS(g), par[5] = SH_SIN(g);
+    par[6] = b;
+}
+#endif
