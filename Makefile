@@ -42,16 +42,20 @@ ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
 LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
 # The unrolled kernels (src/rotate/rot_fast.c, rot_simd.h) once more per
 # instruction set on x86-64, each object with its own flags (chosen at run
-# time by the plan: README "Rotation speed"): avx2 = one lane with AVX2 +
-# FMA; sse2v/avx2v/avx512v = SIMD lanes of 16/32/64 bytes for batches.
+# time by the plan: README "Rotation speed"): avx2, avx512 = one lane with
+# AVX2 + FMA, or with AVX-512's 32 registers (fewer spills); sse2v/avx2v/
+# avx512v = SIMD lanes of 16/32/64 bytes for batches.
 # -ffp-contract=fast lets the compiler fuse a*b+c into FMA there (-std=c11
 # alone turns contraction off, so the other objects never fuse).
 ifneq ($(filter x86_64% amd64%,$(shell $(CC) -dumpmachine)),)
-FAST_VARIANTS := avx2 sse2v avx2v avx512v
+FAST_VARIANTS := avx2 avx512 sse2v avx2v avx512v
 endif
 FAST_FLAGS_avx2    := -DSHK_VARIANT=avx2 -mavx2 -mfma -ffp-contract=fast
-FAST_FLAGS_sse2v   := -DSHK_VARIANT=sse2v -DSHK_VBYTES=16
-FAST_FLAGS_avx2v   := -DSHK_VARIANT=avx2v -DSHK_VBYTES=32 -mavx2 -mfma -ffp-contract=fast
+FAST_FLAGS_avx512  := -DSHK_VARIANT=avx512 -mavx512f -mavx512vl -mfma -ffp-contract=fast
+# (-Wno-psabi: the float objects hold the rotation's lanes in double, twice
+# the native width, only in static functions, so no ABI is exposed.)
+FAST_FLAGS_sse2v   := -DSHK_VARIANT=sse2v -DSHK_VBYTES=16 -Wno-psabi
+FAST_FLAGS_avx2v   := -DSHK_VARIANT=avx2v -DSHK_VBYTES=32 -mavx2 -mfma -ffp-contract=fast -Wno-psabi
 FAST_FLAGS_avx512v := -DSHK_VARIANT=avx512v -DSHK_VBYTES=64 -mavx512f -mfma -ffp-contract=fast
 FAST_OBJ_D := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%.o)
 FAST_OBJ_F := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%_f.o)
@@ -131,7 +135,7 @@ check: $(GEN_UNROLLED)
 EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
-               rotation_extremes rotation_cost
+               rotation_extremes rotation_cost rotation_kernels
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a

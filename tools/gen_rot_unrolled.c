@@ -176,12 +176,11 @@ static void emit_head(int meth, int n)
         mname[meth], n);
 }
 
-static void emit_loads(int n)
+/* the inputs of band l, loaded when the band starts: every store of a band
+ * comes after all loads of that band, so in == out is safe */
+static void emit_loads(int l)
 {
-    for (int i = 0; i < n * n; i++) {
-        const int l = (int)floor(sqrt((double)i)), m = i - l * (l + 1);
-        out("    const shk_t %s = SHK_LD(in, %d, K);\n", nmx(l, m), i);
-    }
+    for (int m = -l; m <= l; m++) out("        const shk_t %s = SHK_LD(in, %d, K);\n", nmx(l, m), l * (l + 1) + m);
 }
 
 /* ZXZXZ of one vector: out = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ) in, band by band */
@@ -197,12 +196,12 @@ static void gen_zxzxz(int n, double *X)
         emit_angles('b', n - 1);
         emit_angles('g', n - 1);
     }
-    emit_loads(n);
-    out("    SHK_ST(out, 0, K, x0_0);\n");
+    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
     for (int l = 1; l < n; l++) {
         if (sh__rot_zxzxz_xplus_band(l, X)) { fprintf(stderr, "gen_rot_unrolled: X+90 band %d\n", l); exit(2); }
         char xm[16], xp[16];
         out("    { /* band %d */\n", l);
+        emit_loads(l);
         /* Z(γ): x → u */
         out("        const shk_t u_0 = %s;\n", nmx(l, 0));
         for (int m = 1; m <= l; m++) {
@@ -248,8 +247,7 @@ static void gen_taylor(int meth, int n)
         emit_angles('a', n - 1);
         emit_angles('g', n - 1);
     }
-    emit_loads(n);
-    out("    SHK_ST(out, 0, K, x0_0);\n");
+    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
     double sd[2 * MAXN + 3];
     for (int l = 1; l < n; l++) {
         const int w = 2 * l + 1;
@@ -257,6 +255,7 @@ static void gen_taylor(int meth, int n)
         sd[w] = 0;
         char xm[16], xp[16];
         out("    { /* band %d */\n", l);
+        emit_loads(l);
         out("        const shk_t u_0 = %s;\n", nmx(l, 0));
         for (int m = 1; m <= l; m++) {
             snprintf(xp, sizeof xp, "%s", nmx(l, m));

@@ -51,29 +51,29 @@
  * β = 0, π, where only α ± γ is defined — α = 0 and γ = α ± γ.  cos and sin
  * of the multiple angles then come from these by the Chebyshev recurrence
  * (the kernels).  Cost: 12 multiplications, 2 square roots, 2 divisions.
- * R must be a rotation (orthonormal, det +1); it is not checked here. */
-static inline void shk_par_matrix(const sh_real *R, size_t KR, sh_real *par, size_t KP)
+ * R must be a rotation (orthonormal, det +1); it is not checked here.
+ * Computed in double also for float rotations (shk_d): float arithmetic
+ * here would put 2–3 float ulps into cos γ, sin γ, which the Taylor kernels
+ * amplify near β = π past the golden fixtures' tolerance. */
+static inline void shk_par_matrix(const sh_real *R, size_t KR, shk_d par[SH__PAR_N])
 {
-    const shk_t r00 = SHK_LD(R, 0, KR), r01 = SHK_LD(R, 1, KR), r02 = SHK_LD(R, 2, KR);
-    const shk_t r10 = SHK_LD(R, 3, KR), r11 = SHK_LD(R, 4, KR), r12 = SHK_LD(R, 5, KR);
-    const shk_t r22 = SHK_LD(R, 8, KR);
-    const shk_t one = SHK_SPLAT(1), zero = SHK_SPLAT(0);
-    const shk_t s2 = r02 * r02 + r12 * r12, sb = SHK_SQRT(s2);
-    const shk_m has = s2 > zero; /* sβ ≠ 0: α from (a), else α = 0 */
-    const shk_t inv = SHK_SEL(has, one / SHK_SEL(has, sb, one), zero);
-    const shk_t ca = r02 * inv + SHK_SEL(has, zero, one), sa = r12 * inv;
-    const shk_m up = r22 >= zero; /* (b), else (c) */
-    const shk_t p = SHK_SEL(up, r00 + r11, r11 - r00), q = SHK_SEL(up, r10 - r01, -(r10 + r01));
-    const shk_t nrm = one / SHK_SQRT(p * p + q * q);
-    const shk_t cs = p * nrm, ss = q * nrm; /* e^{i(α+γ)}, or e^{i(α−γ)} */
-    const shk_t cg = cs * ca + ss * sa, t = ss * ca - cs * sa;
-    SHK_ST(par, 0, KP, ca);
-    SHK_ST(par, 1, KP, sa);
-    SHK_ST(par, 2, KP, r22);
-    SHK_ST(par, 3, KP, sb);
-    SHK_ST(par, 4, KP, cg);
-    SHK_ST(par, 5, KP, SHK_SEL(up, t, -t));
-    SHK_ST(par, 6, KP, zero);
+    const shk_d r00 = SHK_DLD(R, 0, KR), r01 = SHK_DLD(R, 1, KR), r02 = SHK_DLD(R, 2, KR);
+    const shk_d r10 = SHK_DLD(R, 3, KR), r11 = SHK_DLD(R, 4, KR), r12 = SHK_DLD(R, 5, KR);
+    const shk_d r22 = SHK_DLD(R, 8, KR);
+    const shk_d one = SHK_DSPLAT(1), zero = SHK_DSPLAT(0);
+    const shk_d s2 = r02 * r02 + r12 * r12, sb = SHK_DSQRT(s2);
+    const shk_dm has = s2 > zero; /* sβ ≠ 0: α from (a), else α = 0 */
+    const shk_d inv = SHK_DSEL(has, one / SHK_DSEL(has, sb, one), zero);
+    const shk_d ca = r02 * inv + SHK_DSEL(has, zero, one), sa = r12 * inv;
+    const shk_dm up = r22 >= zero; /* (b), else (c) */
+    const shk_d p = SHK_DSEL(up, r00 + r11, r11 - r00), q = SHK_DSEL(up, r10 - r01, -(r10 + r01));
+    const shk_d nrm = one / SHK_DSQRT(p * p + q * q);
+    const shk_d cs = p * nrm, ss = q * nrm; /* e^{i(α+γ)}, or e^{i(α−γ)} */
+    const shk_d t = ss * ca - cs * sa;
+    par[0] = ca, par[1] = sa, par[2] = r22, par[3] = sb;
+    par[4] = cs * ca + ss * sa;
+    par[5] = SHK_DSEL(up, t, -t);
+    par[6] = zero;
 }
 
 /* ---- the same from a quaternion q = (w, x, y, z), unit or not ------------
@@ -91,45 +91,74 @@ static inline void shk_par_matrix(const sh_real *R, size_t KR, sh_real *par, siz
  * all R depends on there.  |B| = 0 (β = 0): α = 0, e^{iγ} = A²/|A|²;
  * |A| = 0 (β = π): α = 0, e^{iγ} = B̄²/|B|².  q and −q give the same par.
  * Cost: 18 multiplications, 1 square root, 3 divisions. */
-static inline void shk_par_quat(const sh_real *Q, size_t KQ, sh_real *par, size_t KP)
+static inline void shk_par_quat(const sh_real *Q, size_t KQ, shk_d par[SH__PAR_N])
 {
-    const shk_t w = SHK_LD(Q, 0, KQ), x = SHK_LD(Q, 1, KQ), y = SHK_LD(Q, 2, KQ), z = SHK_LD(Q, 3, KQ);
-    const shk_t one = SHK_SPLAT(1), zero = SHK_SPLAT(0);
-    const shk_t ww = w * w, zz = z * z, xx = x * x, yy = y * y;
-    const shk_t a2 = ww + zz, b2 = xx + yy, in2 = one / (a2 + b2);
-    const shk_t ab = SHK_SQRT(a2 * b2);
-    const shk_m has = ab > zero;
-    const shk_t iab = SHK_SEL(has, one / SHK_SEL(has, ab, one), zero);
-    const shk_t wy = w * y, zx = z * x, zy = z * y, wx = w * x;
+    const shk_d w = SHK_DLD(Q, 0, KQ), x = SHK_DLD(Q, 1, KQ), y = SHK_DLD(Q, 2, KQ), z = SHK_DLD(Q, 3, KQ);
+    const shk_d one = SHK_DSPLAT(1), zero = SHK_DSPLAT(0);
+    const shk_d ww = w * w, zz = z * z, xx = x * x, yy = y * y;
+    const shk_d a2 = ww + zz, b2 = xx + yy, in2 = one / (a2 + b2);
+    const shk_d ab = SHK_DSQRT(a2 * b2);
+    const shk_dm has = ab > zero;
+    const shk_d iab = SHK_DSEL(has, one / SHK_DSEL(has, ab, one), zero);
+    const shk_d wy = w * y, zx = z * x, zy = z * y, wx = w * x;
     /* the degenerate cases: A²/|A|² (|B| = 0) or B̄²/|B|² (|A| = 0) */
-    const shk_m up = a2 >= b2;
-    const shk_t dn = one / SHK_SEL(up, a2, b2);
-    const shk_t dc = SHK_SEL(up, ww - zz, yy - xx) * dn;
-    const shk_t ds = SHK_SEL(up, w, x) * SHK_SEL(up, z, y) * (dn + dn);
-    SHK_ST(par, 0, KP, (wy + zx) * iab + SHK_SEL(has, zero, one));
-    SHK_ST(par, 1, KP, (zy - wx) * iab);
-    SHK_ST(par, 2, KP, (a2 - b2) * in2);
-    SHK_ST(par, 3, KP, (ab + ab) * in2);
-    SHK_ST(par, 4, KP, (wy - zx) * iab + SHK_SEL(has, zero, dc));
-    SHK_ST(par, 5, KP, (wx + zy) * iab + SHK_SEL(has, zero, ds));
-    SHK_ST(par, 6, KP, zero);
+    const shk_dm up = a2 >= b2;
+    const shk_d dn = one / SHK_DSEL(up, a2, b2);
+    const shk_d dc = SHK_DSEL(up, ww - zz, yy - xx) * dn;
+    const shk_d ds = SHK_DSEL(up, w, x) * SHK_DSEL(up, z, y) * (dn + dn);
+    par[0] = (wy + zx) * iab + SHK_DSEL(has, zero, one);
+    par[1] = (zy - wx) * iab;
+    par[2] = (a2 - b2) * in2;
+    par[3] = (ab + ab) * in2;
+    par[4] = (wy - zx) * iab + SHK_DSEL(has, zero, dc);
+    par[5] = (wx + zy) * iab + SHK_DSEL(has, zero, ds);
+    par[6] = zero;
 }
 
-/* β = atan2(sin β, cos β) lane by lane: the Taylor kernels need the angle
- * itself (one libm call per rotation; the exact methods need none). */
-static void shk_par_beta(sh_real *par, size_t KP, int lanes)
+/* β = atan2(sin β, cos β) ∈ [0, π] (sin β ≥ 0): the Taylor kernels need the
+ * angle itself.  In double, libm's atan2, lane by lane.  In float, by
+ * Abramowitz & Stegun 4.4.49 (Hastings): atan x = x(1 + a₂x² + … + a₁₆x¹⁶)
+ * + ε, |ε| ≤ 2·10⁻⁸ on [0, 1] (a quarter of a float ulp at 1), evaluated
+ * in double on x = min(s, |c|)/max(s, |c|), then β = atan x, π/2 − atan x,
+ * or π minus those for c < 0.  Cost: 10 multiplications, 1 division. */
+#ifdef SH_REAL_FLOAT
+static inline shk_d shk_beta(shk_d s, shk_d c)
 {
-    for (int i = 0; i < lanes; i++) par[6 * KP + (size_t)i] = (sh_real)atan2(par[3 * KP + (size_t)i], par[2 * KP + (size_t)i]);
+    const shk_d zero = SHK_DSPLAT(0), one = SHK_DSPLAT(1);
+    const shk_dm cpos = c >= zero;
+    const shk_d ac = SHK_DSEL(cpos, c, -c);
+    const shk_dm swap = s > ac;
+    const shk_d num = SHK_DSEL(swap, ac, s), den = SHK_DSEL(swap, s, ac);
+    const shk_d x = num / SHK_DSEL(den > zero, den, one), x2 = x * x;
+    const shk_d a = ((((((((0.0028662257 * x2 - 0.0161657367) * x2 + 0.0429096138) * x2 - 0.0752896400) * x2 +
+                          0.1065626393) * x2 - 0.1420889944) * x2 + 0.1999355085) * x2 - 0.3333314528) * x2 + 1) * x;
+    const shk_d t = SHK_DSEL(swap, 1.5707963267948966 - a, a);
+    return SHK_DSEL(cpos, t, 3.1415926535897931 - t);
 }
+#define SH__BETA_MULTS 10
+#else
+#define SH__BETA_MULTS 0
+#endif
 
-/* nocs = S·R_cs·S with S = diag((−1)^m) = Z(π), and Rz(π)Ry(β)Rz(π) =
- * Ry(−β), so the nocs rotation is the cs kernel with β negated (sin β and β
- * in par) — exact, no pass over the vectors. */
-static void shk_par_nocs(sh_real *par, size_t KP, int lanes)
+/* par as the kernels read it: rounded to sh_real, β if need_beta (lane by
+ * lane in double), nocs = S·R_cs·S with S = diag((−1)^m) = Z(π), and
+ * Rz(π)Ry(β)Rz(π) = Ry(−β): the cs kernel with sin β and β negated —
+ * exact, no pass over the vectors. */
+static inline void shk_par(const sh_real *rot, size_t KR, int quat, int need_beta, int nocs,
+                           sh_real *par, size_t KP)
 {
-    for (int i = 0; i < lanes; i++) {
-        par[3 * KP + (size_t)i] = -par[3 * KP + (size_t)i];
-        par[6 * KP + (size_t)i] = -par[6 * KP + (size_t)i];
+    shk_d pd[SH__PAR_N];
+    if (quat) shk_par_quat(rot, KR, pd);
+    else shk_par_matrix(rot, KR, pd);
+#ifdef SH_REAL_FLOAT
+    if (need_beta) pd[6] = shk_beta(pd[3], pd[2]);
+#endif
+    for (int j = 0; j < SH__PAR_N; j++) SHK_DST(par, j, KP, pd[j]);
+    for (size_t i = 0; i < (size_t)SHK_LANES; i++) {
+#ifndef SH_REAL_FLOAT
+        if (need_beta) par[6 * KP + i] = atan2(par[3 * KP + i], par[2 * KP + i]);
+#endif
+        if (nocs) par[3 * KP + i] = -par[3 * KP + i], par[6 * KP + i] = -par[6 * KP + i];
     }
 }
 
@@ -142,11 +171,19 @@ static void fast_rotate(int meth, int order, int nocs, size_t K, const sh_real *
     const int W = SHK_LANES, nr = quat ? 4 : 9, nc = order * order;
     sh_real par[SH__PAR_N * SHK_LANES];
     size_t k = 0;
+#if SHK_LANES == 1
+    /* one lane: each rotation and vector gathered into contiguous buffers */
+    for (; k < K; k++) {
+        sh_real rb[9], xb[SH__FAST_MAXO * SH__FAST_MAXO];
+        for (int r = 0; r < nr; r++) rb[r] = rot[(size_t)r * K + k];
+        for (int c = 0; c < nc; c++) xb[c] = in[(size_t)c * K + k];
+        shk_par(rb, 1, quat, meth != SH__FAST_ZXZXZ, nocs, par, 1);
+        f(par, 1, xb, xb, 1);
+        for (int c = 0; c < nc; c++) out[(size_t)c * K + k] = xb[c];
+    }
+#endif
     for (; k + (size_t)W <= K; k += (size_t)W) {
-        if (quat) shk_par_quat(rot + k, K, par, (size_t)W);
-        else shk_par_matrix(rot + k, K, par, (size_t)W);
-        if (meth != SH__FAST_ZXZXZ) shk_par_beta(par, (size_t)W, W);
-        if (nocs) shk_par_nocs(par, (size_t)W, W);
+        shk_par(rot + k, K, quat, meth != SH__FAST_ZXZXZ, nocs, par, (size_t)W);
         f(par, (size_t)W, in + k, out + k, K);
     }
 #if SHK_LANES > 1
@@ -158,16 +195,11 @@ static void fast_rotate(int meth, int order, int nocs, size_t K, const sh_real *
             for (int i = 0; i < W; i++) rb[r * W + i] = i < nt ? rot[(size_t)r * K + k + (size_t)i] : (quat ? id_q : id_m)[r];
         for (int c = 0; c < nc; c++)
             for (int i = 0; i < W; i++) xb[c * W + i] = i < nt ? in[(size_t)c * K + k + (size_t)i] : 0;
-        if (quat) shk_par_quat(rb, (size_t)W, par, (size_t)W);
-        else shk_par_matrix(rb, (size_t)W, par, (size_t)W);
-        if (meth != SH__FAST_ZXZXZ) shk_par_beta(par, (size_t)W, W);
-        if (nocs) shk_par_nocs(par, (size_t)W, W);
+        shk_par(rb, (size_t)W, quat, meth != SH__FAST_ZXZXZ, nocs, par, (size_t)W);
         f(par, (size_t)W, xb, xb, (size_t)W);
         for (int c = 0; c < nc; c++)
             for (int i = 0; i < nt; i++) out[(size_t)c * K + k + (size_t)i] = xb[c * W + i];
     }
-#else
-    (void)nr, (void)nc;
 #endif
 }
 
@@ -181,6 +213,14 @@ static void fast_many(int meth, int order, const sh_real *par1, size_t K, const 
     for (int j = 0; j < SH__PAR_N; j++)
         for (int i = 0; i < W; i++) par[j * W + i] = par1[j];
     size_t k = 0;
+#if SHK_LANES == 1
+    for (; k < K; k++) {
+        sh_real xb[SH__FAST_MAXO * SH__FAST_MAXO];
+        for (int c = 0; c < order * order; c++) xb[c] = in[(size_t)c * K + k];
+        f(par, 1, xb, xb, 1);
+        for (int c = 0; c < order * order; c++) out[(size_t)c * K + k] = xb[c];
+    }
+#endif
     for (; k + (size_t)W <= K; k += (size_t)W) f(par, (size_t)W, in + k, out + k, K);
 #if SHK_LANES > 1
     if (k < K) {
@@ -211,14 +251,12 @@ const SH_R(sh__rot_fast) SHK_SYM(sh__rot_fast) = {
 /* ---- one rotation, for the plan (the plain object only) ----------------- */
 void SH_R(sh__rot_par_matrix)(const sh_real *R, int need_beta, sh_real *par)
 {
-    shk_par_matrix(R, 1, par, 1);
-    if (need_beta) shk_par_beta(par, 1, 1);
+    shk_par(R, 1, 0, need_beta, 0, par, 1);
 }
 
 void SH_R(sh__rot_par_quat)(const sh_real *q, int need_beta, sh_real *par)
 {
-    shk_par_quat(q, 1, par, 1);
-    if (need_beta) shk_par_beta(par, 1, 1);
+    shk_par(q, 1, 1, need_beta, 0, par, 1);
 }
 
 /* From the Euler angles: libm's cos and sin of each (in the plan's precision,

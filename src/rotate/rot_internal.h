@@ -73,10 +73,11 @@ typedef struct {
  * from a matrix or quaternion by algebra (rot_fast.c: sh__rot_par_matrix_P,
  * sh__rot_par_quat_P; derivation there) or from the Euler angles by libm
  * (sh__rot_par_euler_P).  par[6] = β only when need_beta (the Taylor
- * kernels), else 0. */
+ * kernels), else 0.  Computed in double for either precision. */
 #define SH__PAR_N 7
 #define SH__PAR_MULTS_MATRIX 12 /* multiplications of sh__rot_par_matrix (and 2 √, 2 ÷) */
 #define SH__PAR_MULTS_QUAT 18   /* of sh__rot_par_quat (and 1 √, 3 ÷) */
+#define SH__PAR_MULTS_BETA_F 10 /* β in float (polynomial; and 1 ÷); double: atan2 */
 void sh__rot_par_matrix_d(const double *R, int need_beta, double *par);
 void sh__rot_par_matrix_f(const float *R, int need_beta, float *par);
 void sh__rot_par_quat_d(const double *q, int need_beta, double *par);

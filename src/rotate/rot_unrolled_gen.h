@@ -24,8 +24,7 @@
 static void zxzxz_1(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)
 {
     (void)KP;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
 }
 
 /* zxzxz, order 2 (bands 0..1) */
@@ -35,12 +34,11 @@ static void zxzxz_2(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t ca1 = SHK_LD(par, 0, KP), sa1 = SHK_LD(par, 1, KP);
     const shk_t cb1 = SHK_LD(par, 2, KP), sb1 = SHK_LD(par, 3, KP);
     const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -72,17 +70,11 @@ static void zxzxz_3(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t cb2 = tb * cb1 - SHK_C(1), sb2 = tb * sb1;
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -100,6 +92,11 @@ static void zxzxz_3(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -144,24 +141,11 @@ static void zxzxz_4(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -179,6 +163,11 @@ static void zxzxz_4(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -206,6 +195,13 @@ static void zxzxz_4(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -263,33 +259,11 @@ static void zxzxz_5(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -307,6 +281,11 @@ static void zxzxz_5(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -334,6 +313,13 @@ static void zxzxz_5(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -371,6 +357,15 @@ static void zxzxz_5(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 9, K, -(sa3 * w_3 + ca3 * w_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -441,44 +436,11 @@ static void zxzxz_6(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -496,6 +458,11 @@ static void zxzxz_6(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -523,6 +490,13 @@ static void zxzxz_6(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -560,6 +534,15 @@ static void zxzxz_6(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 9, K, -(sa3 * w_3 + ca3 * w_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -607,6 +590,17 @@ static void zxzxz_6(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 16, K, (sa4 * w_4 + ca4 * w_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -690,57 +684,11 @@ static void zxzxz_7(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -758,6 +706,11 @@ static void zxzxz_7(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -785,6 +738,13 @@ static void zxzxz_7(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -822,6 +782,15 @@ static void zxzxz_7(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 9, K, -(sa3 * w_3 + ca3 * w_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -869,6 +838,17 @@ static void zxzxz_7(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 16, K, (sa4 * w_4 + ca4 * w_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -926,6 +906,19 @@ static void zxzxz_7(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 25, K, -(sa5 * w_5 + ca5 * w_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -1022,72 +1015,11 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -1105,6 +1037,11 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -1132,6 +1069,13 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -1169,6 +1113,15 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 9, K, -(sa3 * w_3 + ca3 * w_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -1216,6 +1169,17 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 16, K, (sa4 * w_4 + ca4 * w_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -1273,6 +1237,19 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 25, K, -(sa5 * w_5 + ca5 * w_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -1340,6 +1317,21 @@ static void zxzxz_8(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 36, K, (sa6 * w_6 + ca6 * w_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -1449,89 +1441,11 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -1549,6 +1463,11 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -1576,6 +1495,13 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -1613,6 +1539,15 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 9, K, -(sa3 * w_3 + ca3 * w_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -1660,6 +1595,17 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 16, K, (sa4 * w_4 + ca4 * w_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -1717,6 +1663,19 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 25, K, -(sa5 * w_5 + ca5 * w_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -1784,6 +1743,21 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 36, K, (sa6 * w_6 + ca6 * w_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -1861,6 +1835,23 @@ static void zxzxz_9(const sh_real *par, size_t KP, const sh_real *in, sh_real *o
         SHK_ST(out, 49, K, -(sa7 * w_7 + ca7 * w_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -1983,108 +1974,11 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
     const shk_t cg9 = tg * cg8 - cg7, sg9 = tg * sg8 - sg7;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    const shk_t x9_n9 = SHK_LD(in, 81, K);
-    const shk_t x9_n8 = SHK_LD(in, 82, K);
-    const shk_t x9_n7 = SHK_LD(in, 83, K);
-    const shk_t x9_n6 = SHK_LD(in, 84, K);
-    const shk_t x9_n5 = SHK_LD(in, 85, K);
-    const shk_t x9_n4 = SHK_LD(in, 86, K);
-    const shk_t x9_n3 = SHK_LD(in, 87, K);
-    const shk_t x9_n2 = SHK_LD(in, 88, K);
-    const shk_t x9_n1 = SHK_LD(in, 89, K);
-    const shk_t x9_0 = SHK_LD(in, 90, K);
-    const shk_t x9_1 = SHK_LD(in, 91, K);
-    const shk_t x9_2 = SHK_LD(in, 92, K);
-    const shk_t x9_3 = SHK_LD(in, 93, K);
-    const shk_t x9_4 = SHK_LD(in, 94, K);
-    const shk_t x9_5 = SHK_LD(in, 95, K);
-    const shk_t x9_6 = SHK_LD(in, 96, K);
-    const shk_t x9_7 = SHK_LD(in, 97, K);
-    const shk_t x9_8 = SHK_LD(in, 98, K);
-    const shk_t x9_9 = SHK_LD(in, 99, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -2102,6 +1996,11 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 1, K, -(sa1 * w_1 + ca1 * w_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -2129,6 +2028,13 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 4, K, (sa2 * w_2 + ca2 * w_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -2166,6 +2072,15 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 9, K, -(sa3 * w_3 + ca3 * w_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -2213,6 +2128,17 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 16, K, (sa4 * w_4 + ca4 * w_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -2270,6 +2196,19 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 25, K, -(sa5 * w_5 + ca5 * w_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -2337,6 +2276,21 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 36, K, (sa6 * w_6 + ca6 * w_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -2414,6 +2368,23 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 49, K, -(sa7 * w_7 + ca7 * w_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -2501,6 +2472,25 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
         SHK_ST(out, 64, K, (sa8 * w_8 + ca8 * w_n8));
     }
     { /* band 9 */
+        const shk_t x9_n9 = SHK_LD(in, 81, K);
+        const shk_t x9_n8 = SHK_LD(in, 82, K);
+        const shk_t x9_n7 = SHK_LD(in, 83, K);
+        const shk_t x9_n6 = SHK_LD(in, 84, K);
+        const shk_t x9_n5 = SHK_LD(in, 85, K);
+        const shk_t x9_n4 = SHK_LD(in, 86, K);
+        const shk_t x9_n3 = SHK_LD(in, 87, K);
+        const shk_t x9_n2 = SHK_LD(in, 88, K);
+        const shk_t x9_n1 = SHK_LD(in, 89, K);
+        const shk_t x9_0 = SHK_LD(in, 90, K);
+        const shk_t x9_1 = SHK_LD(in, 91, K);
+        const shk_t x9_2 = SHK_LD(in, 92, K);
+        const shk_t x9_3 = SHK_LD(in, 93, K);
+        const shk_t x9_4 = SHK_LD(in, 94, K);
+        const shk_t x9_5 = SHK_LD(in, 95, K);
+        const shk_t x9_6 = SHK_LD(in, 96, K);
+        const shk_t x9_7 = SHK_LD(in, 97, K);
+        const shk_t x9_8 = SHK_LD(in, 98, K);
+        const shk_t x9_9 = SHK_LD(in, 99, K);
         const shk_t u_0 = x9_0;
         const shk_t u_1 = (cg1 * x9_1 - sg1 * x9_n1);
         const shk_t u_n1 = (sg1 * x9_1 + cg1 * x9_n1);
@@ -2603,8 +2593,7 @@ static void zxzxz_10(const sh_real *par, size_t KP, const sh_real *in, sh_real *
 static void taylor1_1(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)
 {
     (void)KP;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
 }
 
 /* taylor1, order 2 (bands 0..1) */
@@ -2614,12 +2603,11 @@ static void taylor1_2(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t ca1 = SHK_LD(par, 0, KP), sa1 = SHK_LD(par, 1, KP);
     const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);
     const shk_t beta = SHK_LD(par, 6, KP);
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -2643,17 +2631,11 @@ static void taylor1_3(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t ca2 = ta * ca1 - SHK_C(1), sa2 = ta * sa1;
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -2665,6 +2647,11 @@ static void taylor1_3(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -2696,24 +2683,11 @@ static void taylor1_4(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -2725,6 +2699,11 @@ static void taylor1_4(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -2742,6 +2721,13 @@ static void taylor1_4(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -2781,33 +2767,11 @@ static void taylor1_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -2819,6 +2783,11 @@ static void taylor1_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -2836,6 +2805,13 @@ static void taylor1_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -2859,6 +2835,15 @@ static void taylor1_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -2906,44 +2891,11 @@ static void taylor1_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -2955,6 +2907,11 @@ static void taylor1_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -2972,6 +2929,13 @@ static void taylor1_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -2995,6 +2959,15 @@ static void taylor1_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -3024,6 +2997,17 @@ static void taylor1_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -3079,57 +3063,11 @@ static void taylor1_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -3141,6 +3079,11 @@ static void taylor1_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -3158,6 +3101,13 @@ static void taylor1_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -3181,6 +3131,15 @@ static void taylor1_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -3210,6 +3169,17 @@ static void taylor1_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -3245,6 +3215,19 @@ static void taylor1_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -3308,72 +3291,11 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -3385,6 +3307,11 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -3402,6 +3329,13 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -3425,6 +3359,15 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -3454,6 +3397,17 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -3489,6 +3443,19 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -3530,6 +3497,21 @@ static void taylor1_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -3601,89 +3583,11 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -3695,6 +3599,11 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -3712,6 +3621,13 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -3735,6 +3651,15 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -3764,6 +3689,17 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -3799,6 +3735,19 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -3840,6 +3789,21 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -3887,6 +3851,23 @@ static void taylor1_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 49, K, (sa7 * t_7 + ca7 * t_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -3966,108 +3947,11 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
     const shk_t cg9 = tg * cg8 - cg7, sg9 = tg * sg8 - sg7;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    const shk_t x9_n9 = SHK_LD(in, 81, K);
-    const shk_t x9_n8 = SHK_LD(in, 82, K);
-    const shk_t x9_n7 = SHK_LD(in, 83, K);
-    const shk_t x9_n6 = SHK_LD(in, 84, K);
-    const shk_t x9_n5 = SHK_LD(in, 85, K);
-    const shk_t x9_n4 = SHK_LD(in, 86, K);
-    const shk_t x9_n3 = SHK_LD(in, 87, K);
-    const shk_t x9_n2 = SHK_LD(in, 88, K);
-    const shk_t x9_n1 = SHK_LD(in, 89, K);
-    const shk_t x9_0 = SHK_LD(in, 90, K);
-    const shk_t x9_1 = SHK_LD(in, 91, K);
-    const shk_t x9_2 = SHK_LD(in, 92, K);
-    const shk_t x9_3 = SHK_LD(in, 93, K);
-    const shk_t x9_4 = SHK_LD(in, 94, K);
-    const shk_t x9_5 = SHK_LD(in, 95, K);
-    const shk_t x9_6 = SHK_LD(in, 96, K);
-    const shk_t x9_7 = SHK_LD(in, 97, K);
-    const shk_t x9_8 = SHK_LD(in, 98, K);
-    const shk_t x9_9 = SHK_LD(in, 99, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4079,6 +3963,11 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -4096,6 +3985,13 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -4119,6 +4015,15 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -4148,6 +4053,17 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -4183,6 +4099,19 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -4224,6 +4153,21 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -4271,6 +4215,23 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 49, K, (sa7 * t_7 + ca7 * t_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -4324,6 +4285,25 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 64, K, (sa8 * t_8 + ca8 * t_n8));
     }
     { /* band 9 */
+        const shk_t x9_n9 = SHK_LD(in, 81, K);
+        const shk_t x9_n8 = SHK_LD(in, 82, K);
+        const shk_t x9_n7 = SHK_LD(in, 83, K);
+        const shk_t x9_n6 = SHK_LD(in, 84, K);
+        const shk_t x9_n5 = SHK_LD(in, 85, K);
+        const shk_t x9_n4 = SHK_LD(in, 86, K);
+        const shk_t x9_n3 = SHK_LD(in, 87, K);
+        const shk_t x9_n2 = SHK_LD(in, 88, K);
+        const shk_t x9_n1 = SHK_LD(in, 89, K);
+        const shk_t x9_0 = SHK_LD(in, 90, K);
+        const shk_t x9_1 = SHK_LD(in, 91, K);
+        const shk_t x9_2 = SHK_LD(in, 92, K);
+        const shk_t x9_3 = SHK_LD(in, 93, K);
+        const shk_t x9_4 = SHK_LD(in, 94, K);
+        const shk_t x9_5 = SHK_LD(in, 95, K);
+        const shk_t x9_6 = SHK_LD(in, 96, K);
+        const shk_t x9_7 = SHK_LD(in, 97, K);
+        const shk_t x9_8 = SHK_LD(in, 98, K);
+        const shk_t x9_9 = SHK_LD(in, 99, K);
         const shk_t u_0 = x9_0;
         const shk_t u_1 = (cg1 * x9_1 - sg1 * x9_n1);
         const shk_t u_n1 = (sg1 * x9_1 + cg1 * x9_n1);
@@ -4388,8 +4368,7 @@ static void taylor1_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
 static void taylor15_1(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)
 {
     (void)KP;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
 }
 
 /* taylor1.5, order 2 (bands 0..1) */
@@ -4400,12 +4379,11 @@ static void taylor15_2(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);
     const shk_t beta = SHK_LD(par, 6, KP);
     const shk_t bb = SHK_C(0.5) * beta * beta;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4430,17 +4408,11 @@ static void taylor15_3(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t ca2 = ta * ca1 - SHK_C(1), sa2 = ta * sa1;
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4452,6 +4424,11 @@ static void taylor15_3(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -4484,24 +4461,11 @@ static void taylor15_4(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4513,6 +4477,11 @@ static void taylor15_4(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -4530,6 +4499,13 @@ static void taylor15_4(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -4570,33 +4546,11 @@ static void taylor15_5(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4608,6 +4562,11 @@ static void taylor15_5(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -4625,6 +4584,13 @@ static void taylor15_5(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -4648,6 +4614,15 @@ static void taylor15_5(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -4696,44 +4671,11 @@ static void taylor15_6(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4745,6 +4687,11 @@ static void taylor15_6(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -4762,6 +4709,13 @@ static void taylor15_6(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -4785,6 +4739,15 @@ static void taylor15_6(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -4814,6 +4777,17 @@ static void taylor15_6(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -4870,57 +4844,11 @@ static void taylor15_7(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -4932,6 +4860,11 @@ static void taylor15_7(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -4949,6 +4882,13 @@ static void taylor15_7(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -4972,6 +4912,15 @@ static void taylor15_7(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -5001,6 +4950,17 @@ static void taylor15_7(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -5036,6 +4996,19 @@ static void taylor15_7(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -5100,72 +5073,11 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -5177,6 +5089,11 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -5194,6 +5111,13 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -5217,6 +5141,15 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -5246,6 +5179,17 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -5281,6 +5225,19 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -5322,6 +5279,21 @@ static void taylor15_8(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -5394,89 +5366,11 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -5488,6 +5382,11 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -5505,6 +5404,13 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -5528,6 +5434,15 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -5557,6 +5472,17 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -5592,6 +5518,19 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -5633,6 +5572,21 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -5680,6 +5634,23 @@ static void taylor15_9(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 49, K, (sa7 * t_7 + ca7 * t_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -5760,108 +5731,11 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
     const shk_t cg9 = tg * cg8 - cg7, sg9 = tg * sg8 - sg7;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    const shk_t x9_n9 = SHK_LD(in, 81, K);
-    const shk_t x9_n8 = SHK_LD(in, 82, K);
-    const shk_t x9_n7 = SHK_LD(in, 83, K);
-    const shk_t x9_n6 = SHK_LD(in, 84, K);
-    const shk_t x9_n5 = SHK_LD(in, 85, K);
-    const shk_t x9_n4 = SHK_LD(in, 86, K);
-    const shk_t x9_n3 = SHK_LD(in, 87, K);
-    const shk_t x9_n2 = SHK_LD(in, 88, K);
-    const shk_t x9_n1 = SHK_LD(in, 89, K);
-    const shk_t x9_0 = SHK_LD(in, 90, K);
-    const shk_t x9_1 = SHK_LD(in, 91, K);
-    const shk_t x9_2 = SHK_LD(in, 92, K);
-    const shk_t x9_3 = SHK_LD(in, 93, K);
-    const shk_t x9_4 = SHK_LD(in, 94, K);
-    const shk_t x9_5 = SHK_LD(in, 95, K);
-    const shk_t x9_6 = SHK_LD(in, 96, K);
-    const shk_t x9_7 = SHK_LD(in, 97, K);
-    const shk_t x9_8 = SHK_LD(in, 98, K);
-    const shk_t x9_9 = SHK_LD(in, 99, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -5873,6 +5747,11 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -5890,6 +5769,13 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -5913,6 +5799,15 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -5942,6 +5837,17 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -5977,6 +5883,19 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -6018,6 +5937,21 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -6065,6 +5999,23 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 49, K, (sa7 * t_7 + ca7 * t_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -6118,6 +6069,25 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
         SHK_ST(out, 64, K, (sa8 * t_8 + ca8 * t_n8));
     }
     { /* band 9 */
+        const shk_t x9_n9 = SHK_LD(in, 81, K);
+        const shk_t x9_n8 = SHK_LD(in, 82, K);
+        const shk_t x9_n7 = SHK_LD(in, 83, K);
+        const shk_t x9_n6 = SHK_LD(in, 84, K);
+        const shk_t x9_n5 = SHK_LD(in, 85, K);
+        const shk_t x9_n4 = SHK_LD(in, 86, K);
+        const shk_t x9_n3 = SHK_LD(in, 87, K);
+        const shk_t x9_n2 = SHK_LD(in, 88, K);
+        const shk_t x9_n1 = SHK_LD(in, 89, K);
+        const shk_t x9_0 = SHK_LD(in, 90, K);
+        const shk_t x9_1 = SHK_LD(in, 91, K);
+        const shk_t x9_2 = SHK_LD(in, 92, K);
+        const shk_t x9_3 = SHK_LD(in, 93, K);
+        const shk_t x9_4 = SHK_LD(in, 94, K);
+        const shk_t x9_5 = SHK_LD(in, 95, K);
+        const shk_t x9_6 = SHK_LD(in, 96, K);
+        const shk_t x9_7 = SHK_LD(in, 97, K);
+        const shk_t x9_8 = SHK_LD(in, 98, K);
+        const shk_t x9_9 = SHK_LD(in, 99, K);
         const shk_t u_0 = x9_0;
         const shk_t u_1 = (cg1 * x9_1 - sg1 * x9_n1);
         const shk_t u_n1 = (sg1 * x9_1 + cg1 * x9_n1);
@@ -6182,8 +6152,7 @@ static void taylor15_10(const sh_real *par, size_t KP, const sh_real *in, sh_rea
 static void taylor2_1(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)
 {
     (void)KP;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
 }
 
 /* taylor2, order 2 (bands 0..1) */
@@ -6194,12 +6163,11 @@ static void taylor2_2(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);
     const shk_t beta = SHK_LD(par, 6, KP);
     const shk_t bb = SHK_C(0.5) * beta * beta;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6224,17 +6192,11 @@ static void taylor2_3(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t ca2 = ta * ca1 - SHK_C(1), sa2 = ta * sa1;
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6246,6 +6208,11 @@ static void taylor2_3(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -6278,24 +6245,11 @@ static void taylor2_4(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t tg = cg1 + cg1;
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6307,6 +6261,11 @@ static void taylor2_4(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -6324,6 +6283,13 @@ static void taylor2_4(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -6364,33 +6330,11 @@ static void taylor2_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg2 = tg * cg1 - SHK_C(1), sg2 = tg * sg1;
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6402,6 +6346,11 @@ static void taylor2_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -6419,6 +6368,13 @@ static void taylor2_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -6442,6 +6398,15 @@ static void taylor2_5(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -6490,44 +6455,11 @@ static void taylor2_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg3 = tg * cg2 - cg1, sg3 = tg * sg2 - sg1;
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6539,6 +6471,11 @@ static void taylor2_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -6556,6 +6493,13 @@ static void taylor2_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -6579,6 +6523,15 @@ static void taylor2_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -6608,6 +6561,17 @@ static void taylor2_6(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -6664,57 +6628,11 @@ static void taylor2_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg4 = tg * cg3 - cg2, sg4 = tg * sg3 - sg2;
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6726,6 +6644,11 @@ static void taylor2_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -6743,6 +6666,13 @@ static void taylor2_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -6766,6 +6696,15 @@ static void taylor2_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -6795,6 +6734,17 @@ static void taylor2_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -6830,6 +6780,19 @@ static void taylor2_7(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -6894,72 +6857,11 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg5 = tg * cg4 - cg3, sg5 = tg * sg4 - sg3;
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -6971,6 +6873,11 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -6988,6 +6895,13 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -7011,6 +6925,15 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -7040,6 +6963,17 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -7075,6 +7009,19 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -7116,6 +7063,21 @@ static void taylor2_8(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -7188,89 +7150,11 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
     const shk_t cg6 = tg * cg5 - cg4, sg6 = tg * sg5 - sg4;
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -7282,6 +7166,11 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -7299,6 +7188,13 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -7322,6 +7218,15 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -7351,6 +7256,17 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -7386,6 +7302,19 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -7427,6 +7356,21 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -7474,6 +7418,23 @@ static void taylor2_9(const sh_real *par, size_t KP, const sh_real *in, sh_real 
         SHK_ST(out, 49, K, (sa7 * t_7 + ca7 * t_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -7554,108 +7515,11 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
     const shk_t cg7 = tg * cg6 - cg5, sg7 = tg * sg6 - sg5;
     const shk_t cg8 = tg * cg7 - cg6, sg8 = tg * sg7 - sg6;
     const shk_t cg9 = tg * cg8 - cg7, sg9 = tg * sg8 - sg7;
-    const shk_t x0_0 = SHK_LD(in, 0, K);
-    const shk_t x1_n1 = SHK_LD(in, 1, K);
-    const shk_t x1_0 = SHK_LD(in, 2, K);
-    const shk_t x1_1 = SHK_LD(in, 3, K);
-    const shk_t x2_n2 = SHK_LD(in, 4, K);
-    const shk_t x2_n1 = SHK_LD(in, 5, K);
-    const shk_t x2_0 = SHK_LD(in, 6, K);
-    const shk_t x2_1 = SHK_LD(in, 7, K);
-    const shk_t x2_2 = SHK_LD(in, 8, K);
-    const shk_t x3_n3 = SHK_LD(in, 9, K);
-    const shk_t x3_n2 = SHK_LD(in, 10, K);
-    const shk_t x3_n1 = SHK_LD(in, 11, K);
-    const shk_t x3_0 = SHK_LD(in, 12, K);
-    const shk_t x3_1 = SHK_LD(in, 13, K);
-    const shk_t x3_2 = SHK_LD(in, 14, K);
-    const shk_t x3_3 = SHK_LD(in, 15, K);
-    const shk_t x4_n4 = SHK_LD(in, 16, K);
-    const shk_t x4_n3 = SHK_LD(in, 17, K);
-    const shk_t x4_n2 = SHK_LD(in, 18, K);
-    const shk_t x4_n1 = SHK_LD(in, 19, K);
-    const shk_t x4_0 = SHK_LD(in, 20, K);
-    const shk_t x4_1 = SHK_LD(in, 21, K);
-    const shk_t x4_2 = SHK_LD(in, 22, K);
-    const shk_t x4_3 = SHK_LD(in, 23, K);
-    const shk_t x4_4 = SHK_LD(in, 24, K);
-    const shk_t x5_n5 = SHK_LD(in, 25, K);
-    const shk_t x5_n4 = SHK_LD(in, 26, K);
-    const shk_t x5_n3 = SHK_LD(in, 27, K);
-    const shk_t x5_n2 = SHK_LD(in, 28, K);
-    const shk_t x5_n1 = SHK_LD(in, 29, K);
-    const shk_t x5_0 = SHK_LD(in, 30, K);
-    const shk_t x5_1 = SHK_LD(in, 31, K);
-    const shk_t x5_2 = SHK_LD(in, 32, K);
-    const shk_t x5_3 = SHK_LD(in, 33, K);
-    const shk_t x5_4 = SHK_LD(in, 34, K);
-    const shk_t x5_5 = SHK_LD(in, 35, K);
-    const shk_t x6_n6 = SHK_LD(in, 36, K);
-    const shk_t x6_n5 = SHK_LD(in, 37, K);
-    const shk_t x6_n4 = SHK_LD(in, 38, K);
-    const shk_t x6_n3 = SHK_LD(in, 39, K);
-    const shk_t x6_n2 = SHK_LD(in, 40, K);
-    const shk_t x6_n1 = SHK_LD(in, 41, K);
-    const shk_t x6_0 = SHK_LD(in, 42, K);
-    const shk_t x6_1 = SHK_LD(in, 43, K);
-    const shk_t x6_2 = SHK_LD(in, 44, K);
-    const shk_t x6_3 = SHK_LD(in, 45, K);
-    const shk_t x6_4 = SHK_LD(in, 46, K);
-    const shk_t x6_5 = SHK_LD(in, 47, K);
-    const shk_t x6_6 = SHK_LD(in, 48, K);
-    const shk_t x7_n7 = SHK_LD(in, 49, K);
-    const shk_t x7_n6 = SHK_LD(in, 50, K);
-    const shk_t x7_n5 = SHK_LD(in, 51, K);
-    const shk_t x7_n4 = SHK_LD(in, 52, K);
-    const shk_t x7_n3 = SHK_LD(in, 53, K);
-    const shk_t x7_n2 = SHK_LD(in, 54, K);
-    const shk_t x7_n1 = SHK_LD(in, 55, K);
-    const shk_t x7_0 = SHK_LD(in, 56, K);
-    const shk_t x7_1 = SHK_LD(in, 57, K);
-    const shk_t x7_2 = SHK_LD(in, 58, K);
-    const shk_t x7_3 = SHK_LD(in, 59, K);
-    const shk_t x7_4 = SHK_LD(in, 60, K);
-    const shk_t x7_5 = SHK_LD(in, 61, K);
-    const shk_t x7_6 = SHK_LD(in, 62, K);
-    const shk_t x7_7 = SHK_LD(in, 63, K);
-    const shk_t x8_n8 = SHK_LD(in, 64, K);
-    const shk_t x8_n7 = SHK_LD(in, 65, K);
-    const shk_t x8_n6 = SHK_LD(in, 66, K);
-    const shk_t x8_n5 = SHK_LD(in, 67, K);
-    const shk_t x8_n4 = SHK_LD(in, 68, K);
-    const shk_t x8_n3 = SHK_LD(in, 69, K);
-    const shk_t x8_n2 = SHK_LD(in, 70, K);
-    const shk_t x8_n1 = SHK_LD(in, 71, K);
-    const shk_t x8_0 = SHK_LD(in, 72, K);
-    const shk_t x8_1 = SHK_LD(in, 73, K);
-    const shk_t x8_2 = SHK_LD(in, 74, K);
-    const shk_t x8_3 = SHK_LD(in, 75, K);
-    const shk_t x8_4 = SHK_LD(in, 76, K);
-    const shk_t x8_5 = SHK_LD(in, 77, K);
-    const shk_t x8_6 = SHK_LD(in, 78, K);
-    const shk_t x8_7 = SHK_LD(in, 79, K);
-    const shk_t x8_8 = SHK_LD(in, 80, K);
-    const shk_t x9_n9 = SHK_LD(in, 81, K);
-    const shk_t x9_n8 = SHK_LD(in, 82, K);
-    const shk_t x9_n7 = SHK_LD(in, 83, K);
-    const shk_t x9_n6 = SHK_LD(in, 84, K);
-    const shk_t x9_n5 = SHK_LD(in, 85, K);
-    const shk_t x9_n4 = SHK_LD(in, 86, K);
-    const shk_t x9_n3 = SHK_LD(in, 87, K);
-    const shk_t x9_n2 = SHK_LD(in, 88, K);
-    const shk_t x9_n1 = SHK_LD(in, 89, K);
-    const shk_t x9_0 = SHK_LD(in, 90, K);
-    const shk_t x9_1 = SHK_LD(in, 91, K);
-    const shk_t x9_2 = SHK_LD(in, 92, K);
-    const shk_t x9_3 = SHK_LD(in, 93, K);
-    const shk_t x9_4 = SHK_LD(in, 94, K);
-    const shk_t x9_5 = SHK_LD(in, 95, K);
-    const shk_t x9_6 = SHK_LD(in, 96, K);
-    const shk_t x9_7 = SHK_LD(in, 97, K);
-    const shk_t x9_8 = SHK_LD(in, 98, K);
-    const shk_t x9_9 = SHK_LD(in, 99, K);
-    SHK_ST(out, 0, K, x0_0);
+    SHK_ST(out, 0, K, SHK_LD(in, 0, K));
     { /* band 1 */
+        const shk_t x1_n1 = SHK_LD(in, 1, K);
+        const shk_t x1_0 = SHK_LD(in, 2, K);
+        const shk_t x1_1 = SHK_LD(in, 3, K);
         const shk_t u_0 = x1_0;
         const shk_t u_1 = (cg1 * x1_1 - sg1 * x1_n1);
         const shk_t u_n1 = (sg1 * x1_1 + cg1 * x1_n1);
@@ -7667,6 +7531,11 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 1, K, (sa1 * t_1 + ca1 * t_n1));
     }
     { /* band 2 */
+        const shk_t x2_n2 = SHK_LD(in, 4, K);
+        const shk_t x2_n1 = SHK_LD(in, 5, K);
+        const shk_t x2_0 = SHK_LD(in, 6, K);
+        const shk_t x2_1 = SHK_LD(in, 7, K);
+        const shk_t x2_2 = SHK_LD(in, 8, K);
         const shk_t u_0 = x2_0;
         const shk_t u_1 = (cg1 * x2_1 - sg1 * x2_n1);
         const shk_t u_n1 = (sg1 * x2_1 + cg1 * x2_n1);
@@ -7684,6 +7553,13 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 4, K, (sa2 * t_2 + ca2 * t_n2));
     }
     { /* band 3 */
+        const shk_t x3_n3 = SHK_LD(in, 9, K);
+        const shk_t x3_n2 = SHK_LD(in, 10, K);
+        const shk_t x3_n1 = SHK_LD(in, 11, K);
+        const shk_t x3_0 = SHK_LD(in, 12, K);
+        const shk_t x3_1 = SHK_LD(in, 13, K);
+        const shk_t x3_2 = SHK_LD(in, 14, K);
+        const shk_t x3_3 = SHK_LD(in, 15, K);
         const shk_t u_0 = x3_0;
         const shk_t u_1 = (cg1 * x3_1 - sg1 * x3_n1);
         const shk_t u_n1 = (sg1 * x3_1 + cg1 * x3_n1);
@@ -7707,6 +7583,15 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 9, K, (sa3 * t_3 + ca3 * t_n3));
     }
     { /* band 4 */
+        const shk_t x4_n4 = SHK_LD(in, 16, K);
+        const shk_t x4_n3 = SHK_LD(in, 17, K);
+        const shk_t x4_n2 = SHK_LD(in, 18, K);
+        const shk_t x4_n1 = SHK_LD(in, 19, K);
+        const shk_t x4_0 = SHK_LD(in, 20, K);
+        const shk_t x4_1 = SHK_LD(in, 21, K);
+        const shk_t x4_2 = SHK_LD(in, 22, K);
+        const shk_t x4_3 = SHK_LD(in, 23, K);
+        const shk_t x4_4 = SHK_LD(in, 24, K);
         const shk_t u_0 = x4_0;
         const shk_t u_1 = (cg1 * x4_1 - sg1 * x4_n1);
         const shk_t u_n1 = (sg1 * x4_1 + cg1 * x4_n1);
@@ -7736,6 +7621,17 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 16, K, (sa4 * t_4 + ca4 * t_n4));
     }
     { /* band 5 */
+        const shk_t x5_n5 = SHK_LD(in, 25, K);
+        const shk_t x5_n4 = SHK_LD(in, 26, K);
+        const shk_t x5_n3 = SHK_LD(in, 27, K);
+        const shk_t x5_n2 = SHK_LD(in, 28, K);
+        const shk_t x5_n1 = SHK_LD(in, 29, K);
+        const shk_t x5_0 = SHK_LD(in, 30, K);
+        const shk_t x5_1 = SHK_LD(in, 31, K);
+        const shk_t x5_2 = SHK_LD(in, 32, K);
+        const shk_t x5_3 = SHK_LD(in, 33, K);
+        const shk_t x5_4 = SHK_LD(in, 34, K);
+        const shk_t x5_5 = SHK_LD(in, 35, K);
         const shk_t u_0 = x5_0;
         const shk_t u_1 = (cg1 * x5_1 - sg1 * x5_n1);
         const shk_t u_n1 = (sg1 * x5_1 + cg1 * x5_n1);
@@ -7771,6 +7667,19 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 25, K, (sa5 * t_5 + ca5 * t_n5));
     }
     { /* band 6 */
+        const shk_t x6_n6 = SHK_LD(in, 36, K);
+        const shk_t x6_n5 = SHK_LD(in, 37, K);
+        const shk_t x6_n4 = SHK_LD(in, 38, K);
+        const shk_t x6_n3 = SHK_LD(in, 39, K);
+        const shk_t x6_n2 = SHK_LD(in, 40, K);
+        const shk_t x6_n1 = SHK_LD(in, 41, K);
+        const shk_t x6_0 = SHK_LD(in, 42, K);
+        const shk_t x6_1 = SHK_LD(in, 43, K);
+        const shk_t x6_2 = SHK_LD(in, 44, K);
+        const shk_t x6_3 = SHK_LD(in, 45, K);
+        const shk_t x6_4 = SHK_LD(in, 46, K);
+        const shk_t x6_5 = SHK_LD(in, 47, K);
+        const shk_t x6_6 = SHK_LD(in, 48, K);
         const shk_t u_0 = x6_0;
         const shk_t u_1 = (cg1 * x6_1 - sg1 * x6_n1);
         const shk_t u_n1 = (sg1 * x6_1 + cg1 * x6_n1);
@@ -7812,6 +7721,21 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 36, K, (sa6 * t_6 + ca6 * t_n6));
     }
     { /* band 7 */
+        const shk_t x7_n7 = SHK_LD(in, 49, K);
+        const shk_t x7_n6 = SHK_LD(in, 50, K);
+        const shk_t x7_n5 = SHK_LD(in, 51, K);
+        const shk_t x7_n4 = SHK_LD(in, 52, K);
+        const shk_t x7_n3 = SHK_LD(in, 53, K);
+        const shk_t x7_n2 = SHK_LD(in, 54, K);
+        const shk_t x7_n1 = SHK_LD(in, 55, K);
+        const shk_t x7_0 = SHK_LD(in, 56, K);
+        const shk_t x7_1 = SHK_LD(in, 57, K);
+        const shk_t x7_2 = SHK_LD(in, 58, K);
+        const shk_t x7_3 = SHK_LD(in, 59, K);
+        const shk_t x7_4 = SHK_LD(in, 60, K);
+        const shk_t x7_5 = SHK_LD(in, 61, K);
+        const shk_t x7_6 = SHK_LD(in, 62, K);
+        const shk_t x7_7 = SHK_LD(in, 63, K);
         const shk_t u_0 = x7_0;
         const shk_t u_1 = (cg1 * x7_1 - sg1 * x7_n1);
         const shk_t u_n1 = (sg1 * x7_1 + cg1 * x7_n1);
@@ -7859,6 +7783,23 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 49, K, (sa7 * t_7 + ca7 * t_n7));
     }
     { /* band 8 */
+        const shk_t x8_n8 = SHK_LD(in, 64, K);
+        const shk_t x8_n7 = SHK_LD(in, 65, K);
+        const shk_t x8_n6 = SHK_LD(in, 66, K);
+        const shk_t x8_n5 = SHK_LD(in, 67, K);
+        const shk_t x8_n4 = SHK_LD(in, 68, K);
+        const shk_t x8_n3 = SHK_LD(in, 69, K);
+        const shk_t x8_n2 = SHK_LD(in, 70, K);
+        const shk_t x8_n1 = SHK_LD(in, 71, K);
+        const shk_t x8_0 = SHK_LD(in, 72, K);
+        const shk_t x8_1 = SHK_LD(in, 73, K);
+        const shk_t x8_2 = SHK_LD(in, 74, K);
+        const shk_t x8_3 = SHK_LD(in, 75, K);
+        const shk_t x8_4 = SHK_LD(in, 76, K);
+        const shk_t x8_5 = SHK_LD(in, 77, K);
+        const shk_t x8_6 = SHK_LD(in, 78, K);
+        const shk_t x8_7 = SHK_LD(in, 79, K);
+        const shk_t x8_8 = SHK_LD(in, 80, K);
         const shk_t u_0 = x8_0;
         const shk_t u_1 = (cg1 * x8_1 - sg1 * x8_n1);
         const shk_t u_n1 = (sg1 * x8_1 + cg1 * x8_n1);
@@ -7912,6 +7853,25 @@ static void taylor2_10(const sh_real *par, size_t KP, const sh_real *in, sh_real
         SHK_ST(out, 64, K, (sa8 * t_8 + ca8 * t_n8));
     }
     { /* band 9 */
+        const shk_t x9_n9 = SHK_LD(in, 81, K);
+        const shk_t x9_n8 = SHK_LD(in, 82, K);
+        const shk_t x9_n7 = SHK_LD(in, 83, K);
+        const shk_t x9_n6 = SHK_LD(in, 84, K);
+        const shk_t x9_n5 = SHK_LD(in, 85, K);
+        const shk_t x9_n4 = SHK_LD(in, 86, K);
+        const shk_t x9_n3 = SHK_LD(in, 87, K);
+        const shk_t x9_n2 = SHK_LD(in, 88, K);
+        const shk_t x9_n1 = SHK_LD(in, 89, K);
+        const shk_t x9_0 = SHK_LD(in, 90, K);
+        const shk_t x9_1 = SHK_LD(in, 91, K);
+        const shk_t x9_2 = SHK_LD(in, 92, K);
+        const shk_t x9_3 = SHK_LD(in, 93, K);
+        const shk_t x9_4 = SHK_LD(in, 94, K);
+        const shk_t x9_5 = SHK_LD(in, 95, K);
+        const shk_t x9_6 = SHK_LD(in, 96, K);
+        const shk_t x9_7 = SHK_LD(in, 97, K);
+        const shk_t x9_8 = SHK_LD(in, 98, K);
+        const shk_t x9_9 = SHK_LD(in, 99, K);
         const shk_t u_0 = x9_0;
         const shk_t u_1 = (cg1 * x9_1 - sg1 * x9_n1);
         const shk_t u_n1 = (sg1 * x9_1 + cg1 * x9_n1);

@@ -74,8 +74,9 @@ int sh_rot_method_max_order(sh_rot_method m)
  * (rot_fast.c, generated straight-line code for zxzxz and the Taylor methods
  * up to order SH_UNROLLED_MAX_ORDER) exist as one object per variant: the
  * plain one (default flags, one lane) and, on x86-64, one per ISA — `avx2`
- * (one lane, AVX2 + FMA) and the SIMD-lane objects `sse2v`, `avx2v`,
- * `avx512v` used for batches (rot_simd.h).  A variant is used only if it is
+ * and `avx512` (one lane, AVX2 + FMA, or AVX-512's 32 registers) and the
+ * SIMD-lane objects `sse2v`, `avx2v`, `avx512v` used for batches
+ * (rot_simd.h).  A variant is used only if it is
  * compiled in and the CPU runs it (CPUID, and XGETBV for the OS saving the
  * YMM/ZMM registers); the choice is made in plan create and kept in the
  * plan, so no global state is written after start-up. */
@@ -84,10 +85,10 @@ extern const sh__rot_fast_f sh__rot_fast_base_f;
 #if defined(__x86_64__)
 #define SH_FAST_X86 1
 #include <cpuid.h>
-extern const sh__rot_fast_d sh__rot_fast_avx2_d, sh__rot_fast_sse2v_d, sh__rot_fast_avx2v_d,
-    sh__rot_fast_avx512v_d;
-extern const sh__rot_fast_f sh__rot_fast_avx2_f, sh__rot_fast_sse2v_f, sh__rot_fast_avx2v_f,
-    sh__rot_fast_avx512v_f;
+extern const sh__rot_fast_d sh__rot_fast_avx2_d, sh__rot_fast_avx512_d, sh__rot_fast_sse2v_d,
+    sh__rot_fast_avx2v_d, sh__rot_fast_avx512v_d;
+extern const sh__rot_fast_f sh__rot_fast_avx2_f, sh__rot_fast_avx512_f, sh__rot_fast_sse2v_f,
+    sh__rot_fast_avx2v_f, sh__rot_fast_avx512v_f;
 
 static unsigned long long xcr0(void)
 {
@@ -135,7 +136,7 @@ int sh_rot_kernel_available(sh_rot_kernel k)
         const unsigned long long x = xcr0();
         __cpuid_count(7, 0, a, b, c, d);
         if (k == SH_KERNEL_AVX2) return (x & 6) == 6 && (b & bit_AVX2) != 0; /* XMM, YMM saved */
-        return (x & 0xe6) == 0xe6 && (b & bit_AVX2) && (b & bit_AVX512F); /* + opmask, ZMM */
+        return (x & 0xe6) == 0xe6 && (b & bit_AVX2) && (b & bit_AVX512F) && (b & bit_AVX512VL); /* + opmask, ZMM */
     }
 #endif
     default: return 0;
@@ -167,7 +168,7 @@ static void kernel_tables(sh_rot_kernel k, const sh__rot_fast_d **d1, const sh__
         *dv = &sh__rot_fast_avx2v_d, *fv = &sh__rot_fast_avx2v_f;
         break;
     case SH_KERNEL_AVX512:
-        *d1 = &sh__rot_fast_avx2_d, *f1 = &sh__rot_fast_avx2_f;
+        *d1 = &sh__rot_fast_avx512_d, *f1 = &sh__rot_fast_avx512_f;
         *dv = &sh__rot_fast_avx512v_d, *fv = &sh__rot_fast_avx512v_f;
         break;
     default: break;
@@ -356,28 +357,49 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
     return st;
 }
 
-static int check_finite(const double *v, int n, const char *what)
-{
-    for (int i = 0; i < n; i++)
-        if (!isfinite(v[i])) return sh_error(SH_EINVAL, "rotation plan: %s entries must be finite", what);
-    return SH_OK;
-}
-
 /* A rotation given as a matrix R (quat = 0) or a quaternion (quat = 1), in
  * double (rd) or float (rf, float plans only): the unrolled kernels and the
  * methods with set_par take par by algebra (rot_fast.c), ivanic reads R;
  * the others get the Euler angles extracted (sh_euler_from_matrix). */
+/* 1 if every v[i] is finite: x·0 is 0 for finite x and NaN for ±Inf, NaN
+ * (branch-free; this check runs once per rotation) */
+static int all_finite_d(const double *v, size_t n)
+{
+    double z = 0;
+    for (size_t i = 0; i < n; i++) z += v[i] * 0.0;
+    return z == 0;
+}
+static int all_finite_f(const float *v, size_t n)
+{
+    float z = 0;
+    for (size_t i = 0; i < n; i++) z += v[i] * 0.0f;
+    return z == 0;
+}
+
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 {
-    const int n = quat ? 4 : 9;
+    const int n = quat ? 4 : 9, nb = need_beta(p);
+    if (!(rf ? all_finite_f(rf, (size_t)n) : all_finite_d(rd, (size_t)n)))
+        return sh_error(SH_EINVAL, "rotation plan: %s entries must be finite", quat ? "quaternion" : "matrix");
+    p->have_rot = 0;
+    p->set_mults = (quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX) + (nb && rf ? SH__PAR_MULTS_BETA_F : 0);
+    if (p->fmeth >= 0) { /* the unrolled kernels: par only */
+        if (rf) {
+            quat ? sh__rot_par_quat_f(rf, nb, p->par_f) : sh__rot_par_matrix_f(rf, nb, p->par_f);
+        } else {
+            double *pd = p->par_d;
+            quat ? sh__rot_par_quat_d(rd, nb, pd) : sh__rot_par_matrix_d(rd, nb, pd);
+            if (p->prec == SH_PREC_FLOAT)
+                for (int j = 0; j < SH__PAR_N; j++) p->par_f[j] = (float)pd[j];
+        }
+        p->have_angles = 0;
+        fast_par_done(p, NULL);
+        return SH_OK;
+    }
     double v[9];
     for (int i = 0; i < n; i++) v[i] = rd ? rd[i] : (double)rf[i];
-    int st = check_finite(v, n, quat ? "quaternion" : "matrix");
-    if (st) return st;
-    p->have_rot = 0;
-    p->set_mults = quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX;
-    const int nb = need_beta(p);
-    if (p->fmeth >= 0 || p->ops->set_par_d) {
+    int st;
+    if (p->ops->set_par_d) {
         double pd[SH__PAR_N];
         if (rf) {
             /* float in: par in float arithmetic */
@@ -392,10 +414,6 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
             p->have_angles = 1;
         } else {
             memcpy(p->rot.R, v, sizeof p->rot.R);
-        }
-        if (p->fmeth >= 0) {
-            fast_par_done(p, NULL);
-            return SH_OK;
         }
         if (p->prec == SH_PREC_FLOAT)
             st = p->ops->set_par_f(p->order, p->par_f, p->tables, p->state, &p->set_mults);
@@ -573,13 +591,12 @@ static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, cons
     const int nr = quat ? 4 : 9;
     if (p->fmeth >= 0) {
         /* unrolled, lanes of rotations; checked first: every entry finite */
-        for (size_t i = 0; i < (size_t)nr * K; i++)
-            if (!isfinite(fl ? ((const float *)rot)[i] : ((const double *)rot)[i]))
-                return sh_error(SH_EINVAL, "rotation plan: rotation %zu has an entry that is not finite", i % K);
+        if (!(fl ? all_finite_f(rot, (size_t)nr * K) : all_finite_d(rot, (size_t)nr * K)))
+            return sh_error(SH_EINVAL, "rotation plan: a rotation has an entry that is not finite");
         const int nocs = p->conv == SH_NOCS;
         if (fl) p->ffv->rotate(p->fmeth, p->order, nocs, K, rot, quat, in, out);
         else p->fdv->rotate(p->fmeth, p->order, nocs, K, rot, quat, in, out);
-        p->set_mults = quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX;
+        p->set_mults = (quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX) + (need_beta(p) && fl ? SH__PAR_MULTS_BETA_F : 0);
         p->apply_mults = fast_mults(p);
         p->have_rot = 0; /* the plan's own rotation is not one of them */
         return SH_OK;
