@@ -14,7 +14,7 @@
 
 #include <ctype.h>
 
-static const sh_rot_method FAST[4] = {SH_ROT_ZXZXZ, SH_ROT_TAYLOR1, SH_ROT_TAYLOR15, SH_ROT_TAYLOR2};
+static const sh_rot_method FAST[5] = {SH_ROT_ZXZXZ, SH_ROT_TAYLOR1, SH_ROT_TAYLOR15, SH_ROT_TAYLOR2, SH_ROT_IVANIC};
 #define MAXO 12 /* 11 and 12 have no unrolled kernel: the plan falls back */
 
 /* The rotations: the stability set (β = 0, 1e-12, π/2, π−1e-9, π, gimbal
@@ -61,8 +61,8 @@ static void run1(int order, sh_rot_method m, sh_precision prec, sh_convention co
 /* Every available kernel against the loop kernels, Euler input: the
  * unrolled code without FMA (unrolled, sse2: same operations in the same
  * order) is equal bit for bit in cs; with FMA (avx2, avx512) and in nocs
- * (β negated instead of the vectors flipped) to a few ulps of the largest
- * output. */
+ * (β negated, or for ivanic R conjugated by Rz(π), instead of the vectors
+ * or blocks flipped) to a few ulps of the largest output. */
 START_TEST(test_kernels_vs_scalar)
 {
     double x[MAXO * MAXO], a[MAXO * MAXO], b[MAXO * MAXO];
@@ -71,7 +71,7 @@ START_TEST(test_kernels_vs_scalar)
         if (!sh_rot_kernel_available((sh_rot_kernel)k)) continue;
         nk++;
         const int nofma = k == SH_KERNEL_SCALAR || k == SH_KERNEL_UNROLLED || k == SH_KERNEL_SSE2;
-        for (int mi = 0; mi < 4; mi++)
+        for (int mi = 0; mi < 5; mi++)
             for (int prec = 0; prec < 2; prec++)
                 for (int conv = 0; conv < 2; conv++)
                     for (int order = 1; order <= MAXO; order++)
@@ -370,10 +370,10 @@ START_TEST(test_generated_counts)
 {
     char *src = slurp("src/rotate/rot_unrolled_gen.h");
     ck_assert_msg(src != NULL, "cannot read src/rotate/rot_unrolled_gen.h (run from the repository root)");
-    static const char *const label[4] = {"zxzxz", "taylor1", "taylor1.5", "taylor2"};
-    static const char *const fname[4] = {"zxzxz", "taylor1", "taylor15", "taylor2"};
+    static const char *const label[5] = {"zxzxz", "taylor1", "taylor1.5", "taylor2", "ivanic"};
+    static const char *const fname[5] = {"zxzxz", "taylor1", "taylor15", "taylor2", "ivanic"};
     int checked = 0;
-    for (int mi = 0; mi < 4; mi++) {
+    for (int mi = 0; mi < 5; mi++) {
         /* banner line " *   <label> 1:a 2:b ..." */
         char key[32];
         snprintf(key, sizeof key, " *   %s ", label[mi]);
@@ -410,7 +410,7 @@ START_TEST(test_generated_counts)
             ck_assert_uint_eq(sm, 0); /* from angles: libm only */
             ck_assert_int_eq(sh_rot_plan_set_matrix(p, r.R), SH_OK);
             sh_rot_plan_mults(p, &sm, NULL);
-            ck_assert_uint_eq(sm, 12);
+            ck_assert_uint_eq(sm, mi == 4 ? 0 : 12); /* ivanic reads the matrix as it is */
             sh_rot_plan_free(p);
             /* the loop kernel does at least as many (the unrolled code skips
              * the products with ±1) */
@@ -423,7 +423,7 @@ START_TEST(test_generated_counts)
             checked++;
         }
     }
-    ck_assert_int_ge(checked, 4 * 6); /* orders up to at least 6 */
+    ck_assert_int_ge(checked, 5 * 6); /* orders up to at least 6 */
     free(src);
 }
 END_TEST

@@ -38,11 +38,13 @@
 
 /* rot_zxzxz.c (internal): the dense X₊₉₀ block of band l as the plan builds it */
 int sh__rot_zxzxz_xplus_band(int l, double *X);
+/* rot_ivanic.c (internal): the u, v', w tables of band l, 3(2l+1)² values */
+void sh__rot_ivanic_coeffs(int l, double *t);
 
 #define MAXN 16
-enum { M_ZXZXZ, M_TAYLOR1, M_TAYLOR15, M_TAYLOR2, M_N };
-static const char *const mname[M_N] = {"zxzxz", "taylor1", "taylor15", "taylor2"};
-static const char *const mlabel[M_N] = {"zxzxz", "taylor1", "taylor1.5", "taylor2"};
+enum { M_ZXZXZ, M_TAYLOR1, M_TAYLOR15, M_TAYLOR2, M_IVANIC, M_N };
+static const char *const mname[M_N] = {"zxzxz", "taylor1", "taylor15", "taylor2", "ivanic"};
+static const char *const mlabel[M_N] = {"zxzxz", "taylor1", "taylor1.5", "taylor2", "ivanic"};
 
 /* ---- output: a growing buffer per function, so the count can be taken from
  * the text itself ---------------------------------------------------------- */
@@ -297,6 +299,119 @@ static void gen_taylor(int meth, int n)
     out("}\n\n");
 }
 
+/* Ivanic-Ruedenberg of one vector (rot_ivanic.c): the blocks M^l band by
+ * band from band 1 (the matrix, CS signs) by the recursion, every entry a
+ * local, then out_l = M^l x_l (rows summed left to right as
+ * sh__rot_blocks_apply).  par = R (row-major, 9 values).  The same products
+ * and sums as ivanic_step; coefficients that are exactly ±1 or 0 become a
+ * copy, a negation or nothing. */
+static const char *nmb(int l, int m, int n)
+{
+    static char b[16][48];
+    static int i;
+    i = (i + 1) & 15;
+    snprintf(b[i], sizeof b[i], "b%d_%s%d_%s%d", l, m < 0 ? "n" : "", m < 0 ? -m : m, n < 0 ? "n" : "",
+             n < 0 ? -n : n);
+    return b[i];
+}
+static const char *nmp(int l, int s, int a, int n)
+{
+    static char b[16][48];
+    static int i;
+    i = (i + 1) & 15;
+    snprintf(b[i], sizeof b[i], "P%d%c_%s%d_%s%d", l, s ? 'm' : 'p', a < 0 ? "n" : "", a < 0 ? -a : a,
+             n < 0 ? "n" : "", n < 0 ? -n : n);
+    return b[i];
+}
+/* c·(expr) with the literal c; 1 and −1 without a product; 0: nothing (returns 0) */
+static int term(int first, double c, const char *expr)
+{
+    if (c == 0) return 0;
+    if (c == 1) out(first ? "%s" : " + %s", expr);
+    else if (c == -1) out(first ? "-%s" : " - %s", expr);
+    else out(first ? "%s * %s" : " + %s * %s", lit(c), expr);
+    return 1;
+}
+static void gen_ivanic(int n)
+{
+    emit_head(M_IVANIC, n);
+    out("    (void)KP;\n");
+    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
+    if (n < 2) { out("}\n\n"); return; }
+    /* band 1: M1[i][j] = (−1)^{i+j} R[π(i)][π(j)], π(−1, 0, 1) = (y, z, x) */
+    static const int perm[3] = {1, 2, 0};
+    for (int i = -1; i <= 1; i++)
+        for (int j = -1; j <= 1; j++)
+            out("    const shk_t %s = %sSHK_LD(par, %d, KP);\n", nmb(1, i, j), ((i + j) & 1) ? "-" : "",
+                perm[i + 1] * 3 + perm[j + 1]);
+    double *t = malloc(3 * (size_t)(2 * n + 1) * (2 * n + 1) * sizeof *t);
+    char e1[128], e2[128], e3[256];
+    for (int l = 2; l < n; l++) {
+        const int w = 2 * l + 1, lp = l - 1;
+        const size_t ww = (size_t)w * w;
+        sh__rot_ivanic_coeffs(l, t);
+        out("    /* band %d */\n", l);
+        /* _iP_{an}, i = ±1: |n| < l: R_{i0} M_{an}; n = ±l: the edge formulas */
+        for (int sgn = 0; sgn < 2; sgn++) {
+            const int i = sgn ? -1 : 1;
+            for (int a = -lp; a <= lp; a++) {
+                out("    const shk_t %s = %s * %s + %s * %s;\n", nmp(l, sgn, a, -l), nmb(1, i, 1), nmb(lp, a, -lp),
+                    nmb(1, i, -1), nmb(lp, a, lp));
+                for (int nn = -lp; nn <= lp; nn++)
+                    out("    const shk_t %s = %s * %s;\n", nmp(l, sgn, a, nn), nmb(1, i, 0), nmb(lp, a, nn));
+                out("    const shk_t %s = %s * %s - %s * %s;\n", nmp(l, sgn, a, l), nmb(1, i, 1), nmb(lp, a, lp),
+                    nmb(1, i, -1), nmb(lp, a, -lp));
+            }
+        }
+        for (int m = -l; m <= l; m++) {
+            const int am = m < 0 ? -m : m;
+            for (int nn = -l; nn <= l; nn++) {
+                const size_t ix = (size_t)(m + l) * w + (size_t)(nn + l);
+                const double cu = t[ix], cv = t[ww + ix], cw = t[2 * ww + ix];
+                out("    const shk_t %s = ", nmb(l, m, nn));
+                int any = 0;
+                if (am < l) { /* u·U, U = _0P_{mn} */
+                    if (nn == -l)
+                        snprintf(e1, sizeof e1, "(%s * %s + %s * %s)", nmb(1, 0, 1), nmb(lp, m, -lp), nmb(1, 0, -1), nmb(lp, m, lp));
+                    else if (nn == l)
+                        snprintf(e1, sizeof e1, "(%s * %s - %s * %s)", nmb(1, 0, 1), nmb(lp, m, lp), nmb(1, 0, -1), nmb(lp, m, -lp));
+                    else
+                        snprintf(e1, sizeof e1, "(%s * %s)", nmb(1, 0, 0), nmb(lp, m, nn));
+                    any |= term(!any, cu, e1);
+                }
+                /* v·V */
+                if (m == 0) snprintf(e2, sizeof e2, "(%s + %s)", nmp(l, 0, 1, nn), nmp(l, 1, -1, nn));
+                else if (m == 1) snprintf(e2, sizeof e2, "%s", nmp(l, 0, 0, nn));
+                else if (m == -1) snprintf(e2, sizeof e2, "%s", nmp(l, 1, 0, nn));
+                else if (m > 1) snprintf(e2, sizeof e2, "(%s - %s)", nmp(l, 0, m - 1, nn), nmp(l, 1, -m + 1, nn));
+                else snprintf(e2, sizeof e2, "(%s + %s)", nmp(l, 0, m + 1, nn), nmp(l, 1, -m - 1, nn));
+                any |= term(!any, cv, e2);
+                /* w·W */
+                if (m != 0 && am < l - 1) {
+                    if (m > 0) snprintf(e3, sizeof e3, "(%s + %s)", nmp(l, 0, m + 1, nn), nmp(l, 1, -m - 1, nn));
+                    else snprintf(e3, sizeof e3, "(%s - %s)", nmp(l, 0, m - 1, nn), nmp(l, 1, -m + 1, nn));
+                    any |= term(!any, cw, e3);
+                }
+                if (!any) out("SHK_C(0)");
+                out(";\n");
+            }
+        }
+    }
+    free(t);
+    /* out_l = M^l x_l */
+    for (int l = 1; l < n; l++) {
+        out("    { /* band %d */\n", l);
+        emit_loads(l);
+        for (int m = -l; m <= l; m++) {
+            out("        SHK_ST(out, %d, K, ", l * (l + 1) + m);
+            for (int nn = -l; nn <= l; nn++) out("%s%s * %s", nn > -l ? " + " : "", nmb(l, m, nn), nmx(l, nn));
+            out(");\n");
+        }
+        out("    }\n");
+    }
+    out("}\n\n");
+}
+
 int main(int argc, char **argv)
 {
     int N = 10;
@@ -317,6 +432,7 @@ int main(int argc, char **argv)
             buf = NULL;
             out("%s", "");
             if (meth == M_ZXZXZ) gen_zxzxz(n, X);
+            else if (meth == M_IVANIC) gen_ivanic(n);
             else gen_taylor(meth, n);
             body[meth * (N + 1) + n] = buf;
             mults[meth][n] = count_mults(buf);
@@ -332,7 +448,8 @@ int main(int argc, char **argv)
            " * Straight-line SH rotation kernels, one per method and order, for one\n"
            " * rotation and one vector, or for SIMD lanes of rotations/vectors\n"
            " * (shk_t, rot_simd.h).  par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β)\n"
-           " * with lane stride KP; in, out: order² coefficients with lane stride K.\n"
+           " * (ivanic: the matrix R, row-major) with lane stride KP; in, out: order²\n"
+           " * coefficients with lane stride K.\n"
            " * The multiple angles are computed inside (Chebyshev); see the generator\n"
            " * for how the code relates to the loop kernels.\n"
            " *\n"

@@ -55,7 +55,7 @@
  * Computed in double also for float rotations (shk_d): float arithmetic
  * here would put 2–3 float ulps into cos γ, sin γ, which the Taylor kernels
  * amplify near β = π past the golden fixtures' tolerance. */
-static inline void shk_par_matrix(const sh_real *R, size_t KR, shk_d par[SH__PAR_N])
+static inline void shk_par_matrix(const sh_real *R, size_t KR, shk_d par[7])
 {
     const shk_d r00 = SHK_DLD(R, 0, KR), r01 = SHK_DLD(R, 1, KR), r02 = SHK_DLD(R, 2, KR);
     const shk_d r10 = SHK_DLD(R, 3, KR), r11 = SHK_DLD(R, 4, KR), r12 = SHK_DLD(R, 5, KR);
@@ -91,7 +91,7 @@ static inline void shk_par_matrix(const sh_real *R, size_t KR, shk_d par[SH__PAR
  * all R depends on there.  |B| = 0 (β = 0): α = 0, e^{iγ} = A²/|A|²;
  * |A| = 0 (β = π): α = 0, e^{iγ} = B̄²/|B|².  q and −q give the same par.
  * Cost: 18 multiplications, 1 square root, 3 divisions. */
-static inline void shk_par_quat(const sh_real *Q, size_t KQ, shk_d par[SH__PAR_N])
+static inline void shk_par_quat(const sh_real *Q, size_t KQ, shk_d par[7])
 {
     const shk_d w = SHK_DLD(Q, 0, KQ), x = SHK_DLD(Q, 1, KQ), y = SHK_DLD(Q, 2, KQ), z = SHK_DLD(Q, 3, KQ);
     const shk_d one = SHK_DSPLAT(1), zero = SHK_DSPLAT(0);
@@ -144,16 +144,37 @@ static inline shk_d shk_beta(shk_d s, shk_d c)
  * lane in double), nocs = S·R_cs·S with S = diag((−1)^m) = Z(π), and
  * Rz(π)Ry(β)Rz(π) = Ry(−β): the cs kernel with sin β and β negated —
  * exact, no pass over the vectors. */
+/* ivanic's par: the matrix itself (from a quaternion: its matrix,
+ * normalised by |q|², 19 multiplications and 1 division); nocs = Rz(π)·R·Rz(π) (as above), which negates R02,
+ * R12, R20, R21 */
+static inline void shk_par_ivanic(const sh_real *rot, size_t KR, int quat, int nocs, sh_real *par, size_t KP)
+{
+    shk_d R[9];
+    if (quat) {
+        const shk_d w = SHK_DLD(rot, 0, KR), x = SHK_DLD(rot, 1, KR), y = SHK_DLD(rot, 2, KR), z = SHK_DLD(rot, 3, KR);
+        const shk_d ww = w * w, xx = x * x, yy = y * y, zz = z * z, xy = x * y, xz = x * z, yz = y * z;
+        const shk_d wx = w * x, wy = w * y, wz = w * z;
+        const shk_d s = SHK_DSPLAT(2) / (ww + xx + yy + zz), one = SHK_DSPLAT(1);
+        R[0] = one - s * (yy + zz), R[1] = s * (xy - wz), R[2] = s * (xz + wy);
+        R[3] = s * (xy + wz), R[4] = one - s * (xx + zz), R[5] = s * (yz - wx);
+        R[6] = s * (xz - wy), R[7] = s * (yz + wx), R[8] = one - s * (xx + yy);
+    } else {
+        for (int j = 0; j < 9; j++) R[j] = SHK_DLD(rot, j, KR);
+    }
+    if (nocs) R[2] = -R[2], R[5] = -R[5], R[6] = -R[6], R[7] = -R[7];
+    for (int j = 0; j < 9; j++) SHK_DST(par, j, KP, R[j]);
+}
+
 static inline void shk_par(const sh_real *rot, size_t KR, int quat, int need_beta, int nocs,
                            sh_real *par, size_t KP)
 {
-    shk_d pd[SH__PAR_N];
+    shk_d pd[7];
     if (quat) shk_par_quat(rot, KR, pd);
     else shk_par_matrix(rot, KR, pd);
 #ifdef SH_REAL_FLOAT
     if (need_beta) pd[6] = shk_beta(pd[3], pd[2]);
 #endif
-    for (int j = 0; j < SH__PAR_N; j++) SHK_DST(par, j, KP, pd[j]);
+    for (int j = 0; j < 7; j++) SHK_DST(par, j, KP, pd[j]);
     for (size_t i = 0; i < (size_t)SHK_LANES; i++) {
 #ifndef SH_REAL_FLOAT
         if (need_beta) par[6 * KP + i] = atan2(par[3 * KP + i], par[2 * KP + i]);
@@ -177,13 +198,15 @@ static void fast_rotate(int meth, int order, int nocs, size_t K, const sh_real *
         sh_real rb[9], xb[SH__FAST_MAXO * SH__FAST_MAXO];
         for (int r = 0; r < nr; r++) rb[r] = rot[(size_t)r * K + k];
         for (int c = 0; c < nc; c++) xb[c] = in[(size_t)c * K + k];
-        shk_par(rb, 1, quat, meth != SH__FAST_ZXZXZ, nocs, par, 1);
+        if (meth == SH__FAST_IVANIC) shk_par_ivanic(rb, 1, quat, nocs, par, 1);
+        else shk_par(rb, 1, quat, meth != SH__FAST_ZXZXZ, nocs, par, 1);
         f(par, 1, xb, xb, 1);
         for (int c = 0; c < nc; c++) out[(size_t)c * K + k] = xb[c];
     }
 #endif
     for (; k + (size_t)W <= K; k += (size_t)W) {
-        shk_par(rot + k, K, quat, meth != SH__FAST_ZXZXZ, nocs, par, (size_t)W);
+        if (meth == SH__FAST_IVANIC) shk_par_ivanic(rot + k, K, quat, nocs, par, (size_t)W);
+        else shk_par(rot + k, K, quat, meth != SH__FAST_ZXZXZ, nocs, par, (size_t)W);
         f(par, (size_t)W, in + k, out + k, K);
     }
 #if SHK_LANES > 1
@@ -195,7 +218,8 @@ static void fast_rotate(int meth, int order, int nocs, size_t K, const sh_real *
             for (int i = 0; i < W; i++) rb[r * W + i] = i < nt ? rot[(size_t)r * K + k + (size_t)i] : (quat ? id_q : id_m)[r];
         for (int c = 0; c < nc; c++)
             for (int i = 0; i < W; i++) xb[c * W + i] = i < nt ? in[(size_t)c * K + k + (size_t)i] : 0;
-        shk_par(rb, (size_t)W, quat, meth != SH__FAST_ZXZXZ, nocs, par, (size_t)W);
+        if (meth == SH__FAST_IVANIC) shk_par_ivanic(rb, (size_t)W, quat, nocs, par, (size_t)W);
+        else shk_par(rb, (size_t)W, quat, meth != SH__FAST_ZXZXZ, nocs, par, (size_t)W);
         f(par, (size_t)W, xb, xb, (size_t)W);
         for (int c = 0; c < nc; c++)
             for (int i = 0; i < nt; i++) out[(size_t)c * K + k + (size_t)i] = xb[c * W + i];
@@ -261,6 +285,10 @@ void SH_R(sh__rot_par_quat)(const sh_real *q, int need_beta, sh_real *par)
 
 /* From the Euler angles: libm's cos and sin of each (in the plan's precision,
  * as the loop kernels' sh__rot_multiple_angles seeds them). */
+#ifndef SH_REAL_FLOAT
+void sh__rot_quat_matrix(const double q[4], double R[9]) { shk_par_ivanic(q, 1, 1, 0, R, 1); }
+#endif
+
 void SH_R(sh__rot_par_euler)(const sh_rotation *rot, sh_real *par)
 {
     const sh_real a = (sh_real)rot->alpha, b = (sh_real)rot->beta, g = (sh_real)rot->gamma;

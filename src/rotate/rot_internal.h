@@ -69,25 +69,30 @@ typedef struct {
 } sh__rot_ops;
 
 /* ---- the rotation as the sparse kernels use it ----------------------------
- * par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β), SH__PAR_N values,
+ * par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β) (ivanic's unrolled
+ * kernel: the matrix R, row-major, 9 values), at most SH__PAR_N values,
  * from a matrix or quaternion by algebra (rot_fast.c: sh__rot_par_matrix_P,
  * sh__rot_par_quat_P; derivation there) or from the Euler angles by libm
  * (sh__rot_par_euler_P).  par[6] = β only when need_beta (the Taylor
  * kernels), else 0.  Computed in double for either precision. */
-#define SH__PAR_N 7
+#define SH__PAR_N 9
 #define SH__PAR_MULTS_MATRIX 12 /* multiplications of sh__rot_par_matrix (and 2 √, 2 ÷) */
 #define SH__PAR_MULTS_QUAT 18   /* of sh__rot_par_quat (and 1 √, 3 ÷) */
 #define SH__PAR_MULTS_BETA_F 10 /* β in float (polynomial; and 1 ÷); double: atan2 */
+#define SH__QUAT_MATRIX_MULTS 19 /* sh__rot_quat_matrix (and 1 ÷) */
 void sh__rot_par_matrix_d(const double *R, int need_beta, double *par);
 void sh__rot_par_matrix_f(const float *R, int need_beta, float *par);
 void sh__rot_par_quat_d(const double *q, int need_beta, double *par);
 void sh__rot_par_quat_f(const float *q, int need_beta, float *par);
 void sh__rot_par_euler_d(const sh_rotation *rot, double *par);
 void sh__rot_par_euler_f(const sh_rotation *rot, float *par);
+/* The matrix of a quaternion (any non-zero norm), in double. */
+void sh__rot_quat_matrix(const double q[4], double R[9]);
 
 /* ---- the unrolled kernels (rot_fast.c + the generated rot_unrolled_gen.h),
  * one table per precision and variant (ISA and lane count) ---------------- */
-enum { SH__FAST_ZXZXZ = 0, SH__FAST_TAYLOR1, SH__FAST_TAYLOR15, SH__FAST_TAYLOR2, SH__FAST_NMETH };
+enum { SH__FAST_ZXZXZ = 0, SH__FAST_TAYLOR1, SH__FAST_TAYLOR15, SH__FAST_TAYLOR2, SH__FAST_IVANIC,
+       SH__FAST_NMETH };
 #define SH__FAST_MAXO 16 /* capacity of the tables (the generator's --max-order ≤ this) */
 #define SH__FAST_DEFINE(T, P)                                                                          /* one call: `lanes` rotations (par, lane stride KP) applied to `lanes`                        * vectors (in, out: order² values, lane stride K); in == out allowed */                      typedef void (*sh__fast_fn_##P)(const T *par, size_t KP, const T *in, T *out, size_t K);          typedef struct {                                                                                       const char *name;                                                                                  int lanes, max_order;                                                                              const sh__fast_fn_##P (*fn)[SH__FAST_MAXO + 1]; /* [method][order], NULL: none */                  const unsigned (*mults)[SH__FAST_MAXO + 1];     /* multiplications of one fn call */               /* K rotations (matrices: 9 rows of K, or quaternions: 4 rows of K; nocs                         * negates β) applied to K vectors, structure of arrays */                                         void (*rotate)(int meth, int order, int nocs, size_t K, const T *rot, int quat,                                   const T *in, T *out);                                                               /* one rotation (par) applied to K vectors, structure of arrays */                                 void (*many)(int meth, int order, const T *par, size_t K, const T *in, T *out);               } sh__rot_fast_##P;
 SH__FAST_DEFINE(double, d)

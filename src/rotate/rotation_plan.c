@@ -185,6 +185,7 @@ static int fast_method(sh_rot_method m)
     case SH_ROT_TAYLOR1: return SH__FAST_TAYLOR1;
     case SH_ROT_TAYLOR15: return SH__FAST_TAYLOR15;
     case SH_ROT_TAYLOR2: return SH__FAST_TAYLOR2;
+    case SH_ROT_IVANIC: return SH__FAST_IVANIC;
     default: return -1;
     }
 }
@@ -211,6 +212,7 @@ struct sh_rot_plan {
     const sh__rot_fast_f *ff1, *ffv;
     double par_d[SH__PAR_N]; /* unrolled: the rotation (nocs: β negated) */
     float par_f[SH__PAR_N];
+    int blocks_ok;           /* unrolled ivanic: blocks holds the rotation's blocks */
 };
 
 static int check_args(int order, sh_rot_method method, sh_precision prec, sh_convention conv)
@@ -271,7 +273,9 @@ int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec
         return sh_error(SH_ENOMEM, "rotation plan: out of memory (order %d)", order);
     }
     int (*tnew)(int, void **) = prec == SH_PREC_FLOAT ? p->ops->tables_new_f : p->ops->tables_new_d;
-    if (p->fmeth < 0 && tnew && (st = tnew(order, &p->tables)) != SH_OK) {
+    /* tables for the loop kernels (and for unrolled ivanic's batches, which
+     * build the blocks once per rotation) */
+    if ((p->fmeth < 0 || p->fmeth == SH__FAST_IVANIC) && tnew && (st = tnew(order, &p->tables)) != SH_OK) {
         sh_rot_plan_free(p);
         return st;
     }
@@ -315,10 +319,15 @@ static void fast_par_done(sh_rot_plan *p, const double *pd)
     if (pd) for (int j = 0; j < SH__PAR_N; j++) p->par_d[j] = pd[j];
     if (p->prec == SH_PREC_FLOAT && pd)
         for (int j = 0; j < SH__PAR_N; j++) p->par_f[j] = (float)pd[j];
-    if (p->conv == SH_NOCS) {
+    if (p->conv == SH_NOCS && p->fmeth == SH__FAST_IVANIC) {
+        /* Rz(π)·R·Rz(π) (rot_fast.c) */
+        static const int neg[4] = {2, 5, 6, 7};
+        for (int j = 0; j < 4; j++) p->par_d[neg[j]] = -p->par_d[neg[j]], p->par_f[neg[j]] = -p->par_f[neg[j]];
+    } else if (p->conv == SH_NOCS) {
         p->par_d[3] = -p->par_d[3], p->par_d[6] = -p->par_d[6];
         p->par_f[3] = -p->par_f[3], p->par_f[6] = -p->par_f[6];
     }
+    p->blocks_ok = 0;
     p->have_rot = 1;
 }
 static uint64_t fast_mults(const sh_rot_plan *p)
@@ -337,6 +346,10 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
     p->have_angles = 1;
     p->set_mults = 0;
     int st = SH_OK;
+    if (p->fmeth == SH__FAST_IVANIC) {
+        fast_par_done(p, rot->R);
+        return SH_OK;
+    }
     if (p->fmeth >= 0) {
         if (p->prec == SH_PREC_FLOAT) sh__rot_par_euler_f(rot, p->par_f);
         else sh__rot_par_euler_d(rot, p->par_d);
@@ -383,6 +396,20 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
         return sh_error(SH_EINVAL, "rotation plan: %s entries must be finite", quat ? "quaternion" : "matrix");
     p->have_rot = 0;
     p->set_mults = (quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX) + (nb && rf ? SH__PAR_MULTS_BETA_F : 0);
+    if (p->fmeth == SH__FAST_IVANIC) { /* par = R */
+        double R[9], q[4];
+        if (quat) {
+            for (int i = 0; i < 4; i++) q[i] = rf ? rf[i] : rd[i];
+            sh__rot_quat_matrix(q, R);
+        } else {
+            for (int i = 0; i < 9; i++) R[i] = rf ? rf[i] : rd[i];
+        }
+        memcpy(p->rot.R, R, sizeof R);
+        p->have_angles = 0;
+        p->set_mults = quat ? SH__QUAT_MATRIX_MULTS : 0;
+        fast_par_done(p, R);
+        return SH_OK;
+    }
     if (p->fmeth >= 0) { /* the unrolled kernels: par only */
         if (rf) {
             quat ? sh__rot_par_quat_f(rf, nb, p->par_f) : sh__rot_par_matrix_f(rf, nb, p->par_f);
@@ -561,10 +588,72 @@ static void many_loop(sh_rot_plan *p, size_t K, const void *in, void *out, size_
     p->apply_mults = m;
 }
 
+/* out = blocks · in for K vectors (structure of arrays), band by band, a
+ * chunk of vectors at a time (copied first: in == out allowed); each row
+ * summed left to right as sh__rot_blocks_apply, vectorised across vectors. */
+#define MANY_CHUNK 64
+#define MANY_W (2 * SH__FAST_MAXO + 1)
+static void blocks_many_d(int order, const double *blocks, size_t K, const double *in, double *out)
+{
+    double x[MANY_W * MANY_CHUNK];
+    for (int l = 0; l < order; l++) {
+        const int w = 2 * l + 1;
+        const double *B = blocks + sh_rot_block_offset(l);
+        for (size_t k0 = 0; k0 < K; k0 += MANY_CHUNK) {
+            const size_t nk = K - k0 < MANY_CHUNK ? K - k0 : MANY_CHUNK;
+            for (int j = 0; j < w; j++) memcpy(x + (size_t)j * MANY_CHUNK, in + ((size_t)l * l + j) * K + k0, nk * sizeof *x);
+            for (int i = 0; i < w; i++) {
+                double *o = out + ((size_t)l * l + i) * K + k0;
+#pragma omp simd
+                for (size_t k = 0; k < nk; k++) {
+                    double s = 0;
+                    for (int j = 0; j < w; j++) s += B[(size_t)i * w + j] * x[(size_t)j * MANY_CHUNK + k];
+                    o[k] = s;
+                }
+            }
+        }
+    }
+}
+static void blocks_many_f(int order, const float *blocks, size_t K, const float *in, float *out)
+{
+    float x[MANY_W * MANY_CHUNK];
+    for (int l = 0; l < order; l++) {
+        const int w = 2 * l + 1;
+        const float *B = blocks + sh_rot_block_offset(l);
+        for (size_t k0 = 0; k0 < K; k0 += MANY_CHUNK) {
+            const size_t nk = K - k0 < MANY_CHUNK ? K - k0 : MANY_CHUNK;
+            for (int j = 0; j < w; j++) memcpy(x + (size_t)j * MANY_CHUNK, in + ((size_t)l * l + j) * K + k0, nk * sizeof *x);
+            for (int i = 0; i < w; i++) {
+                float *o = out + ((size_t)l * l + i) * K + k0;
+#pragma omp simd
+                for (size_t k = 0; k < nk; k++) {
+                    float s = 0;
+                    for (int j = 0; j < w; j++) s += B[(size_t)i * w + j] * x[(size_t)j * MANY_CHUNK + k];
+                    o[k] = s;
+                }
+            }
+        }
+    }
+}
+
 static int apply_many(sh_rot_plan *p, size_t K, const void *in, void *out, int fl)
 {
     int st = check_batch(p, K, fl, 1);
     if (st) return st;
+    if (p->fmeth == SH__FAST_IVANIC) {
+        /* one rotation, many vectors: the blocks once (the loop kernel), then
+         * blocks × vectors, rather than the fused kernel per vector */
+        if (!p->blocks_ok) {
+            uint64_t sm = 0;
+            if ((st = compute_blocks(p, &sm))) return st;
+            p->set_mults += sm;
+            p->blocks_ok = 1;
+        }
+        if (fl) blocks_many_f(p->order, p->blocks, K, in, out);
+        else blocks_many_d(p->order, p->blocks, K, in, out);
+        p->apply_mults = (uint64_t)p->order * (4u * (uint64_t)p->order * p->order - 1) / 3;
+        return SH_OK;
+    }
     if (p->fmeth >= 0) {
         if (fl) p->ffv->many(p->fmeth, p->order, p->par_f, K, in, out);
         else p->fdv->many(p->fmeth, p->order, p->par_d, K, in, out);
@@ -596,7 +685,8 @@ static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, cons
         const int nocs = p->conv == SH_NOCS;
         if (fl) p->ffv->rotate(p->fmeth, p->order, nocs, K, rot, quat, in, out);
         else p->fdv->rotate(p->fmeth, p->order, nocs, K, rot, quat, in, out);
-        p->set_mults = (quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX) + (need_beta(p) && fl ? SH__PAR_MULTS_BETA_F : 0);
+        if (p->fmeth == SH__FAST_IVANIC) p->set_mults = quat ? SH__QUAT_MATRIX_MULTS : 0;
+        else p->set_mults = (quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX) + (need_beta(p) && fl ? SH__PAR_MULTS_BETA_F : 0);
         p->apply_mults = fast_mults(p);
         p->have_rot = 0; /* the plan's own rotation is not one of them */
         return SH_OK;
