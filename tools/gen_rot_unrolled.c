@@ -414,19 +414,29 @@ static void gen_ivanic(int n)
 
 int main(int argc, char **argv)
 {
-    int N = 10;
-    if (argc == 3 && !strcmp(argv[1], "--max-order")) N = atoi(argv[2]);
-    else if (argc != 1) {
-        fprintf(stderr, "usage: gen_rot_unrolled [--max-order N]   (N in 1..%d, default 10)\n", MAXN);
+    /* --max-order N: zxzxz and the Taylor kernels; --ivanic-max-order NI
+     * (≤ N): ivanic, whose straight-line code grows like n⁴ and is slower
+     * than the loop kernel once it outgrows the instruction cache (measured:
+     * README "Rotation speed") */
+    int N = 10, NI = 6;
+    for (int i = 1; i < argc; i++) {
+        if (i + 1 < argc && !strcmp(argv[i], "--max-order")) N = atoi(argv[++i]);
+        else if (i + 1 < argc && !strcmp(argv[i], "--ivanic-max-order")) NI = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "usage: gen_rot_unrolled [--max-order N] [--ivanic-max-order NI]   (1 <= NI <= N <= %d)\n", MAXN);
+            return 2;
+        }
+    }
+    if (N < 1 || N > MAXN || NI < 1 || NI > N) {
+        fprintf(stderr, "gen_rot_unrolled: need 1 <= --ivanic-max-order <= --max-order <= %d\n", MAXN);
         return 2;
     }
-    if (N < 1 || N > MAXN) { fprintf(stderr, "gen_rot_unrolled: --max-order in 1..%d\n", MAXN); return 2; }
     double *X = malloc((size_t)(2 * N + 1) * (2 * N + 1) * sizeof *X);
     char **body = calloc((size_t)M_N * (N + 1), sizeof *body);
     unsigned long mults[M_N][MAXN + 1] = {{0}};
     if (!X || !body) return 2;
     for (int meth = 0; meth < M_N; meth++)
-        for (int n = 1; n <= N; n++) {
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) {
             blen = 0;
             bcap = 0;
             buf = NULL;
@@ -437,8 +447,8 @@ int main(int argc, char **argv)
             body[meth * (N + 1) + n] = buf;
             mults[meth][n] = count_mults(buf);
         }
-    char cmd[64];
-    snprintf(cmd, sizeof cmd, "gen_rot_unrolled --max-order %d", N);
+    char cmd[96];
+    snprintf(cmd, sizeof cmd, "gen_rot_unrolled --max-order %d --ivanic-max-order %d", N, NI);
     printf("/* rot_unrolled_gen.h — GENERATED FILE, DO NOT EDIT.\n"
            " *\n"
            " * Written by tools/gen_rot_unrolled.c:\n"
@@ -457,12 +467,12 @@ int main(int argc, char **argv)
            cmd);
     for (int meth = 0; meth < M_N; meth++) {
         printf(" *   %-10s", mlabel[meth]);
-        for (int n = 1; n <= N; n++) printf(" %d:%lu", n, mults[meth][n]);
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) printf(" %d:%lu", n, mults[meth][n]);
         printf("\n");
     }
     printf(" */\n\n#define SH_UNROLLED_MAX_ORDER %d\n\n", N);
     for (int meth = 0; meth < M_N; meth++)
-        for (int n = 1; n <= N; n++) {
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) {
             fputs(body[meth * (N + 1) + n], stdout);
             free(body[meth * (N + 1) + n]);
         }
@@ -474,14 +484,14 @@ int main(int argc, char **argv)
            M_N);
     for (int meth = 0; meth < M_N; meth++) {
         printf("    {0");
-        for (int n = 1; n <= N; n++) printf(", %lu", mults[meth][n]);
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) printf(", %lu", mults[meth][n]);
         printf("}, /* %s */\n", mlabel[meth]);
     }
     printf("};\n\n");
     printf("static const SHK_FN_T unrolled_table[%d][SH__FAST_MAXO + 1] = {\n", M_N);
     for (int meth = 0; meth < M_N; meth++) {
         printf("    {0");
-        for (int n = 1; n <= N; n++) printf(", %s_%d", mname[meth], n);
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) printf(", %s_%d", mname[meth], n);
         printf("},\n");
     }
     printf("};\n");
