@@ -40,7 +40,7 @@ typedef struct {
 } variant;
 
 typedef struct {
-    int n, nc, fl;
+    int n, nc, fl, mask; /* mask: an index below nc without a division */
     double R[POOL][9];
     float Rf[POOL][9];
     double *vd, *od;
@@ -79,6 +79,8 @@ static void pool_init(pool *P, int n, int fl)
 {
     memset(P, 0, sizeof *P);
     P->n = n, P->nc = n * n, P->fl = fl;
+    P->mask = 0;
+    while (2 * (P->mask + 1) <= P->nc) P->mask = 2 * P->mask + 1;
     unsigned long long s = 12345;
     for (int k = 0; k < POOL; k++) {
         sh_rotation r;
@@ -128,18 +130,18 @@ static double run(variant *v, pool *P, int count)
             sh_euler_from_matrix(r.R, &r.alpha, &r.beta, &r.gamma);
             st |= sh_rot_plan_set(v->p, &r);
             st |= sh_rot_plan_apply(v->p, P->vd + k * nc, P->od);
-            P->sink += P->od[it % nc];
+            P->sink += P->od[it & P->mask];
             break;
         }
         case V_MATRIX:
             if (P->fl) {
                 st |= sh_rot_plan_set_matrix_f(v->p, P->Rf[k]);
                 st |= sh_rot_plan_apply_f(v->p, P->vf + k * nc, P->of);
-                P->sink += P->of[it % nc];
+                P->sink += P->of[it & P->mask];
             } else {
                 st |= sh_rot_plan_set_matrix(v->p, P->R[k]);
                 st |= sh_rot_plan_apply(v->p, P->vd + k * nc, P->od);
-                P->sink += P->od[it % nc];
+                P->sink += P->od[it & P->mask];
             }
             break;
         case V_MANY:
@@ -156,7 +158,7 @@ static double run(variant *v, pool *P, int count)
         case V_KROT:
             if (P->fl) st |= sh_rot_plan_rotate_many_f(v->p, (size_t)v->K, P->Rs, P->xs, P->ys);
             else st |= sh_rot_plan_rotate_many(v->p, (size_t)v->K, P->Rs, P->xs, P->ys);
-            P->sink += P->fl ? (double)((float *)P->ys)[it % KBATCH] : ((double *)P->ys)[it % KBATCH];
+            P->sink += P->fl ? (double)((float *)P->ys)[it & (KBATCH - 1)] : ((double *)P->ys)[it & (KBATCH - 1)];
             break;
         }
     }

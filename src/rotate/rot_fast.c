@@ -259,6 +259,22 @@ static void fast_many(int meth, int order, const sh_real *par1, size_t K, const 
 #endif
 }
 
+#if SHK_LANES == 1
+/* one rotation from its matrix: zxzxz's and the Taylor kernels' par */
+static void fast_par_matrix(const sh_real *R, int need_beta, sh_real *par)
+{
+    shk_d pd[7];
+    shk_par_matrix(R, 1, pd);
+#ifdef SH_REAL_FLOAT
+    if (need_beta) pd[6] = shk_beta(pd[3], pd[2]);
+#else
+    if (need_beta) pd[6] = atan2(pd[3], pd[2]);
+#endif
+#pragma GCC unroll 7
+    for (int j = 0; j < 7; j++) par[j] = (sh_real)pd[j];
+}
+#endif
+
 #define SHK_STR_(x) #x
 #define SHK_STR(x) SHK_STR_(x)
 const SH_R(sh__rot_fast) SHK_SYM(sh__rot_fast) = {
@@ -269,13 +285,16 @@ const SH_R(sh__rot_fast) SHK_SYM(sh__rot_fast) = {
     .mults = unrolled_mults,
     .rotate = fast_rotate,
     .many = fast_many,
+#if SHK_LANES == 1
+    .par_matrix = fast_par_matrix,
+#endif
 };
 
 #ifdef SHK_IS_BASE
 /* ---- one rotation, for the plan (the plain object only) ----------------- */
 void SH_R(sh__rot_par_matrix)(const sh_real *R, int need_beta, sh_real *par)
 {
-    shk_par(R, 1, 0, need_beta, 0, par, 1);
+    fast_par_matrix(R, need_beta, par);
 }
 
 void SH_R(sh__rot_par_quat)(const sh_real *q, int need_beta, sh_real *par)

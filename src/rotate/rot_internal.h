@@ -94,7 +94,25 @@ void sh__rot_quat_matrix(const double q[4], double R[9]);
 enum { SH__FAST_ZXZXZ = 0, SH__FAST_TAYLOR1, SH__FAST_TAYLOR15, SH__FAST_TAYLOR2, SH__FAST_IVANIC,
        SH__FAST_NMETH };
 #define SH__FAST_MAXO 16 /* capacity of the tables (the generator's --max-order ≤ this) */
-#define SH__FAST_DEFINE(T, P)                                                                          /* one call: `lanes` rotations (par, lane stride KP) applied to `lanes`                        * vectors (in, out: order² values, lane stride K); in == out allowed */                      typedef void (*sh__fast_fn_##P)(const T *par, size_t KP, const T *in, T *out, size_t K);          typedef struct {                                                                                       const char *name;                                                                                  int lanes, max_order;                                                                              const sh__fast_fn_##P (*fn)[SH__FAST_MAXO + 1]; /* [method][order], NULL: none */                  const unsigned (*mults)[SH__FAST_MAXO + 1];     /* multiplications of one fn call */               /* K rotations (matrices: 9 rows of K, or quaternions: 4 rows of K; nocs                         * negates β) applied to K vectors, structure of arrays */                                         void (*rotate)(int meth, int order, int nocs, size_t K, const T *rot, int quat,                                   const T *in, T *out);                                                               /* one rotation (par) applied to K vectors, structure of arrays */                                 void (*many)(int meth, int order, const T *par, size_t K, const T *in, T *out);               } sh__rot_fast_##P;
+#define SH__FAST_DEFINE(T, P)                                                                      \
+    /* one call: `lanes` rotations (par, lane stride KP) applied to `lanes` vectors (in, out:  \
+     * order² values, lane stride K); in == out allowed */                                     \
+    typedef void (*sh__fast_fn_##P)(const T *par, size_t KP, const T *in, T *out, size_t K);      \
+    typedef struct {                                                                               \
+        const char *name;                                                                          \
+        int lanes, max_order;                                                                      \
+        const sh__fast_fn_##P (*fn)[SH__FAST_MAXO + 1]; /* [method][order], NULL: none */          \
+        const unsigned (*mults)[SH__FAST_MAXO + 1];     /* multiplications of one fn call */       \
+        /* K rotations (matrices: 9 rows of K, or quaternions: 4 rows of K; nocs negates β)     \
+         * applied to K vectors, structure of arrays */                                            \
+        void (*rotate)(int meth, int order, int nocs, size_t K, const T *rot, int quat,            \
+                       const T *in, T *out);                                                       \
+        /* one rotation (par) applied to K vectors, structure of arrays */                         \
+        void (*many)(int meth, int order, const T *par, size_t K, const T *in, T *out);           \
+        /* par of one rotation from its matrix (as sh__rot_par_matrix_P, built with the            \
+         * variant's flags; one-lane variants only, else NULL) */                                  \
+        void (*par_matrix)(const T *R, int need_beta, T *par);                                     \
+    } sh__rot_fast_##P;
 SH__FAST_DEFINE(double, d)
 SH__FAST_DEFINE(float, f)
 #undef SH__FAST_DEFINE

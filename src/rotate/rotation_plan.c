@@ -143,11 +143,12 @@ int sh_rot_kernel_available(sh_rot_kernel k)
     }
 }
 
-/* AUTO: AVX2 where the CPU has it (the widest lanes measured no faster for
- * one rotation, README "Rotation speed"), else SSE2, else the plain
- * unrolled code. */
+/* AUTO: the widest the CPU runs — AVX-512 (for one rotation its 32
+ * registers, for batches 16 float lanes: both measured fastest, README
+ * "Rotation speed"), else AVX2, else SSE2, else the plain unrolled code. */
 static sh_rot_kernel kernel_auto(void)
 {
+    if (sh_rot_kernel_available(SH_KERNEL_AVX512)) return SH_KERNEL_AVX512;
     if (sh_rot_kernel_available(SH_KERNEL_AVX2)) return SH_KERNEL_AVX2;
     if (sh_rot_kernel_available(SH_KERNEL_SSE2)) return SH_KERNEL_SSE2;
     return SH_KERNEL_UNROLLED;
@@ -213,6 +214,10 @@ struct sh_rot_plan {
     double par_d[SH__PAR_N]; /* unrolled: the rotation (nocs: β negated) */
     float par_f[SH__PAR_N];
     int blocks_ok;           /* unrolled ivanic: blocks holds the rotation's blocks */
+    int nb;                  /* the method needs β itself (Taylor) */
+    sh__fast_fn_d fn_d;      /* unrolled, one lane: the kernel of this order, or NULL */
+    sh__fast_fn_f fn_f;
+    uint64_t fn_mults;       /* its multiplications per call */
 };
 
 static int check_args(int order, sh_rot_method method, sh_precision prec, sh_convention conv)
@@ -259,6 +264,12 @@ int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec
         !p->fd1->fn[p->fmeth][order]) {
         p->fmeth = -1; /* the loop kernels */
         p->kernel = SH_KERNEL_SCALAR;
+    }
+    p->nb = method == SH_ROT_TAYLOR1 || method == SH_ROT_TAYLOR15 || method == SH_ROT_TAYLOR2;
+    if (p->fmeth >= 0) {
+        if (prec == SH_PREC_FLOAT) p->fn_f = p->ff1->fn[p->fmeth][order];
+        else p->fn_d = p->fd1->fn[p->fmeth][order];
+        p->fn_mults = prec == SH_PREC_FLOAT ? p->ff1->mults[p->fmeth][order] : p->fd1->mults[p->fmeth][order];
     }
     const size_t esz = prec == SH_PREC_FLOAT ? sizeof(float) : sizeof(double);
     const size_t nb = sh_rot_block_offset(order), nc = (size_t)order * order;
@@ -330,14 +341,8 @@ static void fast_par_done(sh_rot_plan *p, const double *pd)
     p->blocks_ok = 0;
     p->have_rot = 1;
 }
-static uint64_t fast_mults(const sh_rot_plan *p)
-{
-    return p->prec == SH_PREC_FLOAT ? p->ff1->mults[p->fmeth][p->order] : p->fd1->mults[p->fmeth][p->order];
-}
-static int need_beta(const sh_rot_plan *p)
-{
-    return p->method == SH_ROT_TAYLOR1 || p->method == SH_ROT_TAYLOR15 || p->method == SH_ROT_TAYLOR2;
-}
+static uint64_t fast_mults(const sh_rot_plan *p) { return p->fn_mults; }
+static int need_beta(const sh_rot_plan *p) { return p->nb; }
 
 int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
 {
@@ -374,19 +379,32 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
  * double (rd) or float (rf, float plans only): the unrolled kernels and the
  * methods with set_par take par by algebra (rot_fast.c), ivanic reads R;
  * the others get the Euler angles extracted (sh_euler_from_matrix). */
-/* 1 if every v[i] is finite: x·0 is 0 for finite x and NaN for ±Inf, NaN
- * (branch-free; this check runs once per rotation) */
+/* 1 if every v[i] is finite: the largest |v[i]| as an integer (the bits of
+ * a non-negative float order like its value) below that of +Inf; branch-
+ * free, as this check runs once per rotation */
 static int all_finite_d(const double *v, size_t n)
 {
-    double z = 0;
-    for (size_t i = 0; i < n; i++) z += v[i] * 0.0;
-    return z == 0;
+    uint64_t m = 0;
+#pragma GCC unroll 16
+    for (size_t i = 0; i < n; i++) {
+        uint64_t u;
+        memcpy(&u, v + i, sizeof u);
+        u &= 0x7fffffffffffffffULL;
+        m = u > m ? u : m;
+    }
+    return m < 0x7ff0000000000000ULL;
 }
 static int all_finite_f(const float *v, size_t n)
 {
-    float z = 0;
-    for (size_t i = 0; i < n; i++) z += v[i] * 0.0f;
-    return z == 0;
+    uint32_t m = 0;
+#pragma GCC unroll 16
+    for (size_t i = 0; i < n; i++) {
+        uint32_t u;
+        memcpy(&u, v + i, sizeof u);
+        u &= 0x7fffffffu;
+        m = u > m ? u : m;
+    }
+    return m < 0x7f800000u;
 }
 
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
@@ -468,6 +486,15 @@ int sh_rot_plan_set_quat(sh_rot_plan *p, const double q[4]) { return set_rot(p, 
 int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
 {
     if (p->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float matrix for a double plan");
+    if (p->fmeth >= 0 && p->fmeth != SH__FAST_IVANIC) { /* set_rot's path, the hot case written out */
+        if (!all_finite_f(R, 9)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
+        p->ff1->par_matrix(R, p->nb, p->par_f);
+        if (p->conv == SH_NOCS) p->par_f[3] = -p->par_f[3], p->par_f[6] = -p->par_f[6];
+        p->set_mults = SH__PAR_MULTS_MATRIX + (p->nb ? SH__PAR_MULTS_BETA_F : 0);
+        p->have_angles = 0;
+        p->have_rot = 1;
+        return SH_OK;
+    }
     return set_rot(p, NULL, R, 0);
 }
 int sh_rot_plan_set_quat_f(sh_rot_plan *p, const float q[4])
@@ -497,9 +524,9 @@ static void nocs_vec_f(int order, float *v)
 static void apply_float(sh_rot_plan *p, const float *x, float *y, uint64_t *m)
 {
     const size_t nc = (size_t)p->order * p->order;
-    if (p->fmeth >= 0) {
-        p->ff1->fn[p->fmeth][p->order](p->par_f, 1, x, y, 1);
-        *m += fast_mults(p);
+    if (p->fn_f) {
+        p->fn_f(p->par_f, 1, x, y, 1);
+        *m += p->fn_mults;
     } else if (p->ops->apply_f) { /* sparse: the kernel works in CS, on distinct arrays */
         if (p->conv == SH_NOCS || x == y) {
             if (x != p->vin) memcpy(p->vin, x, nc * sizeof *x);
@@ -527,9 +554,9 @@ int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
         for (size_t i = 0; i < nc; i++) x[i] = (float)in[i];
         apply_float(p, x, y, &m);
         for (size_t i = 0; i < nc; i++) out[i] = y[i];
-    } else if (p->fmeth >= 0) {
-        p->fd1->fn[p->fmeth][p->order](p->par_d, 1, in, out, 1);
-        m = fast_mults(p);
+    } else if (p->fn_d) {
+        p->fn_d(p->par_d, 1, in, out, 1);
+        m = p->fn_mults;
     } else {
         /* kernels need distinct input and output: copy when in == out (and
          * for a sparse kernel in nocs, whose input is sign-flipped first) */
@@ -552,6 +579,11 @@ int sh_rot_plan_apply_f(sh_rot_plan *p, const float *in, float *out)
 {
     if (p->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float vectors for a double plan");
     if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
+    if (p->fn_f) {
+        p->fn_f(p->par_f, 1, in, out, 1);
+        p->apply_mults = p->fn_mults;
+        return SH_OK;
+    }
     uint64_t m = 0;
     apply_float(p, in, out, &m);
     p->apply_mults = m;

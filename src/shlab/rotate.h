@@ -105,7 +105,8 @@ void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *appl
  *   sse2      unrolled; batches in SSE2 lanes (4 floats / 2 doubles)
  *   avx2      unrolled with AVX2 + FMA; batches in 8 / 4 lanes
  *   avx512    unrolled with AVX-512 registers; batches in 16 / 8 lanes
- *   auto      the best this CPU runs (avx2, else sse2, else unrolled)
+ *   auto      the best this CPU runs (avx512, else avx2, else sse2, else
+ *             unrolled)
  * A plan whose method or order has no unrolled kernel uses the loop kernels
  * (sh_rot_plan_kernel then says scalar).  sh_rot_plan_create uses auto. */
 typedef enum {
