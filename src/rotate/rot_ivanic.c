@@ -158,10 +158,11 @@ static void SH_R(ivanic_band1)(const sh_rotation *rot, sh_real *M1)
  * V = A, A + B or A − B (vk = 0, 1, 2), W = C + D or C − D (wk = 1, 2).  The
  * sums are those of the formula in the header, in the same order.  Called
  * with constant flags, so each combination is its own branch-free loop
- * (GCC inlines it); a row that is written and then read back in further
- * passes costs store-to-load forwarding stalls once the compiler
- * vectorises the passes (-O3: the "−O3 slower than −O2" of README
- * "Rotation speed"). */
+ * (GCC inlines it).  Earlier the row was written by a u·U pass and then
+ * read back and updated by a v·V and a w·W pass: once -O3 vectorises those
+ * passes, a vector load of the row just stored element by element waits
+ * for store-to-load forwarding (the −O3 slowdown of README "Rotation
+ * speed"); written once, the row has no such dependence. */
 static inline __attribute__((always_inline)) void SH_R(iv_row)(
     int w, sh_real *restrict row, int hu, sh_real r00, sh_real ue0, sh_real uew,
     const sh_real *restrict pa, const sh_real *restrict u, int vk, const sh_real *restrict v,
@@ -177,7 +178,7 @@ static inline __attribute__((always_inline)) void SH_R(iv_row)(
         row[k] = x_;                                                                               \
     } while (0)
     IV_ENTRY(0, ue0);
-#pragma omp simd
+SH_SIMD_SHORT
     for (int k = 1; k < w - 1; k++) IV_ENTRY(k, r00 * pa[k - 1]);
     IV_ENTRY(w - 1, uew);
 #undef IV_ENTRY
@@ -226,7 +227,7 @@ static uint64_t SH_R(ivanic_step)(int l, const sh_real *M1, const sh_real *prev,
             const sh_real *pa = prev + (size_t)a * pw;
             sh_real *row = Pi + (size_t)a * w;
             row[0] = r1 * pa[0] + rm * pa[pw - 1];
-#pragma omp simd
+SH_SIMD_SHORT
             for (int k = 0; k < pw; k++) row[k + 1] = r0 * pa[k];
             row[w - 1] = r1 * pa[pw - 1] - rm * pa[0];
         }
