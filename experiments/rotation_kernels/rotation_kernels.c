@@ -188,10 +188,12 @@ int main(int argc, char **argv)
                        "ns per rotated vector of the rotation kernels, interleaved rounds, and the ratio "
                        "old/variant within a round (old: scalar loop kernels, matrix -> angles -> set -> "
                        "apply with double vectors)",
-                       "precision order variant method kernel ns_median ns_min ratio_median ratio_p10 "
+                       "precision order method input kernel ns_median ns_min ratio_median ratio_p10 "
                        "ratio_p90 mults");
-    fprintf(f, "# %d rounds; batches of %d (apply_many: one rotation, %d vectors; k-rotations: %d rotations "
-               "and vectors, structure of arrays)\n",
+    fprintf(f, "# %d rounds.  input: old = matrix -> ZYZ angles -> sh_rot_plan_set -> sh_rot_plan_apply, "
+               "double vectors; one = sh_rot_plan_set_matrix(_f) + apply(_f), vectors in the precision; "
+               "many = one rotation on %d vectors (apply_many); krot = %d rotations of %d vectors "
+               "(rotate_many, structure of arrays).  ratio = t(old of the method) / t, per round.\n",
             rounds, KBATCH, KBATCH, KBATCH);
     static const int orders[] = {3, 4, 5, 6, 8, 10};
     int noisy = 0;
@@ -202,24 +204,24 @@ int main(int argc, char **argv)
             const sh_precision prec = fl ? SH_PREC_FLOAT : SH_PREC_DOUBLE;
             variant vs[24];
             int nv = 0;
-            nv = add(vs, nv, n, prec, "old zxzxz", SH_ROT_ZXZXZ, SH_KERNEL_SCALAR, V_OLD, 1);
-            nv = add(vs, nv, n, prec, "zxzxz", SH_ROT_ZXZXZ, SH_KERNEL_SCALAR, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "zxzxz", SH_ROT_ZXZXZ, SH_KERNEL_UNROLLED, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "zxzxz", SH_ROT_ZXZXZ, SH_KERNEL_AVX2, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "zxzxz", SH_ROT_ZXZXZ, SH_KERNEL_AVX512, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "zxzxz apply_many", SH_ROT_ZXZXZ, SH_KERNEL_AVX2, V_MANY, KBATCH);
-            nv = add(vs, nv, n, prec, "zxzxz apply_many", SH_ROT_ZXZXZ, SH_KERNEL_AVX512, V_MANY, KBATCH);
-            nv = add(vs, nv, n, prec, "zxzxz k-rotations", SH_ROT_ZXZXZ, SH_KERNEL_SSE2, V_KROT, KBATCH);
-            nv = add(vs, nv, n, prec, "zxzxz k-rotations", SH_ROT_ZXZXZ, SH_KERNEL_AVX2, V_KROT, KBATCH);
-            nv = add(vs, nv, n, prec, "zxzxz k-rotations", SH_ROT_ZXZXZ, SH_KERNEL_AVX512, V_KROT, KBATCH);
-            nv = add(vs, nv, n, prec, "old taylor1.5", SH_ROT_TAYLOR15, SH_KERNEL_SCALAR, V_OLD, 1);
-            nv = add(vs, nv, n, prec, "taylor1.5", SH_ROT_TAYLOR15, SH_KERNEL_AVX2, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "taylor1.5", SH_ROT_TAYLOR15, SH_KERNEL_AVX512, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "taylor1.5 k-rotations", SH_ROT_TAYLOR15, SH_KERNEL_AVX2, V_KROT, KBATCH);
-            nv = add(vs, nv, n, prec, "old ivanic", SH_ROT_IVANIC, SH_KERNEL_SCALAR, V_OLD, 1);
-            nv = add(vs, nv, n, prec, "ivanic", SH_ROT_IVANIC, SH_KERNEL_AUTO, V_MATRIX, 1);
-            nv = add(vs, nv, n, prec, "old blanco", SH_ROT_BLANCO, SH_KERNEL_SCALAR, V_OLD, 1);
-            nv = add(vs, nv, n, prec, "blanco", SH_ROT_BLANCO, SH_KERNEL_AUTO, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "old", SH_ROT_ZXZXZ, SH_KERNEL_SCALAR, V_OLD, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_ZXZXZ, SH_KERNEL_SCALAR, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_ZXZXZ, SH_KERNEL_UNROLLED, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_ZXZXZ, SH_KERNEL_AVX2, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_ZXZXZ, SH_KERNEL_AVX512, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "many", SH_ROT_ZXZXZ, SH_KERNEL_AVX2, V_MANY, KBATCH);
+            nv = add(vs, nv, n, prec, "many", SH_ROT_ZXZXZ, SH_KERNEL_AVX512, V_MANY, KBATCH);
+            nv = add(vs, nv, n, prec, "krot", SH_ROT_ZXZXZ, SH_KERNEL_SSE2, V_KROT, KBATCH);
+            nv = add(vs, nv, n, prec, "krot", SH_ROT_ZXZXZ, SH_KERNEL_AVX2, V_KROT, KBATCH);
+            nv = add(vs, nv, n, prec, "krot", SH_ROT_ZXZXZ, SH_KERNEL_AVX512, V_KROT, KBATCH);
+            nv = add(vs, nv, n, prec, "old", SH_ROT_TAYLOR15, SH_KERNEL_SCALAR, V_OLD, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_TAYLOR15, SH_KERNEL_AVX2, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_TAYLOR15, SH_KERNEL_AVX512, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "krot", SH_ROT_TAYLOR15, SH_KERNEL_AVX2, V_KROT, KBATCH);
+            nv = add(vs, nv, n, prec, "old", SH_ROT_IVANIC, SH_KERNEL_SCALAR, V_OLD, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_IVANIC, SH_KERNEL_AUTO, V_MATRIX, 1);
+            nv = add(vs, nv, n, prec, "old", SH_ROT_BLANCO, SH_KERNEL_SCALAR, V_OLD, 1);
+            nv = add(vs, nv, n, prec, "one", SH_ROT_BLANCO, SH_KERNEL_AUTO, V_MATRIX, 1);
             pool P;
             pool_init(&P, n, fl);
             exp_progress("rotation_kernels: %s order %d, %d variants", fl ? "float" : "double", n, nv);
@@ -257,8 +259,8 @@ int main(int argc, char **argv)
                 uint64_t sm = 0, am = 0;
                 sh_rot_plan_mults(v->p, &sm, &am);
                 const double mults = (double)sm / (v->how == V_MANY ? v->K : 1) + (double)am;
-                fprintf(f, "%s %d \"%s\" %s %s %.2f %.2f %.3f %.3f %.3f %.1f\n", fl ? "float" : "double", n,
-                        v->label, sh_rot_method_name(v->method), sh_rot_kernel_name(sh_rot_plan_kernel(v->p)),
+                fprintf(f, "%s %d %s %s %s %.2f %.2f %.3f %.3f %.3f %.1f\n", fl ? "float" : "double", n,
+                        sh_rot_method_name(v->method), v->label, sh_rot_kernel_name(sh_rot_plan_kernel(v->p)),
                         quantile(v->t, rounds, 0.5), quantile(v->t, rounds, 0), quantile(v->ratio, rounds, 0.5),
                         quantile(v->ratio, rounds, 0.1), quantile(v->ratio, rounds, 0.9), mults);
                 sh_rot_plan_free(v->p);

@@ -66,6 +66,12 @@ typedef struct {
     /* 1: the kernels read rot->R only (not the angles): a plan set from a
      * matrix does not extract them */
     int matrix_only;
+    /* block methods from a matrix or quaternion (optional): blocks_P with the
+     * rotation given as par (below) — no trigonometric call */
+    int (*blocks_par_d)(int order, const double *par, const void *tables, double *blocks,
+                        void *work, uint64_t *mults);
+    int (*blocks_par_f)(int order, const float *par, const void *tables, float *blocks,
+                        void *work, uint64_t *mults);
 } sh__rot_ops;
 
 /* ---- the rotation as the sparse kernels use it ----------------------------

@@ -444,7 +444,7 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
     double v[9];
     for (int i = 0; i < n; i++) v[i] = rd ? rd[i] : (double)rf[i];
     int st;
-    if (p->ops->set_par_d) {
+    if (p->ops->set_par_d || p->ops->blocks_par_d) {
         double pd[SH__PAR_N];
         if (rf) {
             /* float in: par in float arithmetic */
@@ -460,10 +460,18 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
         } else {
             memcpy(p->rot.R, v, sizeof p->rot.R);
         }
-        if (p->prec == SH_PREC_FLOAT)
-            st = p->ops->set_par_f(p->order, p->par_f, p->tables, p->state, &p->set_mults);
-        else
-            st = p->ops->set_par_d(p->order, p->par_d, p->tables, p->state, &p->set_mults);
+        if (p->ops->set_par_d) { /* sparse: the state */
+            if (p->prec == SH_PREC_FLOAT)
+                st = p->ops->set_par_f(p->order, p->par_f, p->tables, p->state, &p->set_mults);
+            else
+                st = p->ops->set_par_d(p->order, p->par_d, p->tables, p->state, &p->set_mults);
+        } else if (p->prec == SH_PREC_FLOAT) { /* blocks */
+            st = p->ops->blocks_par_f(p->order, p->par_f, p->tables, p->blocks, p->work, &p->set_mults);
+            if (!st && p->conv == SH_NOCS) sh__rot_blocks_nocs_f(p->order, p->blocks);
+        } else {
+            st = p->ops->blocks_par_d(p->order, p->par_d, p->tables, p->blocks, p->work, &p->set_mults);
+            if (!st && p->conv == SH_NOCS) sh__rot_blocks_nocs_d(p->order, p->blocks);
+        }
         if (st == SH_OK) p->have_rot = 1;
         return st;
     }

@@ -51,6 +51,14 @@ for k in scalar unrolled sse2 avx2 avx512; do
     fi
 done
 
+# the other exact methods from the matrix (ivanic: unrolled to order 6, then
+# loops; blanco: no angle either)
+for m in ivanic blanco choi; do
+    for p in double float; do
+        expect_success "verify $m $p --matrix-input" verify --fixture $FX/orders_1_10.json --method $m --precision $p --matrix-input
+    done
+done
+
 # the bench's kernel, input and k-rotations options
 expect_success "bench k-rotations" bench --order 4 --methods zxzxz,ivanic --mode k-rotations --batch 9 --count 3 --repeat 1 --quiet --format csv
 if grep -q 'k-rotations' "$TMP/out" && head -1 "$TMP/out" | grep -q 'kernel,input'; then ok "bench rows name mode, kernel and input"; else notok "bench k-rotations rows: $(head -2 "$TMP/out")"; fi
