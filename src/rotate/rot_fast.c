@@ -52,29 +52,37 @@
  * of the multiple angles then come from these by the Chebyshev recurrence
  * (the kernels).  Cost: 12 multiplications, 2 square roots, 2 divisions.
  * R must be a rotation (orthonormal, det +1); it is not checked here.
- * Computed in double also for float rotations (shk_d): float arithmetic
- * here would put 2–3 float ulps into cos γ, sin γ, which the Taylor kernels
- * amplify near β = π past the golden fixtures' tolerance. */
-static inline void shk_par_matrix(const sh_real *R, size_t KR, shk_d par[7])
-{
-    const shk_d r00 = SHK_DLD(R, 0, KR), r01 = SHK_DLD(R, 1, KR), r02 = SHK_DLD(R, 2, KR);
-    const shk_d r10 = SHK_DLD(R, 3, KR), r11 = SHK_DLD(R, 4, KR), r12 = SHK_DLD(R, 5, KR);
-    const shk_d r22 = SHK_DLD(R, 8, KR);
-    const shk_d one = SHK_DSPLAT(1), zero = SHK_DSPLAT(0);
-    const shk_d s2 = r02 * r02 + r12 * r12, sb = SHK_DSQRT(s2);
-    const shk_dm has = s2 > zero; /* sβ ≠ 0: α from (a), else α = 0 */
-    const shk_d inv = SHK_DSEL(has, one / SHK_DSEL(has, sb, one), zero);
-    const shk_d ca = r02 * inv + SHK_DSEL(has, zero, one), sa = r12 * inv;
-    const shk_dm up = r22 >= zero; /* (b), else (c) */
-    const shk_d p = SHK_DSEL(up, r00 + r11, r11 - r00), q = SHK_DSEL(up, r10 - r01, -(r10 + r01));
-    const shk_d nrm = one / SHK_DSQRT(p * p + q * q);
-    const shk_d cs = p * nrm, ss = q * nrm; /* e^{i(α+γ)}, or e^{i(α−γ)} */
-    const shk_d t = ss * ca - cs * sa;
-    par[0] = ca, par[1] = sa, par[2] = r22, par[3] = sb;
-    par[4] = cs * ca + ss * sa;
-    par[5] = SHK_DSEL(up, t, -t);
-    par[6] = zero;
-}
+ * For the Taylor kernels computed in double also for float rotations
+ * (shk_d): float arithmetic here puts 2–3 float ulps into cos γ, sin γ,
+ * which they amplify near β = π past the golden fixtures' tolerance; the
+ * exact kernels take it in float. */
+#define SHK_PAR_MATRIX(NAME, T, M, LD, SPLAT, SQRT, SEL)                                          \
+    static inline void NAME(const sh_real *R, size_t KR, T par[7])                                 \
+    {                                                                                              \
+        const T r00 = LD(R, 0, KR), r01 = LD(R, 1, KR), r02 = LD(R, 2, KR);                        \
+        const T r10 = LD(R, 3, KR), r11 = LD(R, 4, KR), r12 = LD(R, 5, KR), r22 = LD(R, 8, KR);   \
+        const T one = SPLAT(1), zero = SPLAT(0);                                                   \
+        const T s2 = r02 * r02 + r12 * r12, sb = SQRT(s2);                                         \
+        const M has = s2 > zero; /* sβ ≠ 0: α from (a), else α = 0 */                              \
+        const T inv = SEL(has, one / SEL(has, sb, one), zero);                                     \
+        const T ca = r02 * inv + SEL(has, zero, one), sa = r12 * inv;                              \
+        const M up = r22 >= zero; /* (b), else (c) */                                              \
+        const T p = SEL(up, r00 + r11, r11 - r00), q = SEL(up, r10 - r01, -(r10 + r01));           \
+        const T nrm = one / SQRT(p * p + q * q);                                                   \
+        const T cs = p * nrm, ss = q * nrm; /* e^{i(α+γ)}, or e^{i(α−γ)} */                        \
+        const T t = ss * ca - cs * sa;                                                             \
+        par[0] = ca, par[1] = sa, par[2] = r22, par[3] = sb;                                       \
+        par[4] = cs * ca + ss * sa;                                                                \
+        par[5] = SEL(up, t, -t);                                                                   \
+        par[6] = zero;                                                                             \
+    }
+/* in double lanes (every variant), and in the kernel's own lanes (float:
+ * enough for the exact methods, 1–2 float ulps in the angles) */
+SHK_PAR_MATRIX(shk_par_matrix, shk_d, shk_dm, SHK_DLD, SHK_DSPLAT, SHK_DSQRT, SHK_DSEL)
+#ifdef SH_REAL_FLOAT
+SHK_PAR_MATRIX(shk_par_matrix_r, shk_t, shk_m, SHK_LD, SHK_SPLAT, SHK_SQRT, SHK_SEL)
+#endif
+#undef SHK_PAR_MATRIX
 
 /* ---- the same from a quaternion q = (w, x, y, z), unit or not ------------
  *
@@ -168,19 +176,29 @@ static inline void shk_par_ivanic(const sh_real *rot, size_t KR, int quat, int n
 static inline void shk_par(const sh_real *rot, size_t KR, int quat, int need_beta, int nocs,
                            sh_real *par, size_t KP)
 {
+#ifdef SH_REAL_FLOAT
+    if (!quat && !need_beta) { /* zxzxz: float lanes (rot_simd.h) suffice */
+        shk_t pr[7];
+        shk_par_matrix_r(rot, KR, pr);
+        if (nocs) pr[3] = -pr[3];
+        for (int j = 0; j < 7; j++) SHK_ST(par, j, KP, pr[j]);
+        return;
+    }
+#endif
     shk_d pd[7];
     if (quat) shk_par_quat(rot, KR, pd);
     else shk_par_matrix(rot, KR, pd);
 #ifdef SH_REAL_FLOAT
     if (need_beta) pd[6] = shk_beta(pd[3], pd[2]);
-#endif
+    if (nocs) pd[3] = -pd[3], pd[6] = -pd[6];
     for (int j = 0; j < 7; j++) SHK_DST(par, j, KP, pd[j]);
-    for (size_t i = 0; i < (size_t)SHK_LANES; i++) {
-#ifndef SH_REAL_FLOAT
-        if (need_beta) par[6 * KP + i] = atan2(par[3 * KP + i], par[2 * KP + i]);
+#else
+    for (int j = 0; j < 7; j++) SHK_DST(par, j, KP, pd[j]);
+    if (need_beta)
+        for (size_t i = 0; i < (size_t)SHK_LANES; i++) par[6 * KP + i] = atan2(par[3 * KP + i], par[2 * KP + i]);
+    if (nocs)
+        for (size_t i = 0; i < (size_t)SHK_LANES; i++) par[3 * KP + i] = -par[3 * KP + i], par[6 * KP + i] = -par[6 * KP + i];
 #endif
-        if (nocs) par[3 * KP + i] = -par[3 * KP + i], par[6 * KP + i] = -par[6 * KP + i];
-    }
 }
 
 /* K rotations of K vectors, SHK_LANES at a time; a last partial group is
@@ -263,6 +281,12 @@ static void fast_many(int meth, int order, const sh_real *par1, size_t K, const 
 /* one rotation from its matrix: zxzxz's and the Taylor kernels' par */
 static void fast_par_matrix(const sh_real *R, int need_beta, sh_real *par)
 {
+#ifdef SH_REAL_FLOAT
+    if (!need_beta) {
+        shk_par_matrix_r(R, 1, par);
+        return;
+    }
+#endif
     shk_d pd[7];
     shk_par_matrix(R, 1, pd);
 #ifdef SH_REAL_FLOAT

@@ -385,7 +385,7 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
 static int all_finite_d(const double *v, size_t n)
 {
     uint64_t m = 0;
-#pragma GCC unroll 16
+#pragma omp simd reduction(max : m)
     for (size_t i = 0; i < n; i++) {
         uint64_t u;
         memcpy(&u, v + i, sizeof u);
@@ -397,7 +397,7 @@ static int all_finite_d(const double *v, size_t n)
 static int all_finite_f(const float *v, size_t n)
 {
     uint32_t m = 0;
-#pragma GCC unroll 16
+#pragma omp simd reduction(max : m)
     for (size_t i = 0; i < n; i++) {
         uint32_t u;
         memcpy(&u, v + i, sizeof u);
