@@ -86,7 +86,7 @@ static const char *lit(double v)
  * in hand) of coefficient m; n for a negative m */
 static const char *nmx(int l, int m)
 {
-    static char b[8][16];
+    static char b[8][32];
     static int i;
     i = (i + 1) & 7;
     snprintf(b[i], sizeof b[i], m < 0 ? "x%d_n%d" : "x%d_%d", l, m < 0 ? -m : m);
@@ -130,6 +130,18 @@ static void emit_zpair(char a, int m, int flip, const char *am, const char *bm, 
         out("        const shk_t %s = %s(c%c%d * %s - s%c%d * %s);\n", nm(dst, m), ng, a, m, am, a, m, bm);
         out("        const shk_t %s = %s(s%c%d * %s + c%c%d * %s);\n", nm(dst, -m), ng, a, m, am, a, m,
             bm);
+    }
+}
+
+/* u = Z(γ) x for band l (the first stage of zxzxz and the Taylor kernels) */
+static void emit_zgamma(int l)
+{
+    char xp[32], xm[32];
+    out("        const shk_t u_0 = %s;\n", nmx(l, 0));
+    for (int m = 1; m <= l; m++) {
+        snprintf(xp, sizeof xp, "%s", nmx(l, m));
+        snprintf(xm, sizeof xm, "%s", nmx(l, -m));
+        emit_zpair('g', m, 0, xp, xm, 'u', 0, l);
     }
 }
 
@@ -201,16 +213,11 @@ static void gen_zxzxz(int n, double *X)
     out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
     for (int l = 1; l < n; l++) {
         if (sh__rot_zxzxz_xplus_band(l, X)) { fprintf(stderr, "gen_rot_unrolled: X+90 band %d\n", l); exit(2); }
-        char xm[16], xp[16];
+        char xm[32], xp[32];
         out("    { /* band %d */\n", l);
         emit_loads(l);
         /* Z(γ): x → u */
-        out("        const shk_t u_0 = %s;\n", nmx(l, 0));
-        for (int m = 1; m <= l; m++) {
-            snprintf(xp, sizeof xp, "%s", nmx(l, m));
-            snprintf(xm, sizeof xm, "%s", nmx(l, -m));
-            emit_zpair('g', m, 0, xp, xm, 'u', 0, l);
-        }
+        emit_zgamma(l);
         emit_xmul(l, X, 'u', 't'); /* X₊₉₀ */
         /* Z(β+π): t → v */
         out("        const shk_t v_0 = t_0;\n");
@@ -255,15 +262,10 @@ static void gen_taylor(int meth, int n)
         const int w = 2 * l + 1;
         sh_rot_deriv_J_subdiag(l, sd); /* s_0 .. s_{w−1}, s_0 = 0 */
         sd[w] = 0;
-        char xm[16], xp[16];
+        char xm[32], xp[32];
         out("    { /* band %d */\n", l);
         emit_loads(l);
-        out("        const shk_t u_0 = %s;\n", nmx(l, 0));
-        for (int m = 1; m <= l; m++) {
-            snprintf(xp, sizeof xp, "%s", nmx(l, m));
-            snprintf(xm, sizeof xm, "%s", nmx(l, -m));
-            emit_zpair('g', m, 0, xp, xm, 'u', 0, l);
-        }
+        emit_zgamma(l);
         for (int j = 0; j < w; j++) {
             const int m = j - l;
             const double s0 = sd[j], s1 = sd[j + 1];

@@ -59,20 +59,21 @@ void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real 
     if (mults) *mults += count;
 }
 
-void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
+/* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin, from c1, s1.
+ * The recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
+ * double), so with reseed every SH_ANGLE_RESEED steps two consecutive pairs
+ * are taken from libm (argument m·θ formed in double) and the recurrence
+ * restarts from it. */
+static void SH_R(angles_rec)(sh_real c1, sh_real s1, int reseed, sh_real theta, int mmax, sh_real *cs)
 {
-    /* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin.  The
-     * recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
-     * double), so every SH_ANGLE_RESEED steps two consecutive pairs are taken from libm (argument
-     * m·θ formed in double) and the recurrence restarts from it. */
-    const sh_real c1 = SH_COS(theta), s1 = SH_SIN(theta), two_c = 2 * c1;
+    const sh_real two_c = 2 * c1;
     cs[0] = 1;
     cs[1] = 0;
     if (mmax < 1) return;
     cs[2] = c1;
     cs[3] = s1;
     for (int m = 2; m <= mmax; m++) {
-        if (m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
+        if (reseed && m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
             const double a = (double)m * (double)theta;
             cs[2 * m] = (sh_real)cos(a);
             cs[2 * m + 1] = (sh_real)sin(a);
@@ -83,25 +84,18 @@ void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
     }
 }
 
+void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
+{
+    SH_R(angles_rec)(SH_COS(theta), SH_SIN(theta), 1, theta, mmax, cs);
+}
+
 void SH_R(sh__rot_multiple_angles_cs)(sh_real c1, sh_real s1, int mmax, sh_real *cs)
 {
     /* the recurrence of sh__rot_multiple_angles from the seeds c1, s1 (a
      * rotation given as a matrix: no angle); past the reseeding distance the
      * angle is taken once, θ = atan2(s1, c1), and the reseeded routine used */
-    if (mmax >= SH_ANGLE_RESEED) {
-        SH_R(sh__rot_multiple_angles)((sh_real)atan2(s1, c1), mmax, cs);
-        return;
-    }
-    const sh_real two_c = 2 * c1;
-    cs[0] = 1;
-    cs[1] = 0;
-    if (mmax < 1) return;
-    cs[2] = c1;
-    cs[3] = s1;
-    for (int m = 2; m <= mmax; m++) {
-        cs[2 * m] = two_c * cs[2 * (m - 1)] - cs[2 * (m - 2)];
-        cs[2 * m + 1] = two_c * cs[2 * (m - 1) + 1] - cs[2 * (m - 2) + 1];
-    }
+    if (mmax >= SH_ANGLE_RESEED) SH_R(sh__rot_multiple_angles)((sh_real)atan2(s1, c1), mmax, cs);
+    else SH_R(angles_rec)(c1, s1, 0, 0, mmax, cs);
 }
 
 void SH_R(sh__rot_z_band)(int l, const sh_real *cs, sh_real *c, uint64_t *mults)

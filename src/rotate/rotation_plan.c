@@ -7,6 +7,7 @@
  * plan turns the result into nocs by the sign flip S·R·S (S = −1 on odd m).
  */
 #include "rotate/rot_internal.h"
+#include "rotate/rot_real.h" /* SH_PRAGMA */
 
 #include <math.h>
 #include <stdlib.h>
@@ -382,30 +383,22 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
 /* 1 if every v[i] is finite: the largest |v[i]| as an integer (the bits of
  * a non-negative float order like its value) below that of +Inf; branch-
  * free, as this check runs once per rotation */
-static int all_finite_d(const double *v, size_t n)
-{
-    uint64_t m = 0;
-#pragma omp simd reduction(max : m)
-    for (size_t i = 0; i < n; i++) {
-        uint64_t u;
-        memcpy(&u, v + i, sizeof u);
-        u &= 0x7fffffffffffffffULL;
-        m = u > m ? u : m;
+#define ALL_FINITE(NAME, T, U, ABS, INF)                                                           \
+    static int NAME(const T *v, size_t n)                                                          \
+    {                                                                                              \
+        U m = 0;                                                                                   \
+        SH_PRAGMA(omp simd reduction(max : m))                                                     \
+        for (size_t i = 0; i < n; i++) {                                                           \
+            U u;                                                                                   \
+            memcpy(&u, v + i, sizeof u);                                                           \
+            u &= ABS;                                                                              \
+            m = u > m ? u : m;                                                                     \
+        }                                                                                          \
+        return m < INF;                                                                            \
     }
-    return m < 0x7ff0000000000000ULL;
-}
-static int all_finite_f(const float *v, size_t n)
-{
-    uint32_t m = 0;
-#pragma omp simd reduction(max : m)
-    for (size_t i = 0; i < n; i++) {
-        uint32_t u;
-        memcpy(&u, v + i, sizeof u);
-        u &= 0x7fffffffu;
-        m = u > m ? u : m;
-    }
-    return m < 0x7f800000u;
-}
+ALL_FINITE(all_finite_d, double, uint64_t, 0x7fffffffffffffffULL, 0x7ff0000000000000ULL)
+ALL_FINITE(all_finite_f, float, uint32_t, 0x7fffffffu, 0x7f800000u)
+#undef ALL_FINITE
 
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 {
@@ -633,48 +626,32 @@ static void many_loop(sh_rot_plan *p, size_t K, const void *in, void *out, size_
  * summed left to right as sh__rot_blocks_apply, vectorised across vectors. */
 #define MANY_CHUNK 64
 #define MANY_W (2 * SH__FAST_MAXO + 1)
-static void blocks_many_d(int order, const double *blocks, size_t K, const double *in, double *out)
-{
-    double x[MANY_W * MANY_CHUNK];
-    for (int l = 0; l < order; l++) {
-        const int w = 2 * l + 1;
-        const double *B = blocks + sh_rot_block_offset(l);
-        for (size_t k0 = 0; k0 < K; k0 += MANY_CHUNK) {
-            const size_t nk = K - k0 < MANY_CHUNK ? K - k0 : MANY_CHUNK;
-            for (int j = 0; j < w; j++) memcpy(x + (size_t)j * MANY_CHUNK, in + ((size_t)l * l + j) * K + k0, nk * sizeof *x);
-            for (int i = 0; i < w; i++) {
-                double *o = out + ((size_t)l * l + i) * K + k0;
-#pragma omp simd
-                for (size_t k = 0; k < nk; k++) {
-                    double s = 0;
-                    for (int j = 0; j < w; j++) s += B[(size_t)i * w + j] * x[(size_t)j * MANY_CHUNK + k];
-                    o[k] = s;
-                }
-            }
-        }
+#define BLOCKS_MANY(NAME, T)                                                                       \
+    static void NAME(int order, const T *blocks, size_t K, const T *in, T *out)                    \
+    {                                                                                              \
+        T x[MANY_W * MANY_CHUNK];                                                                  \
+        for (int l = 0; l < order; l++) {                                                          \
+            const int w = 2 * l + 1;                                                               \
+            const T *B = blocks + sh_rot_block_offset(l);                                          \
+            for (size_t k0 = 0; k0 < K; k0 += MANY_CHUNK) {                                        \
+                const size_t nk = K - k0 < MANY_CHUNK ? K - k0 : MANY_CHUNK;                       \
+                for (int j = 0; j < w; j++)                                                        \
+                    memcpy(x + (size_t)j * MANY_CHUNK, in + ((size_t)l * l + j) * K + k0, nk * sizeof *x); \
+                for (int i = 0; i < w; i++) {                                                      \
+                    T *o = out + ((size_t)l * l + i) * K + k0;                                     \
+                    SH_PRAGMA(omp simd)                                                            \
+                    for (size_t k = 0; k < nk; k++) {                                              \
+                        T s = 0;                                                                   \
+                        for (int j = 0; j < w; j++) s += B[(size_t)i * w + j] * x[(size_t)j * MANY_CHUNK + k]; \
+                        o[k] = s;                                                                  \
+                    }                                                                              \
+                }                                                                                  \
+            }                                                                                      \
+        }                                                                                          \
     }
-}
-static void blocks_many_f(int order, const float *blocks, size_t K, const float *in, float *out)
-{
-    float x[MANY_W * MANY_CHUNK];
-    for (int l = 0; l < order; l++) {
-        const int w = 2 * l + 1;
-        const float *B = blocks + sh_rot_block_offset(l);
-        for (size_t k0 = 0; k0 < K; k0 += MANY_CHUNK) {
-            const size_t nk = K - k0 < MANY_CHUNK ? K - k0 : MANY_CHUNK;
-            for (int j = 0; j < w; j++) memcpy(x + (size_t)j * MANY_CHUNK, in + ((size_t)l * l + j) * K + k0, nk * sizeof *x);
-            for (int i = 0; i < w; i++) {
-                float *o = out + ((size_t)l * l + i) * K + k0;
-#pragma omp simd
-                for (size_t k = 0; k < nk; k++) {
-                    float s = 0;
-                    for (int j = 0; j < w; j++) s += B[(size_t)i * w + j] * x[(size_t)j * MANY_CHUNK + k];
-                    o[k] = s;
-                }
-            }
-        }
-    }
-}
+BLOCKS_MANY(blocks_many_d, double)
+BLOCKS_MANY(blocks_many_f, float)
+#undef BLOCKS_MANY
 
 static int apply_many(sh_rot_plan *p, size_t K, const void *in, void *out, int fl)
 {
