@@ -97,9 +97,9 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks);
  * the last sh_rot_plan_set and by one sh_rot_plan_apply. */
 void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *apply_mults);
 
-/* Kernels.  zxzxz and the Taylor methods have, up to order 10, unrolled
- * kernels (generated straight-line code), built once per instruction set;
- * the plan picks one when it is created and keeps it:
+/* Kernels.  zxzxz and the Taylor methods (up to order 10) and ivanic (up to
+ * order 6) have unrolled kernels (generated straight-line code), built once
+ * per instruction set; the plan picks one when it is created and keeps it:
  *   scalar    the loop kernels (every method and order; the reference path)
  *   unrolled  the unrolled kernels, built with the default flags
  *   sse2      unrolled; batches in SSE2 lanes (4 floats / 2 doubles)
@@ -131,6 +131,7 @@ sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
  * non-zero norm), without trigonometric calls for zxzxz and the Taylor
  * methods (cos, sin of α, β, γ by algebra from the well-conditioned
  * entries, exact at β = 0 and π; the Taylor methods take β by one atan2).
+ * blanco takes the half angles by square roots.
  * The matrix must be a rotation (not checked beyond finite entries; use
  * sh_rotation_from_matrix to check or orthonormalise one).  The _f forms
  * take float input and compute in float (float plans only). */
