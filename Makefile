@@ -40,6 +40,29 @@ TEST_SRC := $(sort $(wildcard tests/test_*.c))
 # compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
 ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
 LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
+# Loops marked `#pragma omp simd` in the kernels are vectorised at -O2
+# (OpenMP's simd directive only: no OpenMP runtime is linked).
+CFLAGS   += -fopenmp-simd
+# The unrolled kernels (src/rotate/rot_fast.c, rot_simd.h) once more per
+# instruction set on x86-64, each object with its own flags (chosen at run
+# time by the plan: README "Rotation speed"): avx2, avx512 = one lane with
+# AVX2 + FMA, or with AVX-512's 32 registers (fewer spills); sse2v/avx2v/
+# avx512v = SIMD lanes of 16/32/64 bytes for batches.
+# -ffp-contract=fast lets the compiler fuse a*b+c into FMA there (-std=c11
+# alone turns contraction off, so the other objects never fuse).
+ifneq ($(filter x86_64% amd64%,$(shell $(CC) -dumpmachine)),)
+FAST_VARIANTS := avx2 avx512 sse2v avx2v avx512v
+endif
+FAST_FLAGS_avx2    := -DSHK_VARIANT=avx2 -mavx2 -mfma -ffp-contract=fast
+FAST_FLAGS_avx512  := -DSHK_VARIANT=avx512 -mavx512f -mavx512vl -mfma -ffp-contract=fast
+# (-Wno-psabi: the float objects hold the rotation's lanes in double, twice
+# the native width, only in static functions, so no ABI is exposed.)
+FAST_FLAGS_sse2v   := -DSHK_VARIANT=sse2v -DSHK_VBYTES=16 -Wno-psabi
+FAST_FLAGS_avx2v   := -DSHK_VARIANT=avx2v -DSHK_VBYTES=32 -mavx2 -mfma -ffp-contract=fast -Wno-psabi
+FAST_FLAGS_avx512v := -DSHK_VARIANT=avx512v -DSHK_VBYTES=64 -mavx512f -mfma -ffp-contract=fast
+FAST_OBJ_D := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%.o)
+FAST_OBJ_F := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%_f.o)
+LIB_OBJ  += $(FAST_OBJ_D) $(FAST_OBJ_F)
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -85,7 +108,7 @@ bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE
+.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -103,6 +126,14 @@ $(BUILD)/obj/%.o: src/%.c
 $(BUILD)/obj/%_f.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DSH_REAL_FLOAT -c $< -o $@
+
+$(FAST_OBJ_D): $(BUILD)/obj/rotate/rot_fast_%.o: src/rotate/rot_fast.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(FAST_FLAGS_$*) -c $< -o $@
+
+$(FAST_OBJ_F): $(BUILD)/obj/rotate/rot_fast_%_f.o: src/rotate/rot_fast.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(FAST_FLAGS_$*) -DSH_REAL_FLOAT -c $< -o $@
 
 $(BUILD)/obj/cli/%.o: src/cli/%.c
 	@mkdir -p $(dir $@)
@@ -126,13 +157,28 @@ $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
 
+# ---- generated code ---------------------------------------------------------
+# src/rotate/rot_unrolled_gen.h is written by tools/gen_rot_unrolled.c (its
+# banner records the command); `make regen` rewrites it, `make check` fails
+# if it differs from what the generator writes (tests/cli/test_unrolled.sh).
+GEN_UNROLLED := $(BUILD)/tools/gen_rot_unrolled
+$(GEN_UNROLLED): tools/gen_rot_unrolled.c $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< $(BUILD)/libshlab.a $(LDLIBS)
+
+regen: $(GEN_UNROLLED)
+	$(GEN_UNROLLED) $$(sed -n 's|^ \*   build/tools/gen_rot_unrolled \(.*\) > src/rotate/rot_unrolled_gen.h$$|\1|p' src/rotate/rot_unrolled_gen.h) > $(BUILD)/rot_unrolled_gen.h
+	mv $(BUILD)/rot_unrolled_gen.h src/rotate/rot_unrolled_gen.h
+
+check: $(GEN_UNROLLED)
+
 # ---- experiments and report ----------------------------------------------
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>
 # → reports/<name>/*.dat → experiments/<name>/*.gp → reports/<name>/*.png
 EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
-               rotation_extremes rotation_cost
+               rotation_extremes rotation_cost rotation_kernels
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a

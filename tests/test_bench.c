@@ -16,6 +16,7 @@ static sh_bench_opts quick(void)
     o.count = 20;
     o.repeat = 3;
     o.batch = 4;
+    o.kernel = SH_KERNEL_SCALAR; /* the loop kernels, whose counts the paper gives */
     return o;
 }
 

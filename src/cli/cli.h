@@ -126,8 +126,10 @@ typedef struct {
     sh_rot_method method; /* --method of the rotation commands (default ivanic) */
     int have_method;      /* --method was given */
     sh_precision prec;    /* --precision (default double) */
+    sh_rot_kernel kernel; /* --kernel (default auto) */
+    int have_kernel;      /* --kernel was given */
 } cli_common;
-#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE}
+#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0}
 
 /* Handle getopt_long's result o for command cmd: --help (prints the help),
  * the shared options, and unknown options or missing values (one error
@@ -140,7 +142,7 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c);
  *   --euler A,B,G | --quat W,X,Y,Z | --matrix R00,...,R22 | --axis X,Y,Z --angle T,
  *   --inverse, --orthonormalize   (angles in radians unless --degrees). */
 enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OPT_ANGLE,
-       CLI_OPT_INVERSE, CLI_OPT_ORTHO, CLI_OPT_METHOD, CLI_OPT_PRECISION };
+       CLI_OPT_INVERSE, CLI_OPT_ORTHO, CLI_OPT_METHOD, CLI_OPT_PRECISION, CLI_OPT_KERNEL };
 #define CLI_LONGOPTS_ROTATION                                                                      \
     {"euler", required_argument, 0, CLI_OPT_EULER}, {"quat", required_argument, 0, CLI_OPT_QUAT},  \
         {"matrix", required_argument, 0, CLI_OPT_MATRIX},                                          \
@@ -150,6 +152,8 @@ enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OP
         {"orthonormalize", no_argument, 0, CLI_OPT_ORTHO}
 #define CLI_LONGOPT_METHOD {"method", required_argument, 0, CLI_OPT_METHOD}
 #define CLI_LONGOPT_PRECISION {"precision", required_argument, 0, CLI_OPT_PRECISION}
+/* --kernel K of the rotation commands (sh_rot_kernel; refused if not available here) */
+#define CLI_LONGOPT_KERNEL {"kernel", required_argument, 0, CLI_OPT_KERNEL}
 typedef struct {
     const char *form;   /* "euler", "quat", "matrix", "axis-angle" or NULL */
     double v[9];        /* the numbers of that form */
@@ -193,6 +197,13 @@ void fx_free(fx_set *set);
 /* out = R_sh(rot)·in for a case's shape (its order, or band only), by method. */
 int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
              sh_convention conv, const double *in, double *out);
+/* The same with the plan's kernel chosen, and with matrix != 0 the rotation
+ * given as its matrix (sh_rot_plan_set_matrix; in float, float matrix and
+ * vectors: sh_rot_plan_set_matrix_f, sh_rot_plan_apply_f).  Whole-order
+ * cases only; band cases have one path. */
+int fx_apply_kernel(sh_rot_method m, sh_precision prec, sh_rot_kernel kernel, int matrix,
+                    const fx_case *c, const sh_rotation *rot, sh_convention conv, const double *in,
+                    double *out);
 
 /* ---- angles and units (cli_angles.c) -------------------------------------
  * --degrees means angles in and angles out in degrees, in every command

@@ -86,6 +86,12 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
         c->have_method = 1;
         return -1;
     case CLI_OPT_PRECISION: return cli_precision(optarg, &c->prec) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_KERNEL:
+        if (sh_rot_kernel_parse(optarg, &c->kernel)) return cli_fail("--kernel: %s", sh_last_error());
+        if (!sh_rot_kernel_available(c->kernel))
+            return cli_fail("--kernel: %s is not available on this machine", optarg);
+        c->have_kernel = 1;
+        return -1;
     default: return cli_fail_getopt(cmd->name, argv, optind, optopt);
     }
 }

@@ -19,7 +19,10 @@ static const char help[] =
     "                3×3 matrix: copy it, extract the ZYZ angles, set the plan,\n"
     "                apply it (what radiance caching does per cache record);\n"
     "  batched       one rotation set, then --batch vectors applied; time per\n"
-    "                vector (the set's cost shared among them).\n"
+    "                vector (the set's cost shared among them);\n"
+    "  k-rotations   --batch rotations (3×3 matrices) applied to --batch vectors\n"
+    "                in one call, structure of arrays (sh_rot_plan_rotate_many:\n"
+    "                SIMD lanes across rotations); time per vector.\n"
     "A warm-up run, then --repeat timed runs of --count iterations each\n"
     "(CLOCK_MONOTONIC); ns_per_rotation is the median over the runs, ns_min and\n"
     "ns_max the spread.  mults = multiplications counted by the kernels' loops\n"
@@ -32,9 +35,18 @@ static const char help[] =
     "  --methods LIST     z, ivanic, zxzxz, choi, blanco, wigner, reference,\n"
     "                     taylor1, taylor1.5, taylor2, or 'all' (default: every\n"
     "                     method built in except reference, which is MPFR)\n"
-    "  --mode M           per-rotation | batched | both (default both)\n"
-    "  --precision P      double (default) | float (float plans compute in float;\n"
-    "                     vectors cross the API as double)\n"
+    "  --mode M           per-rotation | batched | both | k-rotations | all\n"
+    "                     (default both)\n"
+    "  --precision P      double (default) | float (float plans compute in float)\n"
+    "  --kernel LIST      scalar, unrolled, sse2, avx2, avx512, auto (default auto;\n"
+    "                     several: each is timed, so ratios come from one run).\n"
+    "                     scalar = the loop kernels; the others use the unrolled\n"
+    "                     kernels where the method has them (zxzxz, taylor*, n <= 10)\n"
+    "  --input LIST       euler (default): matrix -> ZYZ angles -> set, vectors as\n"
+    "                     double; matrix: sh_rot_plan_set_matrix (no angles), and for\n"
+    "                     float plans float matrices and vectors (the _f calls);\n"
+    "                     batched mode then applies the batch in one apply_many.\n"
+    "                     k-rotations always takes matrices.\n"
     "  --count C          iterations per timed run (default 0: calibrated to\n"
     "                     about --target-ms each)\n"
     "  --target-ms T      calibration target per run (default 5)\n"
@@ -52,7 +64,8 @@ static const char help[] =
     "\n"
     "JSON: {\"convention\",\"repeat\",\"setup_ns\",\"rows\":[{\"method\",\"order\",\"precision\",\"mode\",\n"
     "       \"ns_per_rotation\",\"ns_median\",\"ns_min\",\"ns_max\",\"mults\",\"mults_per_ns\",\n"
-    "       \"count\",\"batch\"}]}   (setup_ns: the matrix-to-angles step alone)\n";
+    "       \"count\",\"batch\",\"kernel\",\"input\"}]}   (setup_ns: the matrix-to-angles step\n"
+    "       alone; kernel: the one the plan used, scalar where the method has no other)\n";
 
 static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
 {
@@ -79,6 +92,43 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
     return rc;
 }
 
+/* --kernel LIST: each available (an unavailable one is refused: the run
+ * would otherwise quietly time another kernel) */
+static int parse_kernels(const char *s, sh_rot_kernel *ks, int *nk)
+{
+    char *dup = strdup(s);
+    if (!dup) return cli_fail("out of memory");
+    int rc = 0;
+    *nk = 0;
+    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t && !rc; t = strtok_r(NULL, ", ", &save)) {
+        sh_rot_kernel k;
+        if (sh_rot_kernel_parse(t, &k)) rc = cli_fail("--kernel: %s", sh_last_error());
+        else if (!sh_rot_kernel_available(k)) rc = cli_fail("--kernel: %s is not available on this machine", t);
+        for (int i = 0; !rc && i < *nk; i++)
+            if (ks[i] == k) rc = cli_fail("--kernel: '%s' given twice", t);
+        if (!rc) ks[(*nk)++] = k;
+    }
+    free(dup);
+    if (!rc && *nk == 0) rc = cli_fail("--kernel: empty list");
+    return rc;
+}
+
+static int parse_inputs(const char *s, int *bits)
+{
+    char *dup = strdup(s);
+    if (!dup) return cli_fail("out of memory");
+    int rc = 0;
+    *bits = 0;
+    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t && !rc; t = strtok_r(NULL, ", ", &save)) {
+        if (!strcmp(t, "euler")) *bits |= 1;
+        else if (!strcmp(t, "matrix")) *bits |= 2;
+        else rc = cli_fail("--input: '%s' (euler or matrix)", t);
+    }
+    free(dup);
+    if (!rc && !*bits) rc = cli_fail("--input: empty list");
+    return rc;
+}
+
 static int run(int argc, char **argv)
 {
     for (int k = 1; k < argc; k++)
@@ -97,6 +147,8 @@ static int run(int argc, char **argv)
                                          {"max-beta", required_argument, 0, 'B'},
                                          {"seed", required_argument, 0, 's'},
                                          {"quiet", no_argument, 0, 'q'},
+                                         {"kernel", required_argument, 0, 'K'},
+                                         {"input", required_argument, 0, 'I'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     sh_precision prec = SH_PREC_DOUBLE;
@@ -106,6 +158,8 @@ static int run(int argc, char **argv)
     int orders[64];
     double max_beta = 0;
     int have_beta = 0;
+    sh_rot_kernel kernels[SH_KERNEL_N] = {SH_KERNEL_AUTO};
+    int nk = 1, inputs = 1; /* bit 0 euler, bit 1 matrix */
     opterr = 0;
     optind = 1;
     int o;
@@ -122,7 +176,15 @@ static int run(int argc, char **argv)
             if (!strcmp(optarg, "per-rotation")) modes = 1;
             else if (!strcmp(optarg, "batched")) modes = 2;
             else if (!strcmp(optarg, "both")) modes = 3;
-            else return cli_fail("--mode: '%s' (per-rotation, batched or both)", optarg);
+            else if (!strcmp(optarg, "k-rotations")) modes = 4;
+            else if (!strcmp(optarg, "all")) modes = 7;
+            else return cli_fail("--mode: '%s' (per-rotation, batched, both, k-rotations or all)", optarg);
+            break;
+        case 'K':
+            if (parse_kernels(optarg, kernels, &nk)) return CLI_EXIT_USAGE;
+            break;
+        case 'I':
+            if (parse_inputs(optarg, &inputs)) return CLI_EXIT_USAGE;
             break;
         case 'c':
             if (cli_int("--count", optarg, &bo.count)) return CLI_EXIT_USAGE;
@@ -183,19 +245,33 @@ static int run(int argc, char **argv)
                 return cli_fail("bench: method %s is limited to order %d", sh_rot_method_name(ms[k]),
                                 sh_rot_method_max_order(ms[k]));
     json_t *rows = json_array();
-    const int total = nm * no * ((modes & 1) + (modes >> 1));
+    const int nmodes = (modes & 1) + ((modes >> 1) & 1) + ((modes >> 2) & 1);
+    const int ninputs = (inputs & 1) + (inputs >> 1);
+    const int total = nm * no * nk * nmodes * ninputs;
     int done = 0;
     for (int k = 0; k < nm && rows; k++)
         for (int q = 0; q < no && rows; q++)
-            for (int md = 0; md < 2 && rows; md++) {
-                if (!(modes & (1 << md))) continue;
-                const sh_bench_mode mode = md ? SH_BENCH_BATCHED : SH_BENCH_PER_ROTATION;
+            for (int kk = 0; kk < nk && rows; kk++)
+            for (int in = 0; in < 2 && rows; in++)
+            for (int md = 0; md < 3 && rows; md++) {
+                if (!(modes & (1 << md)) || !(inputs & (1 << in))) continue;
+                /* k-rotations takes matrices: timed once, under the first input listed */
+                if (md == 2 && in == 1 && (inputs & 1)) continue;
+                const sh_bench_mode mode = md == 2 ? SH_BENCH_KROT : md ? SH_BENCH_BATCHED : SH_BENCH_PER_ROTATION;
+                bo.kernel = kernels[kk];
+                bo.input = (md == 2 || in) ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
                 if (!quiet)
-                    fprintf(stderr, "bench: %d/%d %s order %d %s\n", ++done, total,
-                            sh_rot_method_name(ms[k]), orders[q], sh_bench_mode_name(mode));
+                    fprintf(stderr, "bench: %d/%d %s order %d %s %s %s\n", ++done, total,
+                            sh_rot_method_name(ms[k]), orders[q], sh_rot_kernel_name(kernels[kk]),
+                            sh_bench_input_name(bo.input), sh_bench_mode_name(mode));
                 sh_bench_result r;
                 const int st = sh_rot_bench(orders[q], ms[k], prec, mode, &bo, &r);
                 if (st) { json_decref(rows); return cli_fail_status(st); }
+                sh_rot_kernel used = SH_KERNEL_SCALAR;
+                sh_rot_plan *kp = NULL;
+                if (!sh_rot_plan_create_kernel(orders[q], ms[k], prec, com.conv, kernels[kk], &kp))
+                    used = sh_rot_plan_kernel(kp);
+                sh_rot_plan_free(kp);
                 json_t *row = json_object();
                 row = cli_put(row, "method", json_string(sh_rot_method_name(ms[k])));
                 row = cli_put(row, "order", json_integer(orders[q]));
@@ -209,6 +285,8 @@ static int run(int argc, char **argv)
                 row = cli_put(row, "mults_per_ns", json_real(r.mults_per_ns));
                 row = cli_put(row, "count", json_integer(r.count));
                 row = cli_put(row, "batch", json_integer(md ? bo.batch : 1));
+                row = cli_put(row, "kernel", json_string(sh_rot_kernel_name(used)));
+                row = cli_put(row, "input", json_string(sh_bench_input_name(bo.input)));
                 if (!row || json_array_append_new(rows, row)) { json_decref(rows); rows = NULL; }
             }
     json_t *root = json_object();

@@ -28,9 +28,13 @@ static const char help[] =
     "  --threads N          halfpi: threads over bands and channels (default: all\n"
     "                       cores; the result is the same for any N)\n"
     "  --precision P        double (default) | float\n"
+    "  --kernel K           auto (default) | scalar | unrolled | sse2 | avx2 | avx512:\n"
+    "                       the code that runs (unrolled kernels: zxzxz and taylor*,\n"
+    "                       order <= 10; the others always run the scalar loops)\n"
     "Rotation (exactly one): --euler A,B,G | --quat W,X,Y,Z | --matrix R00,...,R22 |\n"
     "  --axis X,Y,Z --angle T;  --inverse, --orthonormalize, --degrees\n"
-    "  (see shlab rotmat --help)\n"
+    "  (see shlab rotmat --help; --euler reaches the plan as angles, the other\n"
+    "  forms as the matrix, sh_rot_plan_set_matrix)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
@@ -41,7 +45,8 @@ static const char help[] =
     "coefficients and their JSON text are the bulk); with --inverse it applies\n"
     "the transpose, so a round trip adds no rounding of the angles.\n"
     "\n"
-    "JSON: {\"order\",\"method\",\"convention\",\"precision\",\"coeffs\":[...]} (or \"channels\")\n";
+    "JSON: {\"order\",\"method\",\"convention\",\"precision\",\"coeffs\":[...]} (or \"channels\"),\n"
+    "      with --kernel also \"kernel\" (the one used)\n";
 
 /* From this order on a run says, before it starts, what it will take. */
 #define ROTATE_NOTE_ORDER 128
@@ -54,7 +59,8 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,     CLI_LONGOPT_ORDER,
                                          CLI_LONGOPT_CONVENTION, CLI_LONGOPT_DEGREES,
                                          CLI_LONGOPTS_ROTATION,  CLI_LONGOPT_METHOD,
-                                         CLI_LONGOPT_PRECISION,  {"coeffs", required_argument, 0, 'k'},
+                                         CLI_LONGOPT_PRECISION,  CLI_LONGOPT_KERNEL,
+                                         {"coeffs", required_argument, 0, 'k'},
                                          {"in", required_argument, 0, 'i'},
                                          {"threads", required_argument, 0, 't'},
                                          {0, 0, 0, 0}};
@@ -127,6 +133,7 @@ static int run(int argc, char **argv)
     method = com.have_method ? com.method : sh_rot_method_default(order, 0);
     const double vec_bytes = (double)n * nchan * (sizeof(double) + ROTATE_JSON_BYTES);
     int st;
+    sh_rot_kernel used = SH_KERNEL_SCALAR;
     if (method == SH_ROT_HALFPI && prec == SH_PREC_DOUBLE) { /* streamed, threads */
         sh_rot_stream *s = NULL;
         st = sh_rot_stream_create(order, com.conv, threads, &s);
@@ -156,9 +163,12 @@ static int run(int argc, char **argv)
                     pb / 1e6, (pb + vec_bytes) / 1e6);
         }
         sh_rot_plan *p = NULL;
-        if (!st) st = sh_rot_plan_create(order, method, prec, com.conv, &p);
-        if (!st) st = sh_rot_plan_set(p, &rot);
+        if (!st) st = sh_rot_plan_create_kernel(order, method, prec, com.conv, com.kernel, &p);
+        /* angles as angles, any other form as its matrix (sh_rot_plan_set_matrix) */
+        if (!st)
+            st = ra.form && !strcmp(ra.form, "euler") ? sh_rot_plan_set(p, &rot) : sh_rot_plan_set_matrix(p, rot.R);
         for (int k = 0; !st && k < nchan; k++) st = sh_rot_plan_apply(p, c + (size_t)k * n, c + (size_t)k * n);
+        if (p) used = sh_rot_plan_kernel(p);
         sh_rot_plan_free(p);
     }
     if (st) { free(c); return cli_fail_status(st); }
@@ -168,6 +178,7 @@ static int run(int argc, char **argv)
     root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
     root = cli_put(root, "precision", json_string(sh_precision_name(prec)));
+    if (com.have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(used)));
     if (nchan == 1 && !strcmp(names[0], "Y")) {
         root = cli_put(root, "coeffs", cli_json_array(c, (size_t)n));
     } else {

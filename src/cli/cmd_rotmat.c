@@ -5,6 +5,7 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 extern const cli_command cmd_rotmat;
 
@@ -44,12 +45,17 @@ static const char help[] =
     "                       The Taylor methods warn on stderr, with the estimated error,\n"
     "                       when β is beyond the angle where their lobe error reaches 1e-2\n"
     "  --precision P        double (default) | float (computed in float)\n"
+    "  --kernel K           auto (default) | scalar | unrolled | sse2 | avx2 | avx512\n"
+    "                       (whole orders; the unrolled kernels give the matrix by\n"
+    "                       rotating each unit vector)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],\n"
-    "       \"orthogonality_error\",\"matrix\":[[...]]}\n"
+    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],[\"kernel\"],\n"
+    "       \"orthogonality_error\",\"matrix\":[[...]]}  (kernel: with --kernel, the one used)\n"
+    "A rotation given by --euler reaches the plan as angles, any other form as its\n"
+    "matrix (sh_rot_plan_set_matrix, no trigonometric call for zxzxz and taylor*).\n"
     "orthogonality_error is max|R Rᵀ - I| (for --band: the two-probe estimate\n"
     "max|Rᵀ(R v) - v|); an exact method above 1e-8 (float: 1e-3) gets a warning\n"
     "on stderr: it has broken down at that band.\n";
@@ -70,7 +76,8 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,     CLI_LONGOPT_ORDER,
                                          CLI_LONGOPT_CONVENTION, CLI_LONGOPT_DEGREES,
                                          CLI_LONGOPTS_ROTATION,  CLI_LONGOPT_METHOD,
-                                         CLI_LONGOPT_PRECISION,  {"band", required_argument, 0, 'b'},
+                                         CLI_LONGOPT_PRECISION,  CLI_LONGOPT_KERNEL,
+                                         {"band", required_argument, 0, 'b'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_rotation_args ra = {0};
@@ -137,9 +144,12 @@ static int run(int argc, char **argv)
         double *M = malloc(n * n * sizeof *M);
         sh_rot_plan *p = NULL;
         if (!blocks || !M) { free(blocks); free(M); json_decref(root); return cli_fail("out of memory"); }
-        st = sh_rot_plan_create(order, method, prec, com.conv, &p);
-        if (!st) st = sh_rot_plan_set(p, &rot);
+        st = sh_rot_plan_create_kernel(order, method, prec, com.conv, com.kernel, &p);
+        /* a rotation given as angles reaches the plan as angles, any other
+         * form as its matrix (sh_rot_plan_set_matrix: no angles) */
+        if (!st) st = ra.form && !strcmp(ra.form, "euler") ? sh_rot_plan_set(p, &rot) : sh_rot_plan_set_matrix(p, rot.R);
         if (!st) st = sh_rot_plan_blocks(p, blocks);
+        if (p && com.have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(sh_rot_plan_kernel(p))));
         sh_rot_plan_free(p);
         if (st) { free(blocks); free(M); json_decref(root); return cli_fail_status(st); }
         sh_rot_blocks_to_dense(order, blocks, M);

@@ -26,6 +26,11 @@ static const char help[] =
     "  --method M           instead of a candidate, run shlab's method M\n"
     "  --precision P        double (default) | float: the tolerance (and, with\n"
     "                       --method, the arithmetic) to use\n"
+    "  --kernel K           with --method: auto (default) | scalar | unrolled |\n"
+    "                       sse2 | avx2 | avx512, the code that runs (the fixture's\n"
+    "                       Euler angles reach the plan as angles; --matrix-input:\n"
+    "                       as the case's matrix, sh_rot_plan_set_matrix)\n"
+    "  --matrix-input       with --method: give each case's rotation as its matrix\n"
     "  --diagnose           on failure, test what the candidate matches instead:\n"
     "                       the other CS-phase convention, the inverse (frame)\n"
     "                       rotation, α and γ swapped, β negated, degrees taken as\n"
@@ -46,7 +51,8 @@ static const char help[] =
     "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
     "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
     "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
-    "       cases mix both),[\"method\" (with --method)],[\"simulated\" (with --simulate)],\n"
+    "       cases mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
+    "       [\"simulated\" (with --simulate)],\n"
     "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
     "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
     "The diagnosis compares at each case's float32 tolerance (1e-6 and more), so its\n"
@@ -191,11 +197,13 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_METHOD,
                                          CLI_LONGOPT_PRECISION,
+                                         CLI_LONGOPT_KERNEL,
                                          {"fixture", required_argument, 0, 'f'},
                                          {"candidate", required_argument, 0, 'c'},
                                          {"diagnose", no_argument, 0, 'd'},
                                          {"emit-candidate", required_argument, 0, 'E'},
                                          {"simulate", required_argument, 0, 'S'},
+                                         {"matrix-input", no_argument, 0, 'X'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *fixture = NULL, *cand = NULL;
@@ -203,6 +211,7 @@ static int run(int argc, char **argv)
     sh_precision prec = SH_PREC_DOUBLE;
     int have_method = 0, diagnose = 0, simulate = -1; /* -1 none, T_COUNT = float */
     const char *emit = NULL;
+    int matrix_input = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -212,6 +221,7 @@ static int run(int argc, char **argv)
         case 'c': cand = optarg; break;
         case 'd': diagnose = 1; break;
         case 'E': emit = optarg; break;
+        case 'X': matrix_input = 1; break;
         case 'S':
             simulate = -2;
             for (int t = 0; t < T_COUNT; t++)
@@ -237,6 +247,7 @@ static int run(int argc, char **argv)
     if (!cand == !have_method) return cli_fail("verify: give exactly one of --candidate and --method");
     if (emit && !have_method) return cli_fail("verify: --emit-candidate needs --method");
     if (simulate != -1 && !emit) return cli_fail("verify: --simulate needs --emit-candidate");
+    if ((com.have_kernel || matrix_input) && !have_method) return cli_fail("verify: --kernel and --matrix-input need --method");
     fx_set fx;
     if (fx_load(fixture, &fx)) return CLI_EXIT_USAGE;
     double **got = calloc((size_t)fx.ncases + 1, sizeof *got);
@@ -263,8 +274,8 @@ static int run(int argc, char **argv)
             if (simulate >= 0 && simulate < T_COUNT)
                 st = transformed((transform)simulate, c, got[k], tmp);
             else
-                st = fx_apply(method, simulate == T_COUNT ? SH_PREC_FLOAT : prec, c, &c->rot,
-                              c->conv, c->input, got[k]);
+                st = fx_apply_kernel(method, simulate == T_COUNT ? SH_PREC_FLOAT : prec, com.kernel,
+                                     matrix_input, c, &c->rot, c->conv, c->input, got[k]);
         }
         if (st) { rc = cli_fail("verify: %s", sh_last_error()); goto done; }
         if (emit && (rc = write_candidate(emit, &fx, got))) goto done;
@@ -308,6 +319,8 @@ static int run(int argc, char **argv)
                    json_string(have_cs && have_nocs ? "cs+nocs" : have_nocs ? "nocs" : "cs"));
     if (have_method) root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
     if (simulate >= 0) root = cli_put(root, "simulated", json_string(simulate < T_COUNT ? t_short[simulate] : "float"));
+    if (com.have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(com.kernel)));
+    if (matrix_input) root = cli_put(root, "input", json_string("matrix"));
     if (diagnose && failed) {
         /* float precision only: every case within its float32 tolerance */
         int float_ok = 0, best = -1, best_n = 0, best_seen = 0;

@@ -35,7 +35,12 @@
 
 const char *sh_bench_mode_name(sh_bench_mode m)
 {
-    return m == SH_BENCH_BATCHED ? "batched" : "per-rotation";
+    return m == SH_BENCH_BATCHED ? "batched" : m == SH_BENCH_KROT ? "k-rotations" : "per-rotation";
+}
+
+const char *sh_bench_input_name(sh_bench_input i)
+{
+    return i == SH_BENCH_INPUT_MATRIX ? "matrix" : "euler";
 }
 
 static double now_ns(void)
@@ -63,6 +68,12 @@ typedef struct {
     double (*R)[9];  /* pool of matrices */
     double *vin, *vout;
     double sink;
+    /* matrix input and k-rotations (bench_pool_matrix): the pool in float,
+     * and `batch` matrices and vectors as structure of arrays */
+    int input, fl;
+    float (*Rf)[9];
+    float *vinf, *voutf;
+    void *Rs, *xs, *ys;
 } bench_ctx;
 
 static int bench_pool(bench_ctx *b, const sh_bench_opts *o, int zonly)
@@ -84,6 +95,69 @@ static int bench_pool(bench_ctx *b, const sh_bench_opts *o, int zonly)
     return SH_OK;
 }
 
+/* The pool for matrix input and k-rotations: float copies, and the batch
+ * as structure of arrays (R[j·K + k], x[i·K + k]) in the plan's precision. */
+static int bench_pool_matrix(bench_ctx *b)
+{
+    const size_t K = (size_t)b->batch, nc = (size_t)b->nc, es = b->fl ? sizeof(float) : sizeof(double);
+    b->Rf = malloc(SH_BENCH_POOL * sizeof *b->Rf);
+    b->vinf = malloc((size_t)SH_BENCH_POOL * nc * sizeof *b->vinf);
+    b->voutf = malloc(nc * sizeof *b->voutf);
+    b->Rs = malloc(9 * K * es);
+    b->xs = malloc(nc * K * es);
+    b->ys = malloc(nc * K * es);
+    if (!b->Rf || !b->vinf || !b->voutf || !b->Rs || !b->xs || !b->ys) return sh_error(SH_ENOMEM, "bench: out of memory");
+    for (int k = 0; k < SH_BENCH_POOL; k++)
+        for (int j = 0; j < 9; j++) b->Rf[k][j] = (float)b->R[k][j];
+    for (size_t i = 0; i < (size_t)SH_BENCH_POOL * nc; i++) b->vinf[i] = (float)b->vin[i];
+    for (size_t k = 0; k < K; k++) {
+        const size_t q = k & (SH_BENCH_POOL - 1);
+        for (int j = 0; j < 9; j++) {
+            if (b->fl) ((float *)b->Rs)[(size_t)j * K + k] = b->Rf[q][j];
+            else ((double *)b->Rs)[(size_t)j * K + k] = b->R[q][j];
+        }
+        for (size_t i = 0; i < nc; i++) {
+            if (b->fl) ((float *)b->xs)[i * K + k] = b->vinf[q * nc + i];
+            else ((double *)b->xs)[i * K + k] = b->vin[q * nc + i];
+        }
+    }
+    return SH_OK;
+}
+
+static void bench_free(bench_ctx *b)
+{
+    free(b->R), free(b->vin), free(b->vout);
+    free(b->Rf), free(b->vinf), free(b->voutf), free(b->Rs), free(b->xs), free(b->ys);
+}
+
+/* Matrix input (set_matrix, vectors in the plan's precision; batched: one
+ * apply_many) and k-rotations (one rotate_many of the batch); `count`
+ * iterations. */
+static int bench_run_matrix(bench_ctx *b, int count)
+{
+    int st = SH_OK;
+    const size_t nc = (size_t)b->nc, K = (size_t)b->batch;
+    for (int it = 0; it < count; it++) {
+        const int k = it & (SH_BENCH_POOL - 1);
+        if (b->mode == SH_BENCH_KROT) {
+            if (b->fl) st |= sh_rot_plan_rotate_many_f(b->p, K, b->Rs, b->xs, b->ys);
+            else st |= sh_rot_plan_rotate_many(b->p, K, b->Rs, b->xs, b->ys);
+        } else if (b->fl) {
+            st |= sh_rot_plan_set_matrix_f(b->p, b->Rf[k]);
+            if (b->mode == SH_BENCH_BATCHED) st |= sh_rot_plan_apply_many_f(b->p, K, b->xs, b->ys);
+            else st |= sh_rot_plan_apply_f(b->p, b->vinf + k * nc, b->voutf);
+        } else {
+            st |= sh_rot_plan_set_matrix(b->p, b->R[k]);
+            if (b->mode == SH_BENCH_BATCHED) st |= sh_rot_plan_apply_many(b->p, K, b->xs, b->ys);
+            else st |= sh_rot_plan_apply(b->p, b->vin + k * nc, b->vout);
+        }
+        const size_t i = (size_t)it % nc;
+        if (b->mode == SH_BENCH_PER_ROTATION) b->sink += b->fl ? (double)b->voutf[i] : b->vout[i];
+        else b->sink += b->fl ? (double)((float *)b->ys)[i * K] : ((double *)b->ys)[i * K];
+    }
+    return st;
+}
+
 /* The user's step: an orthonormal frame becomes an sh_rotation. */
 static inline void rot_from_frame(const double R[9], sh_rotation *r)
 {
@@ -98,7 +172,9 @@ static double bench_run(bench_ctx *b, int count)
     int st = SH_OK;
     const size_t nc = (size_t)b->nc;
     const double t0 = now_ns();
-    if (b->mode == SH_BENCH_PER_ROTATION) {
+    if (b->input == SH_BENCH_INPUT_MATRIX || b->mode == SH_BENCH_KROT) {
+        st = bench_run_matrix(b, count);
+    } else if (b->mode == SH_BENCH_PER_ROTATION) {
         for (int it = 0; it < count; it++) {
             const int k = it & (SH_BENCH_POOL - 1);
             rot_from_frame(b->R[k], &r);
@@ -133,17 +209,20 @@ int sh_rot_bench(int order, sh_rot_method method, sh_precision prec, sh_bench_mo
     const sh_bench_opts *o = opts ? opts : &def;
     if (o->repeat < 1 || o->count < 0 || o->batch < 1 || !(o->target_ms >= 0) || !(o->max_beta >= 0 && o->max_beta <= M_PI))
         return sh_error(SH_EINVAL, "bench: need repeat >= 1, count >= 0, batch >= 1, max beta in [0, pi]");
-    if (mode != SH_BENCH_PER_ROTATION && mode != SH_BENCH_BATCHED)
+    if (mode != SH_BENCH_PER_ROTATION && mode != SH_BENCH_BATCHED && mode != SH_BENCH_KROT)
         return sh_error(SH_EINVAL, "bench: unknown mode");
+    if (o->input != SH_BENCH_INPUT_EULER && o->input != SH_BENCH_INPUT_MATRIX)
+        return sh_error(SH_EINVAL, "bench: unknown input");
     memset(res, 0, sizeof *res);
-    bench_ctx b = {order, order * order, mode == SH_BENCH_BATCHED ? o->batch : 1, mode, NULL, NULL,
-                   NULL, NULL, 0};
+    bench_ctx b = {.order = order, .nc = order * order, .batch = mode == SH_BENCH_PER_ROTATION ? 1 : o->batch,
+                   .mode = mode, .input = o->input, .fl = prec == SH_PREC_FLOAT};
     if (o->conv != SH_CS && o->conv != SH_NOCS) return sh_error(SH_EINVAL, "bench: unknown convention");
-    int st = sh_rot_plan_create(order, method, prec, o->conv, &b.p);
+    int st = sh_rot_plan_create_kernel(order, method, prec, o->conv, o->kernel, &b.p);
     if (st) return st;
     double *t = malloc((size_t)o->repeat * sizeof *t);
     if (!t) st = sh_error(SH_ENOMEM, "bench: out of memory");
     if (!st) st = bench_pool(&b, o, method == SH_ROT_Z);
+    if (!st && (b.input == SH_BENCH_INPUT_MATRIX || mode == SH_BENCH_KROT)) st = bench_pool_matrix(&b);
     int count = o->count;
     if (!st && count == 0) {
         /* calibrate: double the count until one run takes ≥ 1 ms (or the
@@ -177,15 +256,14 @@ int sh_rot_bench(int order, sh_rot_method method, sh_precision prec, sh_bench_mo
         res->ns_min = t[0];
         res->ns_max = t[R - 1];
         sh_rot_plan_mults(b.p, &res->set_mults, &res->apply_mults);
-        res->mults = (double)res->set_mults / b.batch + (double)res->apply_mults;
+        /* batched: one set per batch; k-rotations: one per vector */
+        res->mults = (double)res->set_mults / (mode == SH_BENCH_BATCHED ? b.batch : 1) + (double)res->apply_mults;
         res->mults_per_ns = res->ns_median > 0 ? res->mults / res->ns_median : 0;
         res->count = count;
         res->checksum = isfinite(b.sink) ? b.sink : 0;
     }
     free(t);
-    free(b.R);
-    free(b.vin);
-    free(b.vout);
+    bench_free(&b);
     sh_rot_plan_free(b.p);
     return st;
 }
@@ -194,7 +272,7 @@ double sh_rot_bench_setup_ns(const sh_bench_opts *opts)
 {
     const sh_bench_opts def = SH_BENCH_OPTS_DEFAULT;
     const sh_bench_opts *o = opts ? opts : &def;
-    bench_ctx b = {1, 1, 1, SH_BENCH_PER_ROTATION, NULL, NULL, NULL, NULL, 0};
+    bench_ctx b = {.order = 1, .nc = 1, .batch = 1, .mode = SH_BENCH_PER_ROTATION};
     if (bench_pool(&b, o, 0)) {
         free(b.R); free(b.vin); free(b.vout);
         return 0;

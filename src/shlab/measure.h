@@ -18,8 +18,22 @@ extern "C" {
  * once registered) can be timed, measured and chosen. */
 typedef enum {
     SH_BENCH_PER_ROTATION = 0, /* per vector: matrix → sh_rotation → plan_set → apply */
-    SH_BENCH_BATCHED           /* one set, then `batch` vectors applied; per vector */
+    SH_BENCH_BATCHED,          /* one set, then `batch` vectors applied; per vector */
+    SH_BENCH_KROT              /* `batch` rotations applied to `batch` vectors in one
+                                  sh_rot_plan_rotate_many call (structure of arrays);
+                                  per vector */
 } sh_bench_mode;
+/* How the rotation reaches the plan:
+ *   EULER   the user's 3×3 matrix → ZYZ angles (sh_euler_from_matrix) →
+ *           sh_rot_plan_set; vectors as double (sh_rot_plan_apply) — the
+ *           path every earlier version of shlab timed;
+ *   MATRIX  sh_rot_plan_set_matrix (no angles), vectors in the plan's
+ *           precision: float plans take float matrices and vectors
+ *           (sh_rot_plan_set_matrix_f, sh_rot_plan_apply_f); batched mode
+ *           applies the batch as one sh_rot_plan_apply_many call.
+ * SH_BENCH_KROT always takes matrices (structure of arrays). */
+typedef enum { SH_BENCH_INPUT_EULER = 0, SH_BENCH_INPUT_MATRIX } sh_bench_input;
+const char *sh_bench_input_name(sh_bench_input i);
 const char *sh_bench_mode_name(sh_bench_mode m);
 typedef struct {
     int count;     /* timed iterations per repeat; 0 = calibrated to ~target_ms */
@@ -30,8 +44,11 @@ typedef struct {
                          z method is always timed at β = 0, its only domain) */
     uint64_t seed;    /* rotations and vectors (deterministic) */
     sh_convention conv; /* convention of the plans timed (default SH_CS) */
+    sh_rot_kernel kernel; /* the plans' kernel (default SH_KERNEL_AUTO) */
+    sh_bench_input input; /* default SH_BENCH_INPUT_EULER */
 } sh_bench_opts;
-#define SH_BENCH_OPTS_DEFAULT {0, 11, 16, 5.0, 3.14159265358979323846, 12345u, SH_CS}
+#define SH_BENCH_OPTS_DEFAULT                                                                      \
+    {0, 11, 16, 5.0, 3.14159265358979323846, 12345u, SH_CS, SH_KERNEL_AUTO, SH_BENCH_INPUT_EULER}
 typedef struct {
     double ns_median, ns_min, ns_max; /* ns per rotated vector, over the repeats */
     double mults;        /* counted multiplications per rotated vector:

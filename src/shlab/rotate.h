@@ -91,7 +91,8 @@ sh_rot_method sh_rot_method_default(int order, int one_band);
  * per-order tables (X±90 blocks, recursion coefficients) are built here —
  * then set a rotation and apply it to many vectors.  Not thread-safe; one
  * plan per thread.  Float plans compute and apply in float arithmetic;
- * vectors cross the interface as double. */
+ * vectors cross this interface as double (sh_rot_plan_apply_f and the
+ * batches below take float). */
 typedef struct sh_rot_plan sh_rot_plan;
 int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                        sh_rot_plan **out);
@@ -114,6 +115,69 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks);
 /* Multiplications executed (counted by the kernels' loops, not by formula) by
  * the last sh_rot_plan_set and by one sh_rot_plan_apply. */
 void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *apply_mults);
+
+/* Kernels.  zxzxz and the Taylor methods (up to order 10) and ivanic (up to
+ * order 6) have unrolled kernels (generated straight-line code), built once
+ * per instruction set; the plan picks one when it is created and keeps it:
+ *   scalar    the loop kernels (every method and order; the reference path)
+ *   unrolled  the unrolled kernels, built with the default flags
+ *   sse2      unrolled; batches in SSE2 lanes (4 floats / 2 doubles)
+ *   avx2      unrolled with AVX2 + FMA; batches in 8 / 4 lanes
+ *   avx512    unrolled with AVX-512 registers; batches in 16 / 8 lanes
+ *   auto      the best this CPU runs (avx512, else avx2, else sse2, else
+ *             unrolled)
+ * A plan whose method or order has no unrolled kernel uses the loop kernels
+ * (sh_rot_plan_kernel then says scalar).  sh_rot_plan_create uses auto. */
+typedef enum {
+    SH_KERNEL_AUTO = 0,
+    SH_KERNEL_SCALAR,
+    SH_KERNEL_UNROLLED,
+    SH_KERNEL_SSE2,
+    SH_KERNEL_AVX2,
+    SH_KERNEL_AVX512,
+    SH_KERNEL_N
+} sh_rot_kernel;
+const char *sh_rot_kernel_name(sh_rot_kernel k);
+int sh_rot_kernel_parse(const char *s, sh_rot_kernel *out);
+/* 1 if kernel k is compiled in and this CPU (and OS) runs it. */
+int sh_rot_kernel_available(sh_rot_kernel k);
+/* sh_rot_plan_create with a kernel; SH_ENOTSUP if it is not available. */
+int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
+                              sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out);
+sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
+
+/* The rotation as a row-major 3×3 matrix or a quaternion (w, x, y, z; any
+ * non-zero norm), without trigonometric calls for zxzxz and the Taylor
+ * methods (cos, sin of α, β, γ by algebra from the well-conditioned
+ * entries, exact at β = 0 and π; the Taylor methods take β by one atan2).
+ * blanco takes the half angles by square roots.
+ * The matrix must be a rotation (not checked beyond finite entries; use
+ * sh_rotation_from_matrix to check or orthonormalise one).  The _f forms
+ * take float input and compute in float (float plans only). */
+int sh_rot_plan_set_matrix(sh_rot_plan *p, const double R[9]);
+int sh_rot_plan_set_quat(sh_rot_plan *p, const double q[4]);
+int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9]);
+int sh_rot_plan_set_quat_f(sh_rot_plan *p, const float q[4]);
+/* out = R_sh in for a float plan, float vectors (in-place allowed). */
+int sh_rot_plan_apply_f(sh_rot_plan *p, const float *in, float *out);
+/* Batches, as structure of arrays (coefficient-major, vector-minor):
+ * coefficient i of vector k at in[i·K + k], order²·K values; in == out
+ * allowed.  apply_many: the plan's rotation applied to K vectors (colour
+ * channels, many functions).  rotate_many: K rotations applied to K vectors,
+ * rotation k given as R[j·K + k], j = 0..8 (row-major entries), or as a
+ * quaternion q[j·K + k], j = 0..3; vectorised across rotations by the SIMD
+ * kernels.  Double plans take the double forms, float plans the _f forms.
+ * After rotate_many the plan has no rotation set. */
+int sh_rot_plan_apply_many(sh_rot_plan *p, size_t K, const double *in, double *out);
+int sh_rot_plan_apply_many_f(sh_rot_plan *p, size_t K, const float *in, float *out);
+int sh_rot_plan_rotate_many(sh_rot_plan *p, size_t K, const double *R, const double *in,
+                            double *out);
+int sh_rot_plan_rotate_many_f(sh_rot_plan *p, size_t K, const float *R, const float *in,
+                              float *out);
+int sh_rot_plan_rotate_many_quat(sh_rot_plan *p, size_t K, const double *q, const double *in,
+                                 double *out);
+int sh_rot_plan_rotate_many_quat_f(sh_rot_plan *p, size_t K, const float *q, const float *in,
+                                   float *out);
 
 /* One band only (l = band), as a (2l+1)² row-major block, for methods that
  * can compute a band without the lower ones (blanco, wigner, reference; the

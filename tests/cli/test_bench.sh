@@ -21,16 +21,17 @@ for t in taylor1 taylor1.5 taylor2; do
     else notok "bench $t (exit $rc: $(head -c 200 "$TMP/err"))"; fi
 done
 
-expect_success "bench zxzxz,ivanic" bench --methods zxzxz,ivanic --order 3,6 --count 20 --repeat 3 --batch 4 --format csv --quiet
+expect_success "bench zxzxz,ivanic" bench --methods zxzxz,ivanic --order 3,6 --count 20 --repeat 3 --batch 4 --format csv --quiet --kernel scalar
 rows=$(($(wc -l <"$TMP/out") - 1))
 [ "$rows" = 8 ] && ok "bench: 2 methods x 2 orders x 2 modes = 8 rows" || notok "bench rows $rows"
 # columns (after convention,repeat,setup_ns): method,order,precision,mode,ns_per_rotation,
-# ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch
-head -1 "$TMP/out" | grep -q ',method,order,precision,mode,ns_per_rotation,ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch$' \
+# ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch,kernel,input
+head -1 "$TMP/out" | grep -q ',method,order,precision,mode,ns_per_rotation,ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch,kernel,input$' \
     && ok "bench csv header" || notok "bench csv header: $(head -1 "$TMP/out")"
 bad=$(awk -F, 'NR > 1 && !($10 > 0 && $10 <= $9 && $9 <= $11 && $8 == $9 && $13 > 0) { print }' "$TMP/out")
 [ -z "$bad" ] && ok "bench: 0 < min <= median <= max, ns_per_rotation = median" || notok "bench spread: $bad"
-# zxzxz per vector: n(2n²+18n−14)/3 (Krivánek Sec. 3.1) + multiple angles 6(n−2)
+# zxzxz per vector (the loop kernel, --kernel scalar): n(2n²+18n−14)/3
+# (Krivánek Sec. 3.1) + multiple angles 6(n−2)
 for n in 3 6; do
     m=$(awk -F, -v n=$n '$4 == "zxzxz" && $5 == n && $7 == "per-rotation" { print $12 }' "$TMP/out")
     want=$((n * (2 * n * n + 18 * n - 14) / 3 + 6 * (n - 2)))

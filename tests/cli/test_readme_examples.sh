@@ -23,6 +23,23 @@ awk -v dir="$TMP/ex" '
     on && n { print > (f ".out") }
 ' "$README"
 
+# Same text, and every number equal to 1e-13 relative or 1e-15 absolute.
+same_to_rounding() {
+    awk -v other="$2" '
+        function isnum(t) { return t ~ /^-?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?$/ }
+        { if ((getline o < other) <= 0) { bad = 1; exit }
+          n = split($0, a, /[][ ,:\t{}"]+/); m = split(o, b, /[][ ,:\t{}"]+/)
+          if (n != m) { bad = 1; exit }
+          for (i = 1; i <= n; i++) {
+              if (a[i] == b[i]) continue
+              if (!isnum(a[i]) || !isnum(b[i])) { bad = 1; exit }
+              d = a[i] - b[i]; if (d < 0) d = -d
+              s = a[i] < 0 ? -a[i] : a[i]
+              if (d > 1e-15 && d > 1e-13 * s) { bad = 1; exit }
+          } }
+        END { if (!bad && (getline o < other) > 0) bad = 1; exit bad }' "$1"
+}
+
 count=0
 for c in "$TMP"/ex/*.cmd; do
     [ -f "$c" ] || continue
@@ -37,6 +54,11 @@ for c in "$TMP"/ex/*.cmd; do
     (cd "$TMP/work" && PATH="$TMP/bin:$PATH" sh -c "$cmd") >"$TMP/got" 2>&1
     if cmp -s "$e" "$TMP/got"; then
         ok "README example: $cmd"
+    elif same_to_rounding "$e" "$TMP/got"; then
+        # the README shows this machine kind's output; a CPU whose rotation
+        # kernel (auto: widest instruction set) rounds differently may differ
+        # in the last digits of results that are rounding-level anyway
+        ok "README example (numbers equal to 1e-13 relative / 1e-15 absolute on this CPU): $cmd"
     else
         notok "README example differs: $cmd
 $(diff "$e" "$TMP/got" | head -20)"
