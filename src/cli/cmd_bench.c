@@ -1,13 +1,17 @@
 /* cmd_bench.c — `shlab bench`: time per rotation of the SH rotation methods
- * (per rotation from a 3×3 matrix, and batched), with the counted
- * multiplications and multiplications per nanosecond.  Timing logic in
- * rotation_bench.c. */
+ * (per rotation from a 3×3 matrix, and batched), interleaved in one process,
+ * with paired ratios, the noise criterion, the counted multiplications, and
+ * instructions per rotation under valgrind (--instructions).  The engine and
+ * the entries are in rotation_bench.c; this file only lists what to time. */
 #include "cli.h"
 
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 extern const cli_command cmd_bench;
 
@@ -20,37 +24,90 @@ static const char help[] =
     "                apply it (what radiance caching does per cache record);\n"
     "  batched       one rotation set, then --batch vectors applied; time per\n"
     "                vector (the set's cost shared among them).\n"
-    "A warm-up run, then --repeat timed runs of --count iterations each\n"
-    "(CLOCK_MONOTONIC); ns_per_rotation is the median over the runs, ns_min and\n"
-    "ns_max the spread.  mults = multiplications counted by the kernels' loops\n"
-    "per rotated vector (set + apply, or set/batch + apply); mults_per_ns shows\n"
-    "a kernel that is slow for its own arithmetic.  Rotations and vectors are\n"
-    "seeded (deterministic); β uniform in [0, --max-beta] (the z method only\n"
-    "rotates about z and is timed at β = 0).\n"
+    "\n"
+    "How it is timed.  At each order every (method, mode) is one entry; each\n"
+    "entry's iteration count is calibrated so that one sample lasts at least\n"
+    "--target-ms; after a warm-up round the entries are timed round-robin,\n"
+    "one sample each per round, for --repeat rounds (CLOCK_MONOTONIC), so slow\n"
+    "changes of the machine's load reach all of them alike.  ns_per_rotation =\n"
+    "ns_median is the median over the samples; ns_min, ns_q1, ns_q3, ns_max\n"
+    "and spread = (q3 − q1)/median describe them; sample_ms is the length of\n"
+    "one sample.  ratio = the median over the rounds of this entry's time\n"
+    "divided by the --baseline method's time in the same round and mode\n"
+    "(ratio_q1, ratio_q3: quartiles of those per-round ratios).\n"
+    "\n"
+    "Noise.  A run is noisy when an entry's spread or a ratio's spread exceeds\n"
+    "5 %, when the samples spent more than 2 % of their time off the CPU\n"
+    "(wall clock minus thread CPU clock: another process had the core), or\n"
+    "when other processes used more than 0.25 CPUs on average (/proc/stat).\n"
+    "A noisy run is printed as measured, with \"noisy\": true and the reason in\n"
+    "\"noise\" (and a warning on stderr): do not draw conclusions from it.\n"
+    "\n"
+    "mults = multiplications counted by the kernels' loops per rotated vector\n"
+    "(set + apply, or set/batch + apply); mults_per_ns shows a kernel that is\n"
+    "slow for its own arithmetic.  Rotations and vectors are seeded\n"
+    "(deterministic); β uniform in [0, --max-beta] (the z method only rotates\n"
+    "about z and is timed at β = 0).\n"
+    "\n"
+    "--instructions counts instead of timing: shlab runs itself under\n"
+    "valgrind's callgrind (valgrind must be installed) and reports the\n"
+    "instructions executed per rotated vector, from runs of N and 2N\n"
+    "iterations (N = --count, default 64; the difference removes fixed\n"
+    "costs).  Independent of the machine's load; the same binary gives the\n"
+    "same counts.\n"
     "\n"
     "  --order LIST       orders (comma separated; default 2,4,6,8,10,16)\n"
     "  --methods LIST     z, ivanic, zxzxz, choi, blanco, wigner, reference,\n"
     "                     taylor1, taylor1.5, taylor2, or 'all' (default: every\n"
     "                     method built in except reference, which is MPFR)\n"
     "  --mode M           per-rotation | batched | both (default both)\n"
+    "  --baseline M       method the ratios divide by (default: the first one)\n"
     "  --precision P      double (default) | float (float plans compute in float;\n"
     "                     vectors cross the API as double)\n"
-    "  --count C          iterations per timed run (default 0: calibrated to\n"
-    "                     about --target-ms each)\n"
-    "  --target-ms T      calibration target per run (default 5)\n"
-    "  --repeat R         timed runs (default 11)\n"
+    "  --count C          iterations per sample (default 0: calibrated)\n"
+    "  --target-ms T      shortest sample when calibrated (default 5)\n"
+    "  --repeat R         timed rounds (default 15)\n"
     "  --batch B          vectors per rotation in batched mode (default 16)\n"
     "  --max-beta B       largest β of the random rotations (default π)\n"
     "  --degrees          --max-beta in degrees\n"
     "  --seed S           seed of rotations and vectors (default 12345)\n"
     "  --convention C     cs (default) | nocs: convention of the plans timed\n"
+    "  --instructions     count instructions under valgrind instead of timing\n"
     "  --quiet            no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help             this text\n"
     "\n"
-    "JSON: {\"convention\",\"repeat\",\"setup_ns\",\"rows\":[{\"method\",\"order\",\"precision\",\"mode\",\n"
+    "JSON: {\"convention\",\"repeat\",\"min_sample_ms\",\"setup_ns\",\"noisy\",\"noise\",\n"
+    "       \"offcpu\",\"load\",\"rows\":[{\"method\",\"order\",\"precision\",\"mode\",\n"
     "       \"ns_per_rotation\",\"ns_median\",\"ns_min\",\"ns_max\",\"mults\",\"mults_per_ns\",\n"
-    "       \"count\",\"batch\"}]}   (setup_ns: the matrix-to-angles step alone)\n";
+    "       \"count\",\"batch\",\"ns_q1\",\"ns_q3\",\"spread\",\"sample_ms\",\"ratio_to\",\n"
+    "       \"ratio\",\"ratio_q1\",\"ratio_q3\",\"noisy_order\"}]}\n"
+    "       (setup_ns: the matrix-to-angles step alone; offcpu: fraction of the\n"
+    "       sample time off the CPU; load: CPUs used by other processes, -1 if\n"
+    "       unknown).  --instructions: {\"convention\",\"tool\",\"n\",\"rows\":\n"
+    "       [{\"method\",\"order\",\"precision\",\"mode\",\"instructions\",\"mults\",\"batch\"}]}\n";
+
+/* What to time: a variant makes the entry of (order, method) in one mode.
+ * A new kernel variant to compare is one more line in this table. */
+typedef struct {
+    const char *mode; /* the "mode" column */
+    int batched;      /* the batch column is --batch */
+    int (*make)(int order, sh_rot_method m, sh_precision prec, const sh_bench_opts *o, sh_bench_entry *e);
+} bench_variant;
+static int make_per_rotation(int order, sh_rot_method m, sh_precision prec, const sh_bench_opts *o,
+                             sh_bench_entry *e)
+{
+    return sh_rot_bench_entry(order, m, prec, SH_BENCH_PER_ROTATION, o, e);
+}
+static int make_batched(int order, sh_rot_method m, sh_precision prec, const sh_bench_opts *o, sh_bench_entry *e)
+{
+    return sh_rot_bench_entry(order, m, prec, SH_BENCH_BATCHED, o, e);
+}
+static const bench_variant variants[] = {
+    {"per-rotation", 0, make_per_rotation},
+    {"batched", 1, make_batched},
+};
+enum { NVAR = sizeof variants / sizeof *variants };
 
 static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
 {
@@ -77,6 +134,60 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
     return rc;
 }
 
+/* --instructions outside valgrind: run this same command line under
+ * callgrind (the child finds the output file in SHLAB_CALLGRIND_OUT),
+ * pass its output through, and remove the callgrind file. */
+static int rerun_under_callgrind(int argc, char **argv)
+{
+    char exe[4096];
+    const ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len <= 0) return cli_fail("bench --instructions: cannot find the shlab executable");
+    exe[len] = '\0';
+    char dir[] = "/tmp/shlab-callgrind-XXXXXX";
+    if (!mkdtemp(dir)) return cli_fail("bench --instructions: cannot make a temporary directory: %s", strerror(errno));
+    char out[sizeof dir + 16], outopt[sizeof out + 32];
+    snprintf(out, sizeof out, "%s/cg.out", dir);
+    snprintf(outopt, sizeof outopt, "--callgrind-out-file=%s", out);
+    char **args = calloc((size_t)argc + 9, sizeof *args);
+    if (!args) { rmdir(dir); return cli_fail("out of memory"); }
+    int k = 0;
+    args[k++] = "valgrind";
+    args[k++] = "--tool=callgrind";
+    args[k++] = "--instr-atstart=no";
+    args[k++] = "--combine-dumps=yes";
+    args[k++] = "-q";
+    args[k++] = outopt;
+    args[k++] = exe;
+    for (int i = 0; i < argc; i++) args[k++] = argv[i];
+    args[k] = NULL;
+    fflush(stdout);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        setenv("SHLAB_CALLGRIND_OUT", out, 1);
+        execvp("valgrind", args);
+        _exit(127);
+    }
+    free(args);
+    int status = 0, rc;
+    if (pid < 0) rc = cli_fail("bench --instructions: cannot start valgrind: %s", strerror(errno));
+    else if (waitpid(pid, &status, 0) < 0) rc = cli_fail("bench --instructions: waiting for valgrind: %s", strerror(errno));
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+        rc = cli_fail("bench --instructions needs valgrind (Debian package valgrind)");
+    else rc = WIFEXITED(status) ? WEXITSTATUS(status) : cli_fail("bench --instructions: valgrind was killed");
+    remove(out);
+    rmdir(dir);
+    return rc;
+}
+
+/* progress over all orders: the engine reports rounds within one order */
+typedef struct { cli_progress *p; int base, total; } round_progress;
+static void on_round(void *ctx, int done, int total, const char *what)
+{
+    round_progress *r = ctx;
+    (void)total;
+    cli_progress_step(r->p, r->base + done, r->total, what);
+}
+
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
@@ -86,19 +197,23 @@ static int run(int argc, char **argv)
                                          {"order", required_argument, 0, 'o'},
                                          {"methods", required_argument, 0, 'm'},
                                          {"mode", required_argument, 0, 'M'},
+                                         {"baseline", required_argument, 0, 'L'},
                                          {"count", required_argument, 0, 'c'},
                                          {"target-ms", required_argument, 0, 't'},
                                          {"repeat", required_argument, 0, 'r'},
                                          {"batch", required_argument, 0, 'b'},
                                          {"max-beta", required_argument, 0, 'B'},
                                          {"seed", required_argument, 0, 's'},
+                                         {"instructions", no_argument, 0, 'I'},
                                          {"quiet", no_argument, 0, 'q'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     sh_precision prec = SH_PREC_DOUBLE;
     sh_bench_opts bo = SH_BENCH_OPTS_DEFAULT;
-    sh_rot_method ms[SH_ROT_NMETHODS];
-    int nm = 0, have_methods = 0, quiet = 0, no = 0, modes = 3;
+    bo.repeat = 15;
+    sh_rot_method ms[SH_ROT_NMETHODS], base = SH_ROT_Z;
+    int nm = 0, have_methods = 0, have_base = 0, quiet = 0, no = 0, instructions = 0;
+    int use[NVAR] = {1, 1};
     int orders[64];
     double max_beta = 0;
     int have_beta = 0;
@@ -127,11 +242,18 @@ static int run(int argc, char **argv)
             if (parse_methods(optarg, ms, &nm)) return CLI_EXIT_USAGE;
             have_methods = 1;
             break;
-        case 'M':
-            if (!strcmp(optarg, "per-rotation")) modes = 1;
-            else if (!strcmp(optarg, "batched")) modes = 2;
-            else if (!strcmp(optarg, "both")) modes = 3;
-            else return cli_fail("--mode: '%s' (per-rotation, batched or both)", optarg);
+        case 'M': {
+            int found = 0;
+            for (int v = 0; v < NVAR; v++) {
+                use[v] = !strcmp(optarg, "both") || !strcmp(optarg, variants[v].mode);
+                found |= use[v];
+            }
+            if (!found) return cli_fail("--mode: '%s' (per-rotation, batched or both)", optarg);
+            break;
+        }
+        case 'L':
+            if (sh_rot_method_parse(optarg, &base)) return cli_fail("--baseline: %s", sh_last_error());
+            have_base = 1;
             break;
         case 'c':
             if (cli_int("--count", optarg, &bo.count)) return CLI_EXIT_USAGE;
@@ -160,6 +282,7 @@ static int run(int argc, char **argv)
             bo.seed = (uint64_t)s;
             break;
         }
+        case 'I': instructions = 1; break;
         case 'q': quiet = 1; break;
         default: {
             const int e = cli_common_opt(&cmd_bench, o, argv, &com);
@@ -191,44 +314,137 @@ static int run(int argc, char **argv)
             if (orders[q] > sh_rot_method_max_order(ms[k]))
                 return cli_fail("bench: method %s is limited to order %d", sh_rot_method_name(ms[k]),
                                 sh_rot_method_max_order(ms[k]));
-    json_t *rows = json_array();
-    const int total = nm * no * ((modes & 1) + (modes >> 1));
-    int done = 0;
+    int ib = 0; /* index of the baseline in ms */
+    if (have_base) {
+        ib = -1;
+        for (int k = 0; k < nm; k++)
+            if (ms[k] == base) ib = k;
+        if (ib < 0) return cli_fail("--baseline: %s is not among --methods", sh_rot_method_name(base));
+    }
+    const char *cg_out = getenv("SHLAB_CALLGRIND_OUT");
+    if (instructions && !(cg_out && *cg_out)) return rerun_under_callgrind(argc, argv);
+    if (instructions && bo.count == 0) bo.count = 64;
+
+    /* entries: per order, every (method, variant) in use, all timed together */
+    int nv = 0, vi[NVAR];
+    for (int v = 0; v < NVAR; v++)
+        if (use[v]) vi[nv++] = v;
+    const int ne = nm * nv, S = bo.repeat;
+    sh_bench_entry *ent = calloc((size_t)ne, sizeof *ent);
+    sh_bench_stats *st = calloc((size_t)ne * no, sizeof *st);
+    double *smp = malloc((size_t)ne * S * sizeof *smp), *ins = calloc((size_t)ne * no, sizeof *ins);
+    sh_bench_ratio *rat = calloc((size_t)ne * no, sizeof *rat);
+    double *mults = calloc((size_t)ne * no, sizeof *mults);
+    int *noisy_order = calloc((size_t)no, sizeof *noisy_order);
+    if (!ent || !st || !smp || !ins || !rat || !mults || !noisy_order) {
+        free(ent); free(st); free(smp); free(ins); free(rat); free(mults); free(noisy_order);
+        return cli_fail("out of memory");
+    }
+    sh_bench_cfg cfg = SH_BENCH_CFG_DEFAULT;
+    cfg.samples = S;
+    cfg.count = bo.count;
+    cfg.min_sample_ms = bo.target_ms;
+    cli_progress prog;
+    cli_progress_start(&prog, "bench", quiet);
+    round_progress rp = {&prog, 0, no * S};
+    cfg.progress = on_round;
+    cfg.progress_ctx = &rp;
+    int rc = SH_OK, noisy = 0;
+    char why[320] = "";
+    double offcpu = 0, load = -1;
+    for (int q = 0; q < no && !rc; q++) {
+        for (int k = 0; k < nm && !rc; k++)
+            for (int v = 0; v < nv && !rc; v++)
+                rc = variants[vi[v]].make(orders[q], ms[k], prec, &bo, &ent[k * nv + v]);
+        for (int i = 0; i < ne && !rc; i++) mults[q * ne + i] = ent[i].mults;
+        if (!rc && instructions) rc = sh_bench_instructions(ent, ne, bo.count, cg_out, ins + (size_t)q * ne);
+        else if (!rc) {
+            sh_bench_noise nz;
+            rp.base = q * S;
+            rc = sh_bench_interleaved(ent, ne, &cfg, smp, st + (size_t)q * ne, &nz);
+            for (int i = 0; i < ne && !rc; i++) {
+                const int b = ib * nv + i % nv; /* the baseline in this entry's mode */
+                rc = sh_bench_paired_ratio(smp + (size_t)i * S, smp + (size_t)b * S, S, cfg.noise_spread,
+                                           &rat[q * ne + i]);
+                if (!rc && rat[q * ne + i].noisy && !nz.noisy) {
+                    nz.noisy = 1;
+                    snprintf(nz.why, sizeof nz.why, "ratio %s / %s spread %.1f%% > %.1f%%", ent[i].name,
+                             sh_rot_method_name(ms[ib]), 100 * rat[q * ne + i].spread, 100 * cfg.noise_spread);
+                }
+            }
+            if (!rc) {
+                offcpu = fmax(offcpu, nz.offcpu);
+                load = fmax(load, nz.load);
+                noisy_order[q] = nz.noisy;
+                if (nz.noisy && !noisy) snprintf(why, sizeof why, "order %d: %s", orders[q], nz.why);
+                noisy |= nz.noisy;
+            }
+        }
+        for (int i = 0; i < ne; i++) sh_bench_entry_free(&ent[i]);
+    }
+    free(ent);
+    free(smp);
+    double setup = 0;
+    if (!rc && !instructions) setup = sh_rot_bench_setup_ns(&bo);
+    json_t *rows = rc ? NULL : json_array();
     for (int k = 0; k < nm && rows; k++)
         for (int q = 0; q < no && rows; q++)
-            for (int md = 0; md < 2 && rows; md++) {
-                if (!(modes & (1 << md))) continue;
-                const sh_bench_mode mode = md ? SH_BENCH_BATCHED : SH_BENCH_PER_ROTATION;
-                if (!quiet)
-                    fprintf(stderr, "bench: %d/%d %s order %d %s\n", ++done, total,
-                            sh_rot_method_name(ms[k]), orders[q], sh_bench_mode_name(mode));
-                sh_bench_result r;
-                const int st = sh_rot_bench(orders[q], ms[k], prec, mode, &bo, &r);
-                if (st) { json_decref(rows); return cli_fail_status(st); }
+            for (int v = 0; v < nv && rows; v++) {
+                const int i = q * ne + k * nv + v;
+                const bench_variant *var = &variants[vi[v]];
                 json_t *row = json_object();
                 row = cli_put(row, "method", json_string(sh_rot_method_name(ms[k])));
                 row = cli_put(row, "order", json_integer(orders[q]));
                 row = cli_put(row, "precision", json_string(sh_precision_name(prec)));
-                row = cli_put(row, "mode", json_string(sh_bench_mode_name(mode)));
-                row = cli_put(row, "ns_per_rotation", json_real(r.ns_median));
-                row = cli_put(row, "ns_median", json_real(r.ns_median));
-                row = cli_put(row, "ns_min", json_real(r.ns_min));
-                row = cli_put(row, "ns_max", json_real(r.ns_max));
-                row = cli_put(row, "mults", json_real(r.mults));
-                row = cli_put(row, "mults_per_ns", json_real(r.mults_per_ns));
-                row = cli_put(row, "count", json_integer(r.count));
-                row = cli_put(row, "batch", json_integer(md ? bo.batch : 1));
+                row = cli_put(row, "mode", json_string(var->mode));
+                if (instructions) {
+                    row = cli_put(row, "instructions", json_real(ins[i]));
+                    row = cli_put(row, "mults", json_real(mults[i]));
+                    row = cli_put(row, "batch", json_integer(var->batched ? bo.batch : 1));
+                } else {
+                    const sh_bench_stats *s = &st[i];
+                    row = cli_put(row, "ns_per_rotation", json_real(s->ns_median));
+                    row = cli_put(row, "ns_median", json_real(s->ns_median));
+                    row = cli_put(row, "ns_min", json_real(s->ns_min));
+                    row = cli_put(row, "ns_max", json_real(s->ns_max));
+                    row = cli_put(row, "mults", json_real(mults[i]));
+                    row = cli_put(row, "mults_per_ns", json_real(s->ns_median > 0 ? mults[i] / s->ns_median : 0));
+                    row = cli_put(row, "count", json_integer(s->count));
+                    row = cli_put(row, "batch", json_integer(var->batched ? bo.batch : 1));
+                    row = cli_put(row, "ns_q1", json_real(s->ns_q1));
+                    row = cli_put(row, "ns_q3", json_real(s->ns_q3));
+                    row = cli_put(row, "spread", json_real(s->spread));
+                    row = cli_put(row, "sample_ms", json_real(s->sample_ms));
+                    row = cli_put(row, "ratio_to", json_string(sh_rot_method_name(ms[ib])));
+                    row = cli_put(row, "ratio", json_real(rat[i].median));
+                    row = cli_put(row, "ratio_q1", json_real(rat[i].q1));
+                    row = cli_put(row, "ratio_q3", json_real(rat[i].q3));
+                    row = cli_put(row, "noisy_order", json_boolean(noisy_order[q]));
+                }
                 if (!row || json_array_append_new(rows, row)) { json_decref(rows); rows = NULL; }
             }
+    free(st); free(ins); free(rat); free(mults); free(noisy_order);
+    if (rc) return cli_fail_status(rc);
     json_t *root = json_object();
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    root = cli_put(root, "repeat", json_integer(bo.repeat));
-    root = cli_put(root, "setup_ns", json_real(sh_rot_bench_setup_ns(&bo)));
+    if (instructions) {
+        root = cli_put(root, "tool", json_string("callgrind"));
+        root = cli_put(root, "n", json_integer(bo.count));
+    } else {
+        root = cli_put(root, "repeat", json_integer(bo.repeat));
+        root = cli_put(root, "min_sample_ms", json_real(bo.target_ms));
+        root = cli_put(root, "setup_ns", json_real(setup));
+        root = cli_put(root, "noisy", json_boolean(noisy));
+        root = cli_put(root, "noise", json_string(why));
+        root = cli_put(root, "offcpu", json_real(offcpu));
+        root = cli_put(root, "load", json_real(load));
+        if (noisy) fprintf(stderr, "bench: warning: noisy run (%s); do not draw conclusions from it\n", why);
+    }
     root = cli_put(root, "rows", rows);
     return cli_emit(root, com.fmt);
 }
 
 const cli_command cmd_bench = {"bench", run,
-                               "time per rotation of the rotation methods (per rotation and "
-                               "batched), counted multiplications",
+                               "time per rotation of the rotation methods (interleaved, paired ratios, "
+                               "noise check), counted multiplications and instructions",
                                help};
