@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 static const char *outdir = ".";
+static char partdir[4096] = ".";
 static char command[2048];
 static const char *revision = "unknown";
 
@@ -20,6 +21,7 @@ void exp_init(int argc, char **argv)
     }
     outdir = argv[1];
     mkdir(outdir, 0777);
+    snprintf(partdir, sizeof partdir, "%s", outdir);
     const char *r = getenv("REV");
     if (r && *r) revision = r;
     size_t n = 0;
@@ -35,12 +37,34 @@ void exp_init(int argc, char **argv)
     remove(p);
 }
 
-const char *exp_outdir(void) { return outdir; }
+const char *exp_outdir(void) { return partdir; }
+
+const char *exp_revision(void) { return revision; }
+
+void exp_part(const char *part)
+{
+    static char done[16][64];
+    static int ndone;
+    if (!part) {
+        snprintf(partdir, sizeof partdir, "%s", outdir);
+        return;
+    }
+    snprintf(partdir, sizeof partdir, "%s/%s", outdir, part);
+    mkdir(partdir, 0777);
+    for (int i = 0; i < ndone; i++)
+        if (!strcmp(done[i], part)) return;
+    if (ndone < 16) snprintf(done[ndone++], sizeof done[0], "%s", part);
+    char p[4200];
+    snprintf(p, sizeof p, "%s/index.md", partdir);
+    remove(p);
+    snprintf(p, sizeof p, "%s/claims.tsv", partdir);
+    remove(p);
+}
 
 FILE *exp_data(const char *name, const char *title, const char *columns)
 {
-    char p[4096];
-    snprintf(p, sizeof p, "%s/%s", outdir, name);
+    char p[4200];
+    snprintf(p, sizeof p, "%s/%s", partdir, name);
     FILE *f = fopen(p, "w");
     if (!f) {
         fprintf(stderr, "experiment: cannot write %s: %s\n", p, strerror(errno));
@@ -53,8 +77,8 @@ FILE *exp_data(const char *name, const char *title, const char *columns)
 
 static void append(const char *file, const char *text)
 {
-    char p[4096];
-    snprintf(p, sizeof p, "%s/%s", outdir, file);
+    char p[4200];
+    snprintf(p, sizeof p, "%s/%s", partdir, file);
     FILE *f = fopen(p, "a");
     if (!f) {
         fprintf(stderr, "experiment: cannot write %s\n", p);
