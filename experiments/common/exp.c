@@ -15,8 +15,19 @@ static const char *revision = "unknown";
 
 void exp_init(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
+    const char *name = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("Usage: %s OUTDIR\n"
+               "Run the experiment %s (experiments/%s/%s.c) and write its data files and its\n"
+               "fragments of the report (index.md, claims.tsv; timings under OUTDIR/timing/) into\n"
+               "OUTDIR. `make report` runs every experiment into reports/NAME and assembles the\n"
+               "report. Environment: REV (the revision stamped into the files), SHLAB (the shlab\n"
+               "binary, for experiments that call it), PROBES_DIR (default data/probes).\n",
+               name, name, name, name);
+        exit(0);
+    }
+    if (argc != 2 || argv[1][0] == '-' || !argv[1][0]) {
+        fprintf(stderr, "%s: error: usage: %s OUTDIR (or --help)\n", name, name);
         exit(2);
     }
     outdir = argv[1];
