@@ -3,6 +3,7 @@
 #include "exp.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -131,6 +132,15 @@ void exp_claim(const char *id, const char *source, const char *statement, const 
         strncat(line, i < 7 ? "\t" : "\n", sizeof line - strlen(line) - 1);
     }
     append("claims.tsv", line);
+}
+
+exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi)
+{
+    const double a = fmin(r->q1, r->median * (1 - EXP_RUN_TO_RUN));
+    const double b = fmax(r->q3, r->median * (1 + EXP_RUN_TO_RUN));
+    if (a >= lo && b <= hi) return EXP_INSIDE;
+    if (b < lo || a > hi) return EXP_OUTSIDE;
+    return EXP_STRADDLES;
 }
 
 void exp_progress(const char *fmt, ...)

@@ -52,6 +52,14 @@ void exp_index(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void exp_claim(const char *id, const char *source, const char *statement, const char *printed,
                const char *measured, const char *tolerance, const char *verdict,
                const char *evidence);
+/* Speed claims (timing part).  The uncertainty of a paired ratio is its
+ * quartiles over the rounds widened by ±EXP_RUN_TO_RUN, the spread of
+ * paired ratios between repeated runs on a quiet machine (README, "Rotation
+ * speed").  EXP_INSIDE: that interval lies in [lo, hi]; EXP_OUTSIDE: wholly
+ * outside it; EXP_STRADDLES: neither (the verdict is then "inconclusive"). */
+#define EXP_RUN_TO_RUN 0.05
+typedef enum { EXP_INSIDE, EXP_OUTSIDE, EXP_STRADDLES } exp_side;
+exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi);
 /* Progress line on stderr. */
 void exp_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Abort the experiment with a message if st != SH_OK. */

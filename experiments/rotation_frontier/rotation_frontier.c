@@ -159,12 +159,12 @@ int main(int argc, char **argv)
         for (int k = 0; k < nm; k++) {
             if (k == kz || !sh_rot_method_is_exact(ms[k])) continue;
             if (st[n][k].spread > cfg.noise_spread || st[n][kz].spread > cfg.noise_spread || rz[n][k].noisy) noisy = 1;
-            const double lo = fmin(rz[n][k].q1, 0.95 * rz[n][k].median), hi = fmax(rz[n][k].q3, 1.05 * rz[n][k].median);
-            if (hi < 1) {
+            const exp_side side = exp_ratio_side(&rz[n][k], 1, INFINITY);
+            if (side == EXP_OUTSIDE) {
                 slower = 1;
                 snprintf(who + strlen(who), sizeof who - strlen(who), "%s%s at n=%d", *who ? ", " : "",
                          sh_rot_method_name(ms[k]), n);
-            } else if (lo <= 1) straddle = 1;
+            } else if (side == EXP_STRADDLES) straddle = 1;
             if (rz[n][k].median < least) {
                 least = rz[n][k].median;
                 least_m = sh_rot_method_name(ms[k]);

@@ -19,9 +19,9 @@
  * of ≥ 3 ms, round-robin rounds); Table 1's ratios are paired (median of
  * per-round ratios).  A speed claim is judged only when the runs it comes
  * from meet the noise criterion of measure.h (for the entries it uses), and
- * only where the ratio's uncertainty — its quartiles over the rounds,
- * widened by ±RUN_TO_RUN, the spread of paired ratios between repeated quiet
- * runs — lies wholly inside or wholly outside the tolerance.
+ * only where the ratio's uncertainty (exp_ratio_side: its quartiles over the
+ * rounds widened by the run-to-run spread) lies wholly inside or wholly
+ * outside the tolerance.
  */
 #include "exp.h"
 
@@ -41,11 +41,6 @@ static const double PAPER_RT[2][4][2] = {
     {{3.30, 3.96}, {4.28, 6.13}, {7.08, 16.8}, {17.8, 75.8}},
 };
 static const double PAPER_NROT[2] = {3680751, 1504260};
-
-/* Relative run-to-run reproducibility of a paired ratio on a quiet machine
- * (README, "Rotation speed": repeated `make report` runs), added to each
- * ratio's own quartiles before a verdict. */
-#define RUN_TO_RUN 0.05
 
 enum { NMAX = 16, BATCH = 3, NM = SH_ROT_NMETHODS };
 
@@ -195,23 +190,17 @@ static sh_bench_entry dense_entry(int n, double *check)
 }
 
 /* ---- verdicts of speed claims ---------------------------------------- */
-typedef enum { V_IN, V_OUT, V_STRADDLE } side;
-/* Is the measured paired ratio inside [p/f, p·f]?  Its uncertainty: the
- * quartiles over the rounds, widened by ±RUN_TO_RUN. */
-static side judge(const sh_bench_ratio *r, double printed, double factor)
+/* Is the measured paired ratio inside [p/f, p·f] (exp_ratio_side)? */
+static exp_side judge(const sh_bench_ratio *r, double printed, double factor)
 {
-    const double lo = fmin(r->q1, r->median * (1 - RUN_TO_RUN)), hi = fmax(r->q3, r->median * (1 + RUN_TO_RUN));
-    const double a = printed / factor, b = printed * factor;
-    if (lo >= a && hi <= b) return V_IN;
-    if (hi < a || lo > b) return V_OUT;
-    return V_STRADDLE;
+    return exp_ratio_side(r, printed / factor, printed * factor);
 }
-static const char *verdict_of(const side *s, int n)
+static const char *verdict_of(const exp_side *s, int n)
 {
     int out = 0, str = 0;
     for (int k = 0; k < n; k++) {
-        out |= s[k] == V_OUT;
-        str |= s[k] == V_STRADDLE;
+        out |= s[k] == EXP_OUTSIDE;
+        str |= s[k] == EXP_STRADDLES;
     }
     return out ? "differs" : str ? "inconclusive" : "reproduced";
 }
@@ -383,7 +372,7 @@ int main(int argc, char **argv)
             const double v[4] = {INS[Z][n6][0] / INS[TT][n6][0], INS[Z][n10][0] / INS[TT][n10][0],
                                  INS[I][n6][0] / INS[TT][n6][0], INS[I][n10][0] / INS[TT][n10][0]};
             const double p[4] = {4.35, 6.38, 14.9, 31.9};
-            side s[4];
+            exp_side s[4];
             for (int k = 0; k < 4; k++) {
                 r[k] = (sh_bench_ratio){v[k], v[k], v[k], 0, 0};
                 s[k] = judge(&r[k], p[k], 1.5);
@@ -549,7 +538,7 @@ int main(int argc, char **argv)
     const char *notm = "not-measured";
     snprintf(buf2, sizeof buf2, "not measured (noisy run: %s)", noise_why);
     {
-        side s[2] = {judge(&TR[0][0][0], PAPER_TPR[0][2][0] / PAPER_TPR[0][1][0], 1.5),
+        exp_side s[2] = {judge(&TR[0][0][0], PAPER_TPR[0][2][0] / PAPER_TPR[0][1][0], 1.5),
                      judge(&TR[1][0][0], PAPER_TPR[0][2][1] / PAPER_TPR[0][1][1], 1.5)};
         snprintf(buf, sizeof buf, "%s; %s", meas[0], meas[1]);
         exp_claim("krivanek-ivanic-zxzxz", "Krivanek et al. 2005, Table 1",
@@ -559,7 +548,7 @@ int main(int argc, char **argv)
                   "rotation_speed/timing/table1.dat: paired ratios of one interleaved run per order (both exact methods as fast as made here; ivanic builds the matrix then applies it)");
     }
     if (have[TT]) {
-        side s[4] = {judge(&TR[0][1][0], 4.35, 1.5), judge(&TR[1][1][0], 6.38, 1.5), judge(&TR[0][2][0], 14.9, 1.5),
+        exp_side s[4] = {judge(&TR[0][1][0], 4.35, 1.5), judge(&TR[1][1][0], 6.38, 1.5), judge(&TR[0][2][0], 14.9, 1.5),
                      judge(&TR[1][2][0], 31.9, 1.5)};
         snprintf(buf, sizeof buf, "%s; %s", meas[0], meas[1]);
         char ev[1024];
