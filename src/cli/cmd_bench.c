@@ -321,6 +321,10 @@ static int run(int argc, char **argv)
             if (ms[k] == base) ib = k;
         if (ib < 0) return cli_fail("--baseline: %s is not among --methods", sh_rot_method_name(base));
     }
+#if defined(__SANITIZE_ADDRESS__)
+    if (instructions) /* valgrind cannot run a program built with AddressSanitizer */
+        return cli_fail("bench --instructions: not available in a sanitizer build (valgrind cannot run it)");
+#endif
     const char *cg_out = getenv("SHLAB_CALLGRIND_OUT");
     if (instructions && !(cg_out && *cg_out)) return rerun_under_callgrind(argc, argv);
     if (instructions && bo.count == 0) bo.count = 64;

@@ -62,7 +62,11 @@ expect_usage_error "bench bad baseline" bench --methods zxzxz --baseline nope --
 # instructions under valgrind (when it is installed): deterministic for the
 # same binary, per vector at least the counted multiplications' instructions
 # (one instruction does at most two of them at -O2), and cheaper batched
-if command -v valgrind >/dev/null 2>&1; then
+"$SHLAB" bench --instructions --methods zxzxz --order 3 --format csv --quiet >"$TMP/out" 2>"$TMP/err"; rc=$?
+if [ $rc = 2 ] && grep -q "sanitizer build" "$TMP/err"; then
+    [ ! -s "$TMP/out" ] && [ "$(wc -l <"$TMP/err")" = 1 ] && ok "bench --instructions: refused in one line in a sanitizer build" \
+        || notok "bench --instructions in a sanitizer build: $(head -c 200 "$TMP/err")"
+elif command -v valgrind >/dev/null 2>&1; then
     expect_success "bench --instructions" bench --instructions --methods zxzxz,taylor1.5 --order 3,6 --batch 4 --format csv --quiet
     cp "$TMP/out" "$TMP/ins1"
     head -1 "$TMP/out" | grep -q '^convention,tool,n,method,order,precision,mode,instructions,mults,batch$' \
