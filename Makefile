@@ -110,7 +110,7 @@ report: all $(EXP_BIN)
 # Instructions per rotated vector of every method, counted under valgrind's
 # callgrind (independent of the machine's load; `shlab bench --instructions`).
 bench-count: all
-	$(BUILD)/shlab bench --instructions --methods all --order 2,3,4,5,6,8,10,12,16 --batch 3
+	$(BUILD)/shlab bench --instructions --order 2,3,4,5,6,8,10,12,16 --batch 3
 
 probes:
 	@tools/probes.sh data/probes

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -134,6 +135,16 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
     return rc;
 }
 
+/* SIGINT/SIGTERM while valgrind runs: passed on to it, so that the parent
+ * still removes the temporary files once the child has ended. */
+static volatile pid_t cg_child;
+static volatile sig_atomic_t cg_signal;
+static void cg_forward(int sig)
+{
+    cg_signal = sig;
+    if (cg_child > 0) kill(cg_child, sig);
+}
+
 /* --instructions outside valgrind: run this same command line under
  * callgrind (the child finds the output file in SHLAB_CALLGRIND_OUT),
  * pass its output through, and remove the callgrind file. */
@@ -161,16 +172,30 @@ static int rerun_under_callgrind(int argc, char **argv)
     for (int i = 0; i < argc; i++) args[k++] = argv[i];
     args[k] = NULL;
     fflush(stdout);
+    struct sigaction sa, old_int, old_term;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = cg_forward;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
     const pid_t pid = fork();
     if (pid == 0) {
+        sigaction(SIGINT, &old_int, NULL);
+        sigaction(SIGTERM, &old_term, NULL);
         setenv("SHLAB_CALLGRIND_OUT", out, 1);
         execvp("valgrind", args);
         _exit(127);
     }
+    cg_child = pid;
     free(args);
-    int status = 0, rc;
+    int status = 0, rc, w;
+    while ((w = (int)waitpid(pid, &status, 0)) < 0 && errno == EINTR && pid > 0) {}
+    cg_child = 0;
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
     if (pid < 0) rc = cli_fail("bench --instructions: cannot start valgrind: %s", strerror(errno));
-    else if (waitpid(pid, &status, 0) < 0) rc = cli_fail("bench --instructions: waiting for valgrind: %s", strerror(errno));
+    else if (w < 0) rc = cli_fail("bench --instructions: waiting for valgrind: %s", strerror(errno));
+    else if (cg_signal) rc = cli_fail("bench --instructions: interrupted (signal %d)", (int)cg_signal);
     else if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
         rc = cli_fail("bench --instructions needs valgrind (Debian package valgrind)");
     else rc = WIFEXITED(status) ? WEXITSTATUS(status) : cli_fail("bench --instructions: valgrind was killed");
