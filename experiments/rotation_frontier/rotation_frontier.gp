@@ -14,7 +14,7 @@ do for [meas in "lobe max"] {
     set format x "10^{%T}"
     set xlabel "multiplications per rotation"
     set ylabel meas." error"
-    set yrange [5e-18:10]
+    set yrange [5e-18:(meas eq "lobe" ? 10 : 100)]
     set ytics 1e-16,100,1
     unset key
     do for [b=0:2] {

@@ -15,11 +15,10 @@ set title "per rotation: 3×3 matrix → angles → set → apply"
 plot for [i=0:words(names)-1] f index i using 2:3 with linespoints lw 1.5 ps 0.7 \
         lc rgb mcol(word(names, i+1)) pt mpt(word(names, i+1)) dt mdt(word(names, i+1)) \
         title word(names, i+1) noenhanced
-set title "per counted multiplication (per rotation)"
-unset logscale y
+set title "per counted multiplication (the matrix → angles step dominates at low n)"
 set format y "%g"
 set ylabel "instructions / counted multiplications"
-set yrange [0:*]
+set yrange [2:500]
 plot for [i=0:words(names)-1] f index i using 2:6 with linespoints lw 1.5 ps 0.7 \
         lc rgb mcol(word(names, i+1)) pt mpt(word(names, i+1)) dt mdt(word(names, i+1)) \
         title word(names, i+1) noenhanced
