@@ -3,6 +3,7 @@
 #   make check      build and run every test (unit tests with Check, CLI tests)
 #   make check SANITIZE=1   the same, built with -fsanitize=address,undefined
 #   make report     build, run every experiment, write reports/
+#   make bench-count  instructions per rotation of every method (valgrind)
 #   make probes     extract Blender's eight CC0 HDR world probes into data/probes/
 #   make install PREFIX=/usr/local
 #   make deps       install missing Debian packages (as root) or print the command
@@ -108,7 +109,7 @@ bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen
+.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -187,8 +188,15 @@ $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/c
 
 experiments: $(EXP_BIN)
 
+# The report's revision stamp names the code, not the state of reports/: the
+# last commit that changed code or data (experiments/common/code_rev.sh).
 report: all $(EXP_BIN)
-	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$(REV) experiments/run_all.sh $(EXPERIMENTS)
+	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
+
+# Instructions per rotated vector of every method, counted under valgrind's
+# callgrind (independent of the machine's load; `shlab bench --instructions`).
+bench-count: all
+	$(BUILD)/shlab bench --instructions --order 2,3,4,5,6,8,10,12,16 --batch 3
 
 probes:
 	@tools/probes.sh data/probes

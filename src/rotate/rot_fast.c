@@ -12,7 +12,7 @@
  * (rotation_plan.c: compiled in, and the CPU runs it).
  *
  * References
- *  [1] CONVENTIONS.md: R = Rz(α) Ry(β) Rz(γ) (ZYZ, active),
+ *  [1] docs/CONVENTIONS.md: R = Rz(α) Ry(β) Rz(γ) (ZYZ, active),
  *        R = [[cαcβcγ − sαsγ, −cαcβsγ − sαcγ, cαsβ],
  *             [sαcβcγ + cαsγ, −sαcβsγ + cαcγ, sαsβ],
  *             [−sβcγ,          sβsγ,            cβ ]].

@@ -140,7 +140,7 @@ typedef struct sh_sht sh_sht;
  * w_GL·2π/nphi: exact for band-limited products of total band < 2·nrings
  * when nphi exceeds the total band.  Arrays of nrings entries. */
 int sh_grid_gauss(int nrings, int nphi, double *cos_theta, double *weight, sh_grid *g);
-/* The lat-long layout W×H (CONVENTIONS.md): ring j at θ = π(j+½)/H, φ0 = π/W,
+/* The lat-long layout W×H (docs/CONVENTIONS.md): ring j at θ = π(j+½)/H, φ0 = π/W,
  * weight = the exact pixel solid angle (weight may be NULL). */
 int sh_grid_latlong(int width, int height, double *cos_theta, double *weight, sh_grid *g);
 /* Bytes a plan needs (its tables, chunk buffers and per-thread scratch; the

@@ -39,7 +39,7 @@ for k in scalar unrolled sse2 avx2 avx512; do
     done
     # the matrix form of a rotation gives what its angles give
     "$SHLAB" rotmat --order 4 --method zxzxz --euler 0.3,1.1,-2 --kernel $k --format csv >"$TMP/e" 2>/dev/null
-    # R = Rz(a) Ry(b) Rz(g) written out (CONVENTIONS.md), to 17 digits
+    # R = Rz(a) Ry(b) Rz(g) written out (docs/CONVENTIONS.md), to 17 digits
     R=$(awk 'BEGIN { a = 0.3; b = 1.1; g = -2; ca = cos(a); sa = sin(a); cb = cos(b); sb = sin(b); cg = cos(g); sg = sin(g);
         printf "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", ca*cb*cg - sa*sg, -ca*cb*sg - sa*cg, ca*sb,
                sa*cb*cg + ca*sg, -sa*cb*sg + ca*cg, sa*sb, -sb*cg, sb*sg, cb }')
