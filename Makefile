@@ -29,17 +29,23 @@ CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
             -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
 LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
+CXX      ?= c++
+CXXFLAGS += -std=c++14 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) \
+            -Isrc -MMD -MP
 
 # src/ is grouped by concept, one folder each (README "Layout"): the library is
 # every src/<concept>/*.c except src/cli/ (the command-line tool).
 LIB_DIRS := core basis io project rotate taylor scale measure
 LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
+# C++ sources of the library (io/exr_cxx.cpp: OpenEXR's C++ reader for DWAA/DWAB)
+LIB_CXX  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.cpp)))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 # src/*/rot_*.c are precision-generic rotation kernels (rotate/rot_real.h):
 # compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
 ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
-LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
+LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o) \
+            $(LIB_CXX:src/%.cpp=$(BUILD)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -59,6 +65,10 @@ deps-quiet:
 $(BUILD)/obj/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/%.o: src/%.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -c $< -o $@
 
 $(BUILD)/obj/%_f.o: src/%.c
 	@mkdir -p $(dir $@)

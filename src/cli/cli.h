@@ -75,8 +75,23 @@ void cli_progress_start(cli_progress *p, const char *cmd, int quiet);
 /* An sh_progress_fn (ctx: cli_progress *). */
 void cli_progress_step(void *ctx, int done, int total, const char *what);
 
-/* Render `root` in `fmt` on stdout and release it. Returns an exit code. */
+/* Render `root` in `fmt` on stdout and release it; then, if stdout took it
+ * all, rename the output files (cli_out_open) onto their targets, else
+ * remove them.  Returns an exit code. */
 int cli_emit(json_t *root, cli_format fmt);
+
+/* Output files.  A command that writes files opens each one with
+ * cli_out_open before its work (so an unwritable target fails first) and
+ * writes it under the temporary name *tmp, next to the target.  cli_emit
+ * commits them after the result is printed; an error, a failed write to
+ * stdout or a signal removes them instead.  So no error truncates or removes
+ * an existing file, and nothing is left behind.  Returns 0 or the exit code
+ * after the error line. */
+int cli_out_open(const char *cmd, const char *path, const char **tmp);
+int cli_out_commit(void);
+void cli_out_discard(void);
+/* main: remove temporary files on SIGINT/SIGTERM/SIGHUP/SIGPIPE and at exit. */
+void cli_signals_install(void);
 
 /* Print help text to stdout; returns 0. */
 int cli_help(const cli_command *cmd);

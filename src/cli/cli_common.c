@@ -1,6 +1,7 @@
 /* cli_common.c — argument parsing and error reporting shared by commands. */
 #define _GNU_SOURCE
 #include "cli.h"
+#include "core/shlab_internal.h"
 
 #include <ctype.h>
 #include <getopt.h>
@@ -12,14 +13,19 @@
 #include <string.h>
 #include <time.h>
 
+/* The one error line.  Messages quote arguments and file contents, so the
+ * text is escaped (sh__escape_line: no control character, no invalid UTF-8)
+ * and cut at 2000 bytes: whatever the input, exactly one line. */
 int cli_fail(const char *fmt, ...)
 {
+    char raw[2048], line[2048];
     va_list ap;
     va_start(ap, fmt);
-    fputs("shlab: error: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vsnprintf(raw, sizeof raw, fmt, ap);
     va_end(ap);
+    sh__escape_line(line, sizeof line, raw);
+    fprintf(stderr, "shlab: error: %s\n", line);
+    fflush(stderr);
     return CLI_EXIT_USAGE;
 }
 

@@ -117,11 +117,10 @@ static void unit_vector(gsl_rng *r, double *v, int n)
     for (int i = 0; i < n; i++) v[i] /= s;
 }
 
-/* Write {"format", "description", "cases": [one case per line]} atomically. */
-static int write_file(const char *path, const char *description, json_t *cases)
+/* Write {"format", "description", "cases": [one case per line]} into the
+ * temporary file of an output (cli_out_open; cli_emit renames it onto path). */
+static int write_file(const char *tmp, const char *path, const char *description, json_t *cases)
 {
-    char *tmp = NULL;
-    if (sh__make_temp_path(path, &tmp)) return cli_fail("fixtures: %s", sh_last_error());
     FILE *f = fopen(tmp, "w");
     int bad = !f;
     if (f) {
@@ -142,15 +141,7 @@ static int write_file(const char *path, const char *description, json_t *cases)
         bad |= ferror(f) != 0;
         bad |= fclose(f) != 0;
     }
-    if (bad) {
-        remove(tmp);
-        free(tmp);
-        return cli_fail("fixtures: cannot write '%s'", path);
-    }
-    int st = sh__commit_temp(tmp, path);
-    free(tmp);
-    if (st) return cli_fail("fixtures: %s", sh_last_error());
-    return 0;
+    return bad ? cli_fail("fixtures: cannot write '%s'", path) : 0;
 }
 
 static int run(int argc, char **argv)
@@ -176,6 +167,18 @@ static int run(int argc, char **argv)
     if (!dir || !*dir) return cli_fail("fixtures: --out DIR is required");
     const sh_rot_method method = com.have_method ? com.method : SH_ROT_REFERENCE;
     if (method == SH_ROT_Z) return cli_fail("fixtures: method z rotates about z only");
+
+    /* the output files first: an unwritable target fails before the work */
+    char p1[4096], p2[4096], desc[512];
+    const char *t1 = NULL, *t2 = NULL;
+    const char *suffix = method == SH_ROT_REFERENCE ? "" : "_";
+    const char *mname = method == SH_ROT_REFERENCE ? "" : sh_rot_method_name(method);
+    if ((size_t)snprintf(p1, sizeof p1, "%s/orders_1_10%s%s.json", dir, suffix, mname) >= sizeof p1 ||
+        (size_t)snprintf(p2, sizeof p2, "%s/bands_50_200.json", dir) >= sizeof p2)
+        return cli_fail("fixtures: --out: directory name too long");
+    if (cli_out_open("fixtures", p1, &t1) ||
+        (method == SH_ROT_REFERENCE && cli_out_open("fixtures", p2, &t2)))
+        return CLI_EXIT_USAGE;
 
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
@@ -211,30 +214,19 @@ static int run(int argc, char **argv)
                 if (c) { json_array_append_new(high, c); ncase++; }
             }
     if (st) goto done;
-    size_t len = strlen(dir) + 32;
-    char *p1 = malloc(len), *p2 = malloc(len);
-    if (!p1 || !p2) { free(p1); free(p2); st = SH_ENOMEM; goto done; }
-    size_t len2 = len + 32;
-    char desc[512];
-    free(p1);
-    p1 = malloc(len2);
-    if (!p1) { free(p2); st = SH_ENOMEM; goto done; }
     if (method == SH_ROT_REFERENCE) {
-        snprintf(p1, len2, "%s/orders_1_10.json", dir);
         snprintf(desc, sizeof desc, "shlab golden SH rotation fixtures: orders 1-10, 10 rotations (extremes "
                                     "included), cs and nocs; expected = MPFR reference. See README.md.");
     } else {
-        snprintf(p1, len2, "%s/orders_1_10_%s.json", dir, sh_rot_method_name(method));
         snprintf(desc, sizeof desc, "shlab SH rotation fixtures for kernels implementing method %s: orders "
                                     "1-10, 10 rotations, cs and nocs; expected = shlab's %s in double%s. "
                                     "See README.md.", sh_rot_method_name(method), sh_rot_method_name(method),
                  sh_rot_method_is_exact(method) ? "" : " (an approximation, not the exact rotation)");
     }
-    snprintf(p2, len, "%s/bands_50_200.json", dir);
-    rc = write_file(p1, desc, low);
+    rc = write_file(t1, p1, desc, low);
     if (!rc && method == SH_ROT_REFERENCE)
-        rc = write_file(p2, "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
-                            "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
+        rc = write_file(t2, p2, "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
+                                "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
     if (!rc) {
         root = json_object();
         root = cli_put(root, "out", json_string(dir));
@@ -243,8 +235,6 @@ static int run(int argc, char **argv)
         root = cli_put(root, "files", method == SH_ROT_REFERENCE ? json_pack("[s,s]", p1, p2) : json_pack("[s]", p1));
         root = cli_put(root, "cases", json_integer(ncase));
     }
-    free(p1);
-    free(p2);
 done:
     gsl_rng_free(rng);
     free(in);

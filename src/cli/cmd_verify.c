@@ -145,35 +145,31 @@ static int load_candidate(const char *path, const fx_set *fx, double **out)
     return 0;
 }
 
-/* {"results": {"<id>": [...], ...}}, one case per line, written atomically. */
-static int write_candidate(const char *path, const fx_set *fx, double **got)
+/* {"results": {"<id>": [...], ...}}, one case per line, into the temporary
+ * file of the output (cli_out_open; cli_emit renames it onto `path`). */
+static int write_candidate(const char *tmp, const char *path, const fx_set *fx, double **got)
 {
-    char *tmp = NULL;
-    if (sh__make_temp_path(path, &tmp)) return cli_fail("verify: %s", sh_last_error());
     FILE *f = fopen(tmp, "w");
     int bad = !f;
     if (f) {
         fputs("{\"results\":{\n", f);
         for (int k = 0; k < fx->ncases && !bad; k++) {
+            json_t *id = json_string(fx->cases[k].id);
             json_t *a = cli_json_array(got[k], (size_t)fx->cases[k].n);
+            char *si = id ? json_dumps(id, JSON_ENCODE_ANY) : NULL;
             char *s = a ? json_dumps(a, JSON_COMPACT | JSON_REAL_PRECISION(17)) : NULL;
-            if (!s) bad = 1;
-            else fprintf(f, "\"%s\":%s%s\n", fx->cases[k].id, s, k + 1 < fx->ncases ? "," : "");
+            if (!s || !si) bad = 1;
+            else fprintf(f, "%s:%s%s\n", si, s, k + 1 < fx->ncases ? "," : "");
             free(s);
+            free(si);
             json_decref(a);
+            json_decref(id);
         }
         fputs("}}\n", f);
         bad |= ferror(f) != 0;
         bad |= fclose(f) != 0;
     }
-    if (bad) {
-        remove(tmp);
-        free(tmp);
-        return cli_fail("verify: cannot write candidate '%s'", path);
-    }
-    int st = sh__commit_temp(tmp, path);
-    free(tmp);
-    return st ? cli_fail("verify: %s", sh_last_error()) : 0;
+    return bad ? cli_fail("verify: cannot write candidate '%s'", path) : 0;
 }
 
 static int run(int argc, char **argv)
@@ -227,6 +223,8 @@ static int run(int argc, char **argv)
     if (!cand == !have_method) return cli_fail("verify: give exactly one of --candidate and --method");
     if (emit && !have_method) return cli_fail("verify: --emit-candidate needs --method");
     if (simulate != -1 && !emit) return cli_fail("verify: --simulate needs --emit-candidate");
+    const char *emit_tmp = NULL;
+    if (emit && cli_out_open("verify", emit, &emit_tmp)) return CLI_EXIT_USAGE;
     fx_set fx;
     if (fx_load(fixture, &fx)) return CLI_EXIT_USAGE;
     double **got = calloc((size_t)fx.ncases + 1, sizeof *got);
@@ -257,7 +255,7 @@ static int run(int argc, char **argv)
                               c->conv, c->input, got[k]);
         }
         if (st) { rc = cli_fail("verify: %s", sh_last_error()); goto done; }
-        if (emit && (rc = write_candidate(emit, &fx, got))) goto done;
+        if (emit && (rc = write_candidate(emit_tmp, emit, &fx, got))) goto done;
     }
     /* the verdict */
     int failed = 0, fail_double = 0, worst_k = 0, worst_i = 0;
