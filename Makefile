@@ -91,7 +91,15 @@ $(BUILD)/shlab: $(CLI_OBJ) $(BUILD)/libshlab.a
 # ---- tests ----------------------------------------------------------------
 $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -o $@ $< $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
+	$(CC) $(CFLAGS) -o $@ $< $(TEST_EXTRA) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
+
+# The EXR tests write their files with OpenEXR's C++ library (tests/exr_writer.cpp).
+EXR_WRITER_TESTS := $(BUILD)/tests/test_exr_layouts $(BUILD)/tests/test_exr_damage
+$(EXR_WRITER_TESTS): $(BUILD)/tests/exr_writer.o
+$(EXR_WRITER_TESTS): TEST_EXTRA = $(BUILD)/tests/exr_writer.o
+$(BUILD)/tests/exr_writer.o: tests/exr_writer.cpp tests/exr_writer.h
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -Itests -c $< -o $@
 
 check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)

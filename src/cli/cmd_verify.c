@@ -115,36 +115,6 @@ static double max_err(const double *a, const double *b, int n, int *at)
     return w;
 }
 
-static int load_candidate(const char *path, const fx_set *fx, double **out)
-{
-    json_error_t err;
-    json_t *root = json_load_file(path, 0, &err);
-    if (!root) return cli_fail("candidate '%s': %s (line %d)", path, err.text, err.line);
-    const json_t *res = json_object_get(root, "results");
-    if (!json_is_object(res)) {
-        json_decref(root);
-        return cli_fail("candidate '%s': expected {\"results\": {\"<case id>\": [...]}}", path);
-    }
-    for (int k = 0; k < fx->ncases; k++) {
-        const fx_case *c = &fx->cases[k];
-        const json_t *a = json_object_get(res, c->id);
-        if (!json_is_array(a) || (int)json_array_size(a) != c->n) {
-            json_decref(root);
-            return cli_fail("candidate '%s': case '%s' missing or not %d numbers", path, c->id, c->n);
-        }
-        for (int i = 0; i < c->n; i++) {
-            const json_t *x = json_array_get(a, (size_t)i);
-            if (!json_is_number(x)) {
-                json_decref(root);
-                return cli_fail("candidate '%s': case '%s' entry %d is not a number", path, c->id, i);
-            }
-            out[k][i] = json_number_value(x);
-        }
-    }
-    json_decref(root);
-    return 0;
-}
-
 /* {"results": {"<id>": [...], ...}}, one case per line, into the temporary
  * file of the output (cli_out_open; cli_emit renames it onto `path`). */
 static int write_candidate(const char *tmp, const char *path, const fx_set *fx, double **got)
@@ -235,7 +205,7 @@ static int run(int argc, char **argv)
         if (!(got[k] = malloc((size_t)fx.cases[k].n * sizeof **got))) { free(got); got = NULL; }
     if (!got || !tmp) { rc = cli_fail("out of memory"); goto done; }
     if (cand) {
-        if ((rc = load_candidate(cand, &fx, got))) goto done;
+        if ((rc = fx_load_candidate(cand, &fx, got))) goto done;
     } else {
         for (int k = 0; k < fx.ncases && !st; k++) {
             const fx_case *c = &fx.cases[k];

@@ -14,6 +14,12 @@ extern "C" {
  * the CLI for every message that quotes input.  Returns dst. */
 char *sh__escape_line(char *dst, size_t cap, const char *src);
 
+/* number.c: read one number at s (strtod; *end after it).  SH__NUM_NONE: no
+ * number there; SH__NUM_RANGE: infinite, NaN, or outside double's range
+ * (overflow, or underflow of a non-zero value to 0 or a subnormal). */
+enum { SH__NUM_OK = 0, SH__NUM_NONE, SH__NUM_RANGE };
+int sh__parse_double(const char *s, char **end, double *out);
+
 /* legendre.c: Q_l^m(x) for 0<=m<=l<=lmax, stored at l(l+1)/2+m (sh_layout=0)
  * or at the SH flat index l(l+1)+m (sh_layout=1). */
 void sh__legendre_core(int lmax, double x, double *out, int sh_layout);

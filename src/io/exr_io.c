@@ -476,7 +476,16 @@ static int read_mem(const void *data, size_t size, const char *name, const sh_ex
 
     /* memory: the image, the scratch of one chunk (every channel as float),
      * and OpenEXRCore's packed, unpacked and scratch buffers of one chunk */
-    const int use_cxx = force_cxx || pi.comp == EXR_COMPRESSION_DWAA || pi.comp == EXR_COMPRESSION_DWAB;
+    /* the C++ library decodes what OpenEXRCore 3.1.5 cannot (DWA) or decodes
+     * wrongly (B44 with non-half channels, sub-sampled channels) */
+    int use_cxx = force_cxx || pi.comp == EXR_COMPRESSION_DWAA || pi.comp == EXR_COMPRESSION_DWAB;
+    for (int c = 0; c < pi.nch; c++) {
+        const exr_attr_chlist_entry_t *e = &cl->entries[c];
+        if (e->x_sampling != 1 || e->y_sampling != 1) use_cxx = 1;
+        if ((pi.comp == EXR_COMPRESSION_B44 || pi.comp == EXR_COMPRESSION_B44A) &&
+            e->pixel_type != EXR_PIXEL_HALF)
+            use_cxx = 1;
+    }
     const double img_bytes = (double)pi.w * (double)pi.h * img->nchan * sizeof(float);
     const double scratch_bytes = (double)pi.max_chunk_px * pi.nch * sizeof(float);
     const double need = img_bytes + scratch_bytes + 3.0 * (double)max_unpacked;
