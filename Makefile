@@ -15,6 +15,14 @@ ifeq ($(SANITIZE),1)
 BUILD    ?= build/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 OPT      := -O1 -g
+else ifeq ($(SANITIZE),fuzz)
+# make fuzz: clang's libFuzzer, with ASan/UBSan (Debian clang, libclang-rt-14-dev)
+BUILD    ?= build/fuzz
+SANFLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer \
+            -fno-sanitize-recover=undefined
+OPT      := -O1 -g
+CC       := clang
+CXX      := clang++
 else
 BUILD    ?= build
 SANFLAGS :=
@@ -49,9 +57,12 @@ LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+# fuzz harnesses (tests/fuzz/fuzz_<h>.c); make check replays their corpora
+FUZZ_HARNESS := exr fixture candidate coeffs light rotation
+FUZZ_REPLAY  := $(FUZZ_HARNESS:%=$(BUILD)/fuzz/replay_%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man
+.PHONY: all deps deps-quiet check report experiments probes install clean man fuzz fuzz-build
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -101,8 +112,38 @@ $(BUILD)/tests/exr_writer.o: tests/exr_writer.cpp tests/exr_writer.h
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS) -Itests -c $< -o $@
 
-check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
+check: deps-quiet $(BUILD)/shlab $(TEST_BIN) $(FUZZ_REPLAY)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
+
+# ---- fuzzing (tests/fuzz/README.md) -----------------------------------------
+# One harness per input kind: tests/fuzz/fuzz_<h>.c.  make check links each to
+# a corpus-replay main and replays tests/fuzz/corpus/<h>/ (tests/cli/
+# test_fuzz_corpus.sh; with ASan/UBSan under SANITIZE=1).  make fuzz builds
+# them with clang's libFuzzer and runs each for FUZZ_TIME seconds.
+FUZZ_TIME    ?= 60
+CLI_LIB_OBJ  := $(filter-out $(BUILD)/obj/cli/main.o,$(CLI_OBJ))
+FUZZ_SRC     := tests/fuzz/fuzz.h tests/fuzz/stubs.c
+
+$(BUILD)/libshlab_cli.a: $(CLI_LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< tests/fuzz/replay.c tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
+	  $(BUILD)/libshlab.a $(LDLIBS)
+
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -o $@ $< tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
+	  $(BUILD)/libshlab.a $(LDLIBS)
+
+fuzz-build: $(FUZZ_HARNESS:%=$(BUILD)/fuzz/fuzz_%)
+
+fuzz:
+	@tools/deps.sh --fuzz --quiet
+	@$(MAKE) --no-print-directory SANITIZE=fuzz fuzz-build
+	@tests/fuzz/run.sh build/fuzz $(FUZZ_TIME) $(FUZZ_HARNESS)
 
 # ---- experiments and report ----------------------------------------------
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>

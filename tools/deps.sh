@@ -2,8 +2,16 @@
 # deps.sh — make sure the Debian packages shlab needs are installed.
 # As root: installs what is missing (apt-get update first).  Otherwise: prints
 # the exact command to run and fails.  --quiet: say nothing when all is there.
+# --fuzz: also clang and its libFuzzer runtime (make fuzz).
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
+quiet=""
+for a in "$@"; do
+    case "$a" in
+    --quiet) quiet=1 ;;
+    --fuzz) PKGS="$PKGS clang libclang-rt-14-dev" ;; # make fuzz: clang's libFuzzer
+    esac
+done
 missing=""
 for p in $PKGS; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -11,7 +19,7 @@ for p in $PKGS; do
     fi
 done
 if [ -z "$missing" ]; then
-    [ "${1:-}" = "--quiet" ] || echo "deps: all present ($PKGS)"
+    [ -n "$quiet" ] || echo "deps: all present ($PKGS)"
     exit 0
 fi
 cmd="apt-get update && apt-get install -y --no-install-recommends$missing"
