@@ -17,7 +17,7 @@ SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-r
 OPT      := -O1 -g
 else ifeq ($(SANITIZE),fuzz)
 # make fuzz: clang's libFuzzer, with ASan/UBSan (Debian clang, libclang-rt-14-dev)
-BUILD    ?= build/fuzz
+BUILD    ?= build/libfuzzer
 SANFLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer \
             -fno-sanitize-recover=undefined
 OPT      := -O1 -g
@@ -143,7 +143,7 @@ fuzz-build: $(FUZZ_HARNESS:%=$(BUILD)/fuzz/fuzz_%)
 fuzz:
 	@tools/deps.sh --fuzz --quiet
 	@$(MAKE) --no-print-directory SANITIZE=fuzz fuzz-build
-	@tests/fuzz/run.sh build/fuzz $(FUZZ_TIME) $(FUZZ_HARNESS)
+	@tests/fuzz/run.sh build/libfuzzer $(FUZZ_TIME) $(FUZZ_HARNESS)
 
 # ---- experiments and report ----------------------------------------------
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>

@@ -191,6 +191,15 @@ static int run(int argc, char **argv)
             if (orders[q] > sh_rot_method_max_order(ms[k]))
                 return cli_fail("bench: method %s is limited to order %d", sh_rot_method_name(ms[k]),
                                 sh_rot_method_max_order(ms[k]));
+    /* every plan once before the first progress line: an order that cannot
+     * be planned (memory) fails before any work is reported */
+    for (int k = 0; k < nm; k++)
+        for (int q = 0; q < no; q++) {
+            sh_rot_plan *p;
+            const int st = sh_rot_plan_create(orders[q], ms[k], prec, com.conv, &p);
+            if (st) return cli_fail("bench: %s", sh_last_error());
+            sh_rot_plan_free(p);
+        }
     json_t *rows = json_array();
     const int total = nm * no * ((modes & 1) + (modes >> 1));
     int done = 0;

@@ -13,6 +13,13 @@ make -s "$B/tests/exr_writer.o"
 cc -std=c11 -O1 -Itests -Isrc $(pkg-config --cflags OpenEXR) -o "$B/exr_seeds" tests/fuzz/exr_seeds.c \
    "$B/tests/exr_writer.o" $(pkg-config --libs OpenEXR) -lstdc++
 "$B/exr_seeds" $C/exr
+# two small files whose headers claim 32768×32768 pixels (dataWindow, and for
+# the tiled one a single 32768×32768 tile): refused before any allocation
+perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,32767,32767)/se' \
+    $C/exr/rgba-half-scan-zip.exr > $C/exr/huge-window-scan.exr
+perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,32767,32767)/se;
+               s/(tiles\0tiledesc\0\x09\0\0\0).{8}/$1.pack("L<2",32768,32768)/se' \
+    $C/exr/rgb-float-tiled-zip.exr > $C/exr/huge-window-tile.exr
 
 # fixture: the first cases of the golden fixtures, and broken variants
 F=data/fixtures/rotation/orders_1_10.json
