@@ -52,6 +52,11 @@ TEST_SRC := $(sort $(wildcard tests/test_*.c))
 # src/*/rot_*.c are precision-generic rotation kernels (rotate/rot_real.h):
 # compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
 ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
+ifeq ($(SANITIZE),fuzz)
+# clang with UBSan takes most of an hour on the unrolled rotation kernels at
+# -O1 (and seconds at -O0): they are built at -O0 for fuzzing
+$(ROTK_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o): OPT := -O0 -g
+endif
 LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o) \
             $(LIB_CXX:src/%.cpp=$(BUILD)/obj/%.o)
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
@@ -135,7 +140,7 @@ $(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_SRC) $(BU
 
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -fsanitize=fuzzer -o $@ $< tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -fsanitize-link-c++-runtime -o $@ $< tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
 	  $(BUILD)/libshlab.a $(LDLIBS)
 
 fuzz-build: $(FUZZ_HARNESS:%=$(BUILD)/fuzz/fuzz_%)
