@@ -379,6 +379,7 @@ int cli_out_commit(void)
         } else {
             sh__discard_temp(outs[k].tmp);
         }
+        free(outs[k].tmp);
         free(outs[k].path);
     }
     nouts = 0;
@@ -389,6 +390,7 @@ void cli_out_discard(void)
 {
     for (int k = 0; k < nouts; k++) {
         sh__discard_temp(outs[k].tmp);
+        free(outs[k].tmp);
         free(outs[k].path);
     }
     nouts = 0;

@@ -43,12 +43,12 @@ int sh__gauss_legendre(long S, double *x, double *w);
 /* io/tempfile.c: atomic output.  sh__make_temp_path creates an empty
  * temporary file next to `path` (mkstemp, name malloc'd into *tmp_out, and
  * registered for sh_temp_files_unlink); sh__commit_temp renames it onto
- * `path` (removing it on failure); sh__discard_temp removes it.  Both take
- * the name and free it.  Writers write the temp, then commit, so a failure
- * never leaves a partial output file. */
+ * `path` (removing it on failure); sh__discard_temp removes it.  Neither
+ * frees the name (the caller does).  Writers write the temp, then commit,
+ * so a failure never leaves a partial output file. */
 int sh__make_temp_path(const char *path, char **tmp_out);
-int sh__commit_temp(char *tmp, const char *path);
-void sh__discard_temp(char *tmp);
+int sh__commit_temp(const char *tmp, const char *path);
+void sh__discard_temp(const char *tmp);
 
 /* light_zonal.c: the zonal coefficients z[l] (of y_l^0, l < order) of
  * max(0, cosθ)^e about +z scaled to a unit vector (sh_lobe_zonal / its norm). */

@@ -742,8 +742,11 @@ int sh_exr_write(const char *path, const sh_image *img)
     if (rv == EXR_ERR_SUCCESS) rv = frv;
     if (rv != EXR_ERR_SUCCESS) {
         sh__discard_temp(tmp);
+        free(tmp);
         return sh_error(rv == EXR_ERR_OUT_OF_MEMORY ? SH_ENOMEM : SH_EIO,
                         "cannot write '%s': %s", path, core_reason(rv));
     }
-    return sh__commit_temp(tmp, path);
+    st = sh__commit_temp(tmp, path);
+    free(tmp);
+    return st;
 }

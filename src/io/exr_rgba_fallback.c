@@ -69,11 +69,14 @@ int sh_exr_write_dwab_rgba(const char *path, const sh_image *img)
     out = NULL;
     ImfDeleteHeader(hdr);
     free(buf);
-    return sh__commit_temp(tmp, path);
+    st = sh__commit_temp(tmp, path);
+    free(tmp);
+    return st;
 fail:
     if (out) ImfCloseOutputFile(out);
     if (hdr) ImfDeleteHeader(hdr);
     sh__discard_temp(tmp);
+    free(tmp);
     free(buf);
     return st;
 }

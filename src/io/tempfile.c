@@ -5,13 +5,15 @@
  *
  * Live temporary names are kept in a small registry so that a signal handler
  * can remove them (sh_temp_files_unlink: only atomic loads and unlink(2),
- * both async-signal-safe).  A name is registered before the file is created
- * and leaves the registry only after it has been renamed or removed, so a
- * signal at any point finds every temporary that may exist.
+ * both async-signal-safe).  A name is registered as the file is created
+ * (signals held in between) and leaves the registry only after it has been
+ * renamed or removed, so a signal at any point finds every temporary that
+ * may exist.
  */
 #include "core/shlab_internal.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,31 +24,41 @@
 #define TMP_SUFFIX ".tmp.XXXXXX"
 #define NSLOTS 64
 
+/* Each slot holds the registry's own copy of a live temporary name, so that
+ * what callers do with their string (free it, or remove the file without
+ * telling the registry, as older code did) never leaves the registry with a
+ * dangling pointer: at worst a stale name, whose unlink fails harmlessly. */
 static char *_Atomic slots[NSLOTS];
 
-static void reg_add(char *p)
+static void reg_add(const char *p)
 {
+    char *copy = strdup(p);
+    if (!copy) return; /* still written atomically, only not removed by a signal handler */
     for (int k = 0; k < NSLOTS; k++) {
         char *expect = NULL;
-        if (atomic_compare_exchange_strong(&slots[k], &expect, p)) return;
+        if (atomic_compare_exchange_strong(&slots[k], &expect, copy)) return;
     }
-    /* registry full (more than 64 files open at once): still written
-     * atomically, only not removed by a signal handler */
+    free(copy); /* registry full (more than 64 temporaries at once) */
 }
 
 static void reg_remove(const char *p)
 {
     for (int k = 0; k < NSLOTS; k++) {
-        char *expect = (char *)p;
-        if (atomic_compare_exchange_strong(&slots[k], &expect, NULL)) return;
+        char *cur = atomic_load(&slots[k]);
+        if (cur && !strcmp(cur, p) && atomic_compare_exchange_strong(&slots[k], &cur, NULL)) {
+            free(cur);
+            return;
+        }
     }
 }
 
 void sh_temp_files_unlink(void)
 {
+    /* unlink only: the names stay registered (and reachable), nothing is
+     * freed, so this is safe in a signal handler and at exit */
     for (int k = 0; k < NSLOTS; k++) {
-        char *p = atomic_exchange(&slots[k], NULL);
-        if (p) unlink(p); /* the string itself is freed by its owner (or at exit) */
+        const char *p = atomic_load(&slots[k]);
+        if (p) unlink(p);
     }
 }
 
@@ -79,11 +91,16 @@ int sh__make_temp_path(const char *path, char **tmp_out)
     }
     snprintf(tmp, n, "%s" TMP_SUFFIX, target);
     free(target);
-    reg_add(tmp); /* registered before the file exists; mkstemp only fills in the X's */
+    /* mkstemp picks the name and creates the file; signals are held until
+     * the name is registered, so a handler never misses this file */
+    sigset_t all, old;
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old);
     int fd = mkstemp(tmp);
+    const int e = errno;
+    if (fd >= 0) reg_add(tmp);
+    sigprocmask(SIG_SETMASK, &old, NULL);
     if (fd < 0) {
-        int e = errno;
-        reg_remove(tmp);
         free(tmp);
         return sh_error(SH_EIO, "cannot write '%s': %s", path, strerror(e));
     }
@@ -92,7 +109,7 @@ int sh__make_temp_path(const char *path, char **tmp_out)
     return SH_OK;
 }
 
-int sh__commit_temp(char *tmp, const char *path)
+int sh__commit_temp(const char *tmp, const char *path)
 {
     if (!tmp) return sh_error(SH_EINVAL, "no temporary file to commit");
     /* the target is the temporary name without its suffix (see above) */
@@ -114,14 +131,12 @@ int sh__commit_temp(char *tmp, const char *path)
         return sh_error(SH_EIO, "cannot write '%s': %s", path, strerror(e));
     }
     reg_remove(tmp); /* after the rename: a signal before it still removes tmp */
-    free(tmp);
     return SH_OK;
 }
 
-void sh__discard_temp(char *tmp)
+void sh__discard_temp(const char *tmp)
 {
     if (!tmp) return;
     unlink(tmp);
     reg_remove(tmp);
-    free(tmp);
 }
