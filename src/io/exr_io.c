@@ -241,12 +241,42 @@ static exr_result_t chunk_at(const part_info *pi, int64_t k, exr_chunk_info_t *c
     return exr_read_tile_chunk_info(pi->ctxt, pi->part, (int)tx, (int)ty, 0, 0, ci);
 }
 
+/* A DWAA/DWAB chunk, before it reaches the C++ library: it starts with
+ * eleven little-endian uint64 counters (version, unknown uncompressed and
+ * compressed size, AC / DC / RLE compressed size, RLE uncompressed and raw
+ * size, AC and DC coefficient counts, AC compression), from which OpenEXR
+ * 3.1.5 sizes its buffers.  A damaged counter made it allocate gigabytes
+ * for a 12×10 image (found by fuzzing).  Every counter is bounded by what
+ * the chunk can hold: byte sizes by its uncompressed size, coefficient
+ * counts by 8×8 blocks of every channel, compressed sizes by its data. */
+static int check_dwa_leader(const exr_chunk_info_t *ci, int64_t cw, int64_t chh, int nch,
+                            const unsigned char *data, const char *name, int64_t k)
+{
+    if (ci->packed_size >= ci->unpacked_size) return SH_OK; /* stored uncompressed */
+    uint64_t c[11];
+    if (ci->packed_size < sizeof c)
+        return sh_error(SH_EFORMAT, "%s: DWA chunk %lld is shorter than its header", name, (long long)k);
+    for (int i = 0; i < 11; i++) {
+        c[i] = 0;
+        for (int b = 7; b >= 0; b--) c[i] = c[i] << 8 | data[ci->data_offset + 8 * (size_t)i + (size_t)b];
+    }
+    const uint64_t raw = ci->unpacked_size, body = ci->packed_size - sizeof c;
+    const uint64_t blocks = (uint64_t)nch * (uint64_t)((cw + 7) / 8) * (uint64_t)((chh + 7) / 8);
+    if (c[0] > 2 || c[1] > raw || c[6] > raw || c[7] > raw || c[8] > 63 * blocks || c[9] > blocks ||
+        c[10] > 1 || c[2] > body || c[3] > body || c[4] > body || c[5] > body ||
+        c[2] + c[3] + c[4] + c[5] > body)
+        return sh_error(SH_EFORMAT, "%s: DWA chunk %lld has a corrupt header (sizes beyond the "
+                        "chunk's %llu bytes)", name, (long long)k, (unsigned long long)raw);
+    return SH_OK;
+}
+
 /* Check the chunk table against the data before anything is allocated:
  * every level-0 chunk must be where the header says, of the size it says,
  * and inside the data. */
-static int check_chunks(const part_info *pi, const char *name, size_t size, const sh_exr_limits *lim,
-                        int64_t *raw_total, int64_t *max_unpacked)
+static int check_chunks(const part_info *pi, const char *name, const unsigned char *data, size_t size,
+                        const sh_exr_limits *lim, int64_t *raw_total, int64_t *max_unpacked)
 {
+    const int dwa = pi->comp == EXR_COMPRESSION_DWAA || pi->comp == EXR_COMPRESSION_DWAB;
     *raw_total = 0;
     *max_unpacked = 0;
     for (int64_t k = 0; k < pi->nchunks; k++) {
@@ -271,6 +301,8 @@ static int check_chunks(const part_info *pi, const char *name, size_t size, cons
             return sh_error(SH_EFORMAT, "%s: chunk %lld claims %llu uncompressed bytes for %lld×%lld "
                             "pixels of %d channels", name, (long long)k,
                             (unsigned long long)ci.unpacked_size, (long long)cw, (long long)chh, pi->nch);
+        int st;
+        if (dwa && (st = check_dwa_leader(&ci, cw, chh, pi->nch, data, name, k))) return st;
         *raw_total += (int64_t)ci.unpacked_size;
         if ((int64_t)ci.unpacked_size > *max_unpacked) *max_unpacked = (int64_t)ci.unpacked_size;
     }
@@ -280,43 +312,6 @@ static int check_chunks(const part_info *pi, const char *name, size_t size, cons
                         "%s: %lld×%lld pixels of %d channels (%s uncompressed) cannot come from %s of "
                         "data (more than %.0f:1 compression)", name, (long long)pi->w, (long long)pi->h,
                         pi->nch, human(a, (double)*raw_total), human(b, (double)size), lim->max_ratio);
-    }
-    return SH_OK;
-}
-
-/* DWAA/DWAB chunks, before they reach the C++ library: each starts with
- * eleven little-endian uint64 counters (version, unknown uncompressed and
- * compressed size, AC / DC / RLE compressed size, RLE uncompressed and raw
- * size, AC and DC coefficient counts, AC compression), from which OpenEXR
- * 3.1.5 sizes its buffers.  A damaged counter made it allocate gigabytes
- * for a 12×10 image (found by fuzzing).  Every counter is bounded by what
- * the chunk can hold: byte sizes by its uncompressed size, coefficient
- * counts by 8×8 blocks of every channel, compressed sizes by its data. */
-static int check_dwa_chunks(const part_info *pi, const unsigned char *data, const char *name)
-{
-    for (int64_t k = 0; k < pi->nchunks; k++) {
-        exr_chunk_info_t ci;
-        int64_t x0, y0, cw, chh;
-        core_msg[0] = '\0';
-        exr_result_t rv = chunk_at(pi, k, &ci, &x0, &y0, &cw, &chh);
-        if (rv != EXR_ERR_SUCCESS)
-            return sh_error(read_status(rv), "%s: chunk %lld is missing or corrupt (%s)", name,
-                            (long long)k, core_reason(rv));
-        if (ci.packed_size >= ci.unpacked_size) continue; /* stored uncompressed */
-        uint64_t c[11];
-        if (ci.packed_size < sizeof c)
-            return sh_error(SH_EFORMAT, "%s: DWA chunk %lld is shorter than its header", name, (long long)k);
-        for (int i = 0; i < 11; i++) {
-            c[i] = 0;
-            for (int b = 7; b >= 0; b--) c[i] = c[i] << 8 | data[ci.data_offset + 8 * (size_t)i + (size_t)b];
-        }
-        const uint64_t raw = ci.unpacked_size, body = ci.packed_size - sizeof c;
-        const uint64_t blocks = (uint64_t)pi->nch * (uint64_t)((cw + 7) / 8) * (uint64_t)((chh + 7) / 8);
-        if (c[0] > 2 || c[1] > raw || c[6] > raw || c[7] > raw || c[8] > 63 * blocks || c[9] > blocks ||
-            c[10] > 1 || c[2] > body || c[3] > body || c[4] > body || c[5] > body ||
-            c[2] + c[3] + c[4] + c[5] > body)
-            return sh_error(SH_EFORMAT, "%s: DWA chunk %lld has a corrupt header (sizes beyond the "
-                            "chunk's %llu bytes)", name, (long long)k, (unsigned long long)raw);
     }
     return SH_OK;
 }
@@ -509,7 +504,7 @@ static int read_mem(const void *data, size_t size, const char *name, const sh_ex
         goto done;
     }
     int64_t raw_total = 0, max_unpacked = 0;
-    if ((st = check_chunks(&pi, name, size, lim, &raw_total, &max_unpacked))) goto done;
+    if ((st = check_chunks(&pi, name, data, size, lim, &raw_total, &max_unpacked))) goto done;
 
     /* memory: the image, the scratch of one chunk (every channel as float),
      * and OpenEXRCore's packed, unpacked and scratch buffers of one chunk */
@@ -533,9 +528,6 @@ static int read_mem(const void *data, size_t size, const char *name, const sh_ex
                       human(b, (double)(budget_left > 0 ? budget_left : 0)));
         goto done;
     }
-    if ((pi.comp == EXR_COMPRESSION_DWAA || pi.comp == EXR_COMPRESSION_DWAB) &&
-        (st = check_dwa_chunks(&pi, data, name)))
-        goto done;
     img->width = (int)pi.w;
     img->height = (int)pi.h;
     img->data = calloc((size_t)pi.w * (size_t)pi.h * (size_t)img->nchan, sizeof(float));
