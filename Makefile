@@ -16,6 +16,14 @@ ifeq ($(SANITIZE),1)
 BUILD    ?= build/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 OPT      := -O1 -g
+else ifeq ($(SANITIZE),fuzz)
+# make fuzz: clang's libFuzzer, with ASan/UBSan (Debian clang, libclang-rt-14-dev)
+BUILD    ?= build/libfuzzer
+SANFLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer \
+            -fno-sanitize-recover=undefined
+OPT      := -O1 -g
+CC       := clang
+CXX      := clang++
 else
 BUILD    ?= build
 SANFLAGS :=
@@ -30,17 +38,23 @@ CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
             -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
 LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
+CXX      ?= c++
+CXXFLAGS += -std=c++14 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) \
+            -Isrc -MMD -MP
 
 # src/ is grouped by concept, one folder each (README "Layout"): the library is
 # every src/<concept>/*.c except src/cli/ (the command-line tool).
 LIB_DIRS := core basis io project rotate taylor scale measure
 LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
+# C++ sources of the library (io/exr_cxx.cpp: OpenEXR's C++ reader for DWAA/DWAB)
+LIB_CXX  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.cpp)))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
 # src/*/rot_*.c are precision-generic rotation kernels (rotate/rot_real.h):
 # compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
 ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
-LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
+LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o) \
+            $(LIB_CXX:src/%.cpp=$(BUILD)/obj/%.o)
 # Loops marked `#pragma omp simd` in the kernels are vectorised at -O2
 # (OpenMP's simd directive only: no OpenMP runtime is linked).
 CFLAGS   += -fopenmp-simd
@@ -64,9 +78,17 @@ FAST_FLAGS_avx512v := -DSHK_VARIANT=avx512v -DSHK_VBYTES=64 -mavx512f -mfma -ffp
 FAST_OBJ_D := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%.o)
 FAST_OBJ_F := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%_f.o)
 LIB_OBJ  += $(FAST_OBJ_D) $(FAST_OBJ_F)
+ifeq ($(SANITIZE),fuzz)
+# clang with UBSan takes most of an hour on the unrolled rotation kernels at
+# -O1 (and seconds at -O0): they are built at -O0 for fuzzing
+$(ROTK_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o) $(FAST_OBJ_D) $(FAST_OBJ_F): OPT := -O0 -g
+endif
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+# fuzz harnesses (tests/fuzz/fuzz_<h>.c); make check replays their corpora
+FUZZ_HARNESS := exr fixture candidate coeffs light rotation
+FUZZ_REPLAY  := $(FUZZ_HARNESS:%=$(BUILD)/fuzz/replay_%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
 # ---- sht: fast spherical harmonic transforms and the libsharp peer (begin) ----
@@ -109,7 +131,7 @@ bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count
+.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count fuzz fuzz-build
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -123,6 +145,10 @@ deps-quiet:
 $(BUILD)/obj/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/%.o: src/%.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -c $< -o $@
 
 $(BUILD)/obj/%_f.o: src/%.c
 	@mkdir -p $(dir $@)
@@ -153,10 +179,48 @@ $(BUILD)/shlab: $(CLI_OBJ) $(BUILD)/libshlab.a
 # ---- tests ----------------------------------------------------------------
 $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -o $@ $< $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
+	$(CC) $(CFLAGS) -o $@ $< $(TEST_EXTRA) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
 
-check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
+# The EXR tests write their files with OpenEXR's C++ library (tests/exr_writer.cpp).
+EXR_WRITER_TESTS := $(BUILD)/tests/test_exr_layouts $(BUILD)/tests/test_exr_damage
+$(EXR_WRITER_TESTS): $(BUILD)/tests/exr_writer.o
+$(EXR_WRITER_TESTS): TEST_EXTRA = $(BUILD)/tests/exr_writer.o
+$(BUILD)/tests/exr_writer.o: tests/exr_writer.cpp tests/exr_writer.h
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -Itests -c $< -o $@
+
+check: deps-quiet $(BUILD)/shlab $(TEST_BIN) $(FUZZ_REPLAY)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
+
+# ---- fuzzing (tests/fuzz/README.md) -----------------------------------------
+# One harness per input kind: tests/fuzz/fuzz_<h>.c.  make check links each to
+# a corpus-replay main and replays tests/fuzz/corpus/<h>/ (tests/cli/
+# test_fuzz_corpus.sh; with ASan/UBSan under SANITIZE=1).  make fuzz builds
+# them with clang's libFuzzer and runs each for FUZZ_TIME seconds.
+FUZZ_TIME    ?= 60
+CLI_LIB_OBJ  := $(filter-out $(BUILD)/obj/cli/main.o,$(CLI_OBJ))
+FUZZ_SRC     := tests/fuzz/fuzz.h tests/fuzz/stubs.c
+
+$(BUILD)/libshlab_cli.a: $(CLI_LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< tests/fuzz/replay.c tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
+	  $(BUILD)/libshlab.a $(LDLIBS)
+
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -fsanitize-link-c++-runtime -o $@ $< tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
+	  $(BUILD)/libshlab.a $(LDLIBS)
+
+fuzz-build: $(FUZZ_HARNESS:%=$(BUILD)/fuzz/fuzz_%)
+
+fuzz:
+	@tools/deps.sh --fuzz --quiet
+	@$(MAKE) --no-print-directory SANITIZE=fuzz fuzz-build
+	@tests/fuzz/run.sh build/libfuzzer $(FUZZ_TIME) $(FUZZ_HARNESS)
 
 # ---- generated code ---------------------------------------------------------
 # src/rotate/rot_unrolled_gen.h is written by tools/gen_rot_unrolled.c (its

@@ -5,11 +5,13 @@
 # OPT_PKGS are peers for optional tests and benchmarks (tests/peers): `make
 # deps` (this script without --quiet) installs them as root; otherwise their
 # absence only skips those tests, with a message.
+# --fuzz: also clang and its libFuzzer runtime (make fuzz).
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
 PKGS="$PKGS libfftw3-dev"  # fast transforms (FFTW3 in φ)
 # peers: HEALPix C++ (rotation oracle), libsharp (transform oracle)
 OPT_PKGS="libhealpix-cxx-dev libsharp-dev"
+OPT_PKGS="$OPT_PKGS valgrind" # bench --instructions (make bench-count) and its test
 missing_of() {
     m=""
     for p in $1; do
@@ -20,7 +22,12 @@ missing_of() {
     echo "$m"
 }
 quiet=0
-[ "${1:-}" = "--quiet" ] && quiet=1
+for a in "$@"; do
+    case "$a" in
+    --quiet) quiet=1 ;;
+    --fuzz) PKGS="$PKGS clang libclang-rt-14-dev" ;; # make fuzz: clang's libFuzzer
+    esac
+done
 missing=$(missing_of "$PKGS")
 optional=""
 [ "$quiet" = 1 ] || optional=$(missing_of "$OPT_PKGS")

@@ -9,6 +9,7 @@
 #ifndef SHLAB_CLI_H
 #define SHLAB_CLI_H
 
+#include <getopt.h>
 #include <jansson.h>
 #include <stdio.h>
 
@@ -39,7 +40,9 @@ int cli_fail_getopt(const char *cmd, char **argv, int optind_before, int optopt_
 int cli_int(const char *opt, const char *s, int *out);
 int cli_long(const char *opt, const char *s, long *out);
 int cli_double(const char *opt, const char *s, double *out);
-/* Comma/space separated list; *out is malloc'd (caller frees). */
+/* Comma/space separated list; *out is malloc'd (caller frees).  At most
+ * CLI_MAX_NUMBERS values (four channels of order SHLAB_MAX_ORDER). */
+#define CLI_MAX_NUMBERS (SH_IMAGE_MAX_CHANNELS * SHLAB_MAX_ORDER * SHLAB_MAX_ORDER)
 int cli_doubles(const char *opt, const char *s, double **out, int *n);
 int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
@@ -53,6 +56,16 @@ int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
  * *len concatenated in *out (malloc'd), channel names in names (may be NULL). */
 int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8]);
+/* The same from memory (buf[n] must be '\0'; `path` names it in messages). */
+int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,
+                        int *nchan, char names[SH_IMAGE_MAX_CHANNELS][8]);
+/* Read a whole file (at most `max` bytes, else an error naming the limit)
+ * into a malloc'd, NUL-terminated buffer.  `what` names the kind of file in
+ * the messages ("cannot open fixture 'F': ..."). */
+int cli_read_file(const char *what, const char *path, size_t max, char **buf, size_t *n);
+/* Parse JSON text: duplicate keys and numbers outside double's range
+ * (jansson would read "1e-400" as 0) are errors, as on the command line. */
+int cli_json_parse(const char *buf, size_t n, const char *name, json_t **root);
 
 /* The one error line for a JSON file that json_load_file could not read
  * (err_no: errno right after the call): "cannot open WHAT 'PATH': reason" or
@@ -99,8 +112,23 @@ int cli_mem_check(const char *cmd, double bytes, const char *what);
 /* `shlab bench --peers` (cli_peers.c): shlab's transforms against libsharp. */
 int cli_bench_peers(const cli_command *bench, int argc, char **argv);
 
-/* Render `root` in `fmt` on stdout and release it. Returns an exit code. */
+/* Render `root` in `fmt` on stdout and release it; then, if stdout took it
+ * all, rename the output files (cli_out_open) onto their targets, else
+ * remove them.  Returns an exit code. */
 int cli_emit(json_t *root, cli_format fmt);
+
+/* Output files.  A command that writes files opens each one with
+ * cli_out_open before its work (so an unwritable target fails first) and
+ * writes it under the temporary name *tmp, next to the target.  cli_emit
+ * commits them after the result is printed; an error, a failed write to
+ * stdout or a signal removes them instead.  So no error truncates or removes
+ * an existing file, and nothing is left behind.  Returns 0 or the exit code
+ * after the error line. */
+int cli_out_open(const char *cmd, const char *path, const char **tmp);
+int cli_out_commit(void);
+void cli_out_discard(void);
+/* main: remove temporary files on SIGINT/SIGTERM/SIGHUP/SIGPIPE and at exit. */
+void cli_signals_install(void);
 
 /* Print help text to stdout; returns 0. */
 int cli_help(const cli_command *cmd);
@@ -108,11 +136,26 @@ const cli_command *cli_find(const char *name);
 extern const cli_command cli_commands[];
 extern const int cli_ncommands;
 
+/* Option parsing.  Every command calls getopt_long; this header routes those
+ * calls through cli_getopt_long (the macro below), which applies the rules
+ * that hold for every command in one place: an option given twice is an
+ * error ("option --order given twice"), whether or not the two values agree
+ * and whatever the option (a flag, --out, --light, ...). */
+int cli_getopt_long(int argc, char *const argv[], const char *shortopts,
+                    const struct option *longopts, int *longind);
+#ifndef CLI_GETOPT_IMPL
+#define getopt_long cli_getopt_long
+#endif
+
 /* Options most commands share.  A command lists the ones it takes in its
  * getopt_long table (CLI_LONGOPTS_BASE always: --help and --format), keeps
  * their values in a cli_common, and hands every option it does not handle
  * itself to cli_common_opt(). */
 enum { CLI_OPT_FORMAT = 0x101, CLI_OPT_ORDER, CLI_OPT_CONVENTION, CLI_OPT_DEGREES };
+/* What cli_getopt_long returns for a repeated option (after the error line);
+ * commands pass it, like any option they do not handle, to cli_common_opt,
+ * which returns CLI_EXIT_USAGE. */
+#define CLI_OPT_REPEATED 0x1ff
 #define CLI_LONGOPTS_BASE {"help", no_argument, 0, 'h'}, {"format", required_argument, 0, CLI_OPT_FORMAT}
 #define CLI_LONGOPT_ORDER {"order", required_argument, 0, CLI_OPT_ORDER}
 #define CLI_LONGOPT_CONVENTION {"convention", required_argument, 0, CLI_OPT_CONVENTION}
@@ -191,8 +234,15 @@ typedef struct {
     int ncases;
     fx_case *cases;
 } fx_set;
-/* Read a fixture file (one line "shlab: error: ..." and CLI_EXIT_USAGE on failure). */
+/* Read a fixture file (one line "shlab: error: ..." and CLI_EXIT_USAGE on
+ * failure; at least one case; every integer range-checked before use). */
 int fx_load(const char *path, fx_set *set);
+int fx_load_mem(const char *buf, size_t n, const char *name, fx_set *set);
+/* Read a candidate file {"results": {"<case id>": [n numbers], ...}} for the
+ * cases of fx: out[k] (fx->cases[k].n values each, allocated by the caller). */
+int fx_load_candidate(const char *path, const fx_set *fx, double **out);
+int fx_load_candidate_mem(const char *buf, size_t n, const char *name, const fx_set *fx,
+                          double **out);
 void fx_free(fx_set *set);
 /* out = R_sh(rot)·in for a case's shape (its order, or band only), by method. */
 int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,

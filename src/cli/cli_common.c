@@ -1,6 +1,8 @@
 /* cli_common.c — argument parsing and error reporting shared by commands. */
 #define _GNU_SOURCE
+#define CLI_GETOPT_IMPL /* the real getopt_long below */
 #include "cli.h"
+#include "core/shlab_internal.h"
 
 #include <ctype.h>
 #include <getopt.h>
@@ -15,14 +17,19 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+/* The one error line.  Messages quote arguments and file contents, so the
+ * text is escaped (sh__escape_line: no control character, no invalid UTF-8)
+ * and cut at 2000 bytes: whatever the input, exactly one line. */
 int cli_fail(const char *fmt, ...)
 {
+    char raw[2048], line[2048];
     va_list ap;
     va_start(ap, fmt);
-    fputs("shlab: error: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vsnprintf(raw, sizeof raw, fmt, ap);
     va_end(ap);
+    sh__escape_line(line, sizeof line, raw);
+    fprintf(stderr, "shlab: error: %s\n", line);
+    fflush(stderr);
     return CLI_EXIT_USAGE;
 }
 
@@ -54,6 +61,32 @@ void cli_progress_step(void *ctx, int done, int total, const char *what)
     p->printed = 1;
 }
 
+int cli_getopt_long(int argc, char *const argv[], const char *shortopts,
+                    const struct option *longopts, int *longind)
+{
+    /* the options seen in this parse: a new argv, or optind back at the
+     * start, begins a new one */
+    static char *const *seen_argv;
+    static int seen[64], nseen;
+    if (argv != seen_argv || optind <= 1) {
+        seen_argv = argv;
+        nseen = 0;
+    }
+    int idx = -1;
+    const int o = getopt_long(argc, argv, shortopts, longopts, &idx);
+    if (longind) *longind = idx;
+    if (o == -1 || o == '?' || o == ':') return o;
+    for (int k = 0; k < nseen; k++)
+        if (seen[k] == o) {
+            const char *cmd = argc > 0 && argv[0] ? argv[0] : "shlab";
+            if (idx >= 0) cli_fail("%s: option --%s given twice (give each option once)", cmd, longopts[idx].name);
+            else cli_fail("%s: option -%c given twice (give each option once)", cmd, o);
+            return CLI_OPT_REPEATED;
+        }
+    if (nseen < 64) seen[nseen++] = o;
+    return o;
+}
+
 int cli_fail_status(int st)
 {
     const char *why = sh_last_error();
@@ -72,6 +105,7 @@ int cli_fail_getopt(const char *cmd, char **argv, int optind_now, int optopt_val
 int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
 {
     switch (o) {
+    case CLI_OPT_REPEATED: return CLI_EXIT_USAGE; /* the error is printed */
     case 'h': return cli_help(cmd);
     case CLI_OPT_FORMAT: return cli_format_parse(optarg, &c->fmt) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_ORDER: return cli_order("--order", optarg, &c->order) ? CLI_EXIT_USAGE : -1;
@@ -123,14 +157,18 @@ int cli_order(const char *opt, const char *s, int *out)
     return 0;
 }
 
+/* Numbers: sh__parse_double's rule everywhere (finite, no overflow, and no
+ * underflow of a non-zero value to 0 or a subnormal). */
+#define RANGE_MSG "is not a finite number within double's range (1e-307 to 1e308 in magnitude, or 0)"
+
 int cli_double(const char *opt, const char *s, double *out)
 {
     char *end;
-    errno = 0;
-    double v = strtod(s, &end);
+    double v = 0;
+    const int r = sh__parse_double(s, &end, &v);
     while (end && isspace((unsigned char)*end)) end++;
-    if (end == s || *end != '\0') return cli_fail("%s expects a number, got '%s'", opt, s);
-    if (!isfinite(v)) return cli_fail("%s: '%s' is not a finite number", opt, s);
+    if (r == SH__NUM_NONE || *end != '\0') return cli_fail("%s expects a number, got '%s'", opt, s);
+    if (r == SH__NUM_RANGE) return cli_fail("%s: '%s' " RANGE_MSG, opt, s);
     *out = v;
     return 0;
 }
@@ -145,14 +183,20 @@ int cli_doubles(const char *opt, const char *s, double **out, int *n)
         while (*p && (isspace((unsigned char)*p) || *p == ',' || *p == '[' || *p == ']')) p++;
         if (!*p) break;
         char *end;
-        double x = strtod(p, &end);
-        if (end == p) {
+        double x = 0;
+        const int r = sh__parse_double(p, &end, &x);
+        if (r == SH__NUM_NONE) {
             free(v);
             return cli_fail("%s: cannot read a number at '%.20s'", opt, p);
         }
-        if (!isfinite(x)) {
+        if (r == SH__NUM_RANGE) {
             free(v);
-            return cli_fail("%s: value %zu is not a finite number", opt, k + 1);
+            return cli_fail("%s: value %zu ('%.*s') " RANGE_MSG, opt, k + 1,
+                            (int)(end - p < 40 ? end - p : 40), p);
+        }
+        if (k == CLI_MAX_NUMBERS) {
+            free(v);
+            return cli_fail("%s: more than %d numbers", opt, CLI_MAX_NUMBERS);
         }
         if (k == cap) {
             double *nv = realloc(v, 2 * cap * sizeof *v);
@@ -206,6 +250,7 @@ static int json_to_doubles(const json_t *a, double **out, int *len, const char *
     if (!json_is_array(a) || json_array_size(a) == 0)
         return cli_fail("%s: coefficients must be a non-empty array of numbers", path);
     size_t n = json_array_size(a);
+    if (n > CLI_MAX_NUMBERS) return cli_fail("%s: more than %d coefficients", path, CLI_MAX_NUMBERS);
     double *v = malloc(n * sizeof *v);
     if (!v) return cli_fail("out of memory");
     for (size_t i = 0; i < n; i++) {
@@ -218,40 +263,111 @@ static int json_to_doubles(const json_t *a, double **out, int *len, const char *
     return 0;
 }
 
-int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
-                         char names[SH_IMAGE_MAX_CHANNELS][8])
+/* ---- input files -------------------------------------------------------- */
+
+int cli_read_file(const char *what, const char *path, size_t max, char **buf, size_t *n)
 {
+    *buf = NULL;
+    *n = 0;
     FILE *f = fopen(path, "rb");
-    if (!f) return cli_fail("cannot open '%s': %s", path, strerror(errno));
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap + 1);
-    if (!buf) { fclose(f); return cli_fail("out of memory"); }
+    if (!f) return cli_fail("cannot open %s '%s': %s", what, path, strerror(errno));
+    struct stat sb;
+    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fclose(f);
+        return cli_fail("cannot read %s '%s': it is a directory", what, path);
+    }
+    size_t cap = 1 << 16, len = 0;
+    char *b = malloc(cap + 1);
+    if (!b) { fclose(f); return cli_fail("out of memory"); }
     size_t got;
-    while ((got = fread(buf + n, 1, cap - n, f)) > 0) {
-        n += got;
-        if (n == cap) {
-            char *nb = realloc(buf, 2 * cap + 1);
-            if (!nb) { free(buf); fclose(f); return cli_fail("out of memory"); }
-            buf = nb;
+    while ((got = fread(b + len, 1, cap - len, f)) > 0) {
+        len += got;
+        if (len > max) {
+            free(b);
+            fclose(f);
+            return cli_fail("%s '%s' is larger than %zu bytes (the most a file of this kind needs)", what, path, max);
+        }
+        if (len == cap) {
+            char *nb = realloc(b, 2 * cap + 1);
+            if (!nb) { free(b); fclose(f); return cli_fail("out of memory"); }
+            b = nb;
             cap *= 2;
         }
     }
     int rerr = ferror(f);
     fclose(f);
-    if (rerr) { free(buf); return cli_fail("cannot read '%s'", path); }
-    buf[n] = '\0';
-    if (memchr(buf, '\0', n)) {
-        free(buf);
-        return cli_fail("%s: contains a NUL byte (not a text or JSON coefficient file)", path);
+    if (rerr) { free(b); return cli_fail("cannot read %s '%s'", what, path); }
+    b[len] = '\0';
+    *buf = b;
+    *n = len;
+    return 0;
+}
+
+/* A JSON number that underflows is refused as on the command line
+ * (sh__parse_double): jansson reads "1e-400" as 0.  The text is scanned for
+ * number tokens outside strings. */
+static int json_underflow(const char *buf, size_t n, const char *name)
+{
+    int in_str = 0, line = 1;
+    for (size_t i = 0; i < n; i++) {
+        const char c = buf[i];
+        if (c == '\n') line++;
+        if (in_str) {
+            if (c == '\\') i++;
+            else if (c == '"') in_str = 0;
+            continue;
+        }
+        if (c == '"') { in_str = 1; continue; }
+        if (c == '-' || (c >= '0' && c <= '9')) {
+            char *end;
+            double v;
+            const int r = sh__parse_double(buf + i, &end, &v);
+            if (r == SH__NUM_RANGE)
+                return cli_fail("%s: line %d: the number '%.*s' is outside double's range", name, line,
+                                (int)(end - (buf + i) < 40 ? end - (buf + i) : 40), buf + i);
+            if (end > buf + i) i = (size_t)(end - buf) - 1;
+        }
     }
+    return 0;
+}
+
+int cli_json_parse(const char *buf, size_t n, const char *name, json_t **root)
+{
+    json_error_t err;
+    *root = json_loadb(buf, n, JSON_REJECT_DUPLICATES, &err);
+    if (!*root) return cli_fail("%s: not valid JSON (line %d: %s)", name, err.line, err.text);
+    if (json_underflow(buf, n, name)) {
+        json_decref(*root);
+        *root = NULL;
+        return CLI_EXIT_USAGE;
+    }
+    return 0;
+}
+
+int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
+                         char names[SH_IMAGE_MAX_CHANNELS][8])
+{
+    char *buf;
+    size_t n;
+    /* four channels of order SHLAB_MAX_ORDER in text, 40 bytes a number */
+    if (cli_read_file("coefficient file", path, (size_t)CLI_MAX_NUMBERS * 40, &buf, &n)) return CLI_EXIT_USAGE;
+    const int rc = cli_read_coeffs_mem(buf, n, path, out, len, nchan, names);
+    free(buf);
+    return rc;
+}
+
+int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,
+                        int *nchan, char names[SH_IMAGE_MAX_CHANNELS][8])
+{
+    if (memchr(buf, '\0', n))
+        return cli_fail("%s: contains a NUL byte (not a text or JSON coefficient file)", path);
     const char *p = buf;
     while (*p && isspace((unsigned char)*p)) p++;
     int rc = 0;
     if (*p == '{') {
-        json_error_t err;
-        json_t *root = json_loads(buf, JSON_DECODE_ANY, &err);
-        if (!root) {
-            rc = cli_fail("%s: not valid JSON (line %d: %s)", path, err.line, err.text);
+        json_t *root = NULL;
+        if (cli_json_parse(buf, n, path, &root)) {
+            rc = CLI_EXIT_USAGE;
         } else if (json_object_get(root, "coeffs")) {
             rc = json_to_doubles(json_object_get(root, "coeffs"), out, len, path);
             *nchan = 1;
@@ -293,7 +409,6 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
         *nchan = 1;
         if (!rc && names) strcpy(names[0], "Y");
     }
-    free(buf);
     return rc;
 }
 

@@ -2,6 +2,7 @@
  * one case (shared by `shlab verify` and `shlab fixtures`).  Format: see
  * data/fixtures/rotation/README.md. */
 #include "cli.h"
+#include "core/shlab_internal.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -21,7 +22,7 @@ void fx_free(fx_set *set)
 
 static double *numbers(const json_t *a, int n)
 {
-    if (!json_is_array(a) || (int)json_array_size(a) != n) return NULL;
+    if (!json_is_array(a) || json_array_size(a) != (size_t)n) return NULL;
     double *v = malloc((size_t)n * sizeof *v);
     if (!v) return NULL;
     for (int i = 0; i < n; i++) {
@@ -32,35 +33,80 @@ static double *numbers(const json_t *a, int n)
     return v;
 }
 
+/* A fixture or candidate file is at most this large (the golden fixtures are
+ * about 1 MB). */
+#define FX_MAX_BYTES ((size_t)256 << 20)
+
+/* An integer member in [lo, hi], checked on the JSON value (a long long)
+ * before it is narrowed: 4294967297 is not order 1. */
+static int int_member(const json_t *c, const char *key, long long lo, long long hi, int dflt, int *out)
+{
+    const json_t *v = json_object_get(c, key);
+    if (!v) { *out = dflt; return 1; }
+    if (!json_is_integer(v)) return 0;
+    const long long x = json_integer_value(v);
+    if (x < lo || x > hi) return 0;
+    *out = (int)x;
+    return 1;
+}
+
+/* An id is printed in messages and written to candidate files: one line of
+ * printable text. */
+static int good_id(const char *id, size_t max)
+{
+    if (!id || !*id || strlen(id) >= max) return 0;
+    char esc[256];
+    sh__escape_line(esc, sizeof esc, id);
+    return strcmp(esc, id) == 0;
+}
+
 int fx_load(const char *path, fx_set *set)
 {
     memset(set, 0, sizeof *set);
-    json_error_t err;
-    errno = 0;
-    json_t *root = json_load_file(path, 0, &err);
-    if (!root) return cli_fail_json("fixture", path, errno, &err);
+    char *buf;
+    size_t n;
+    if (cli_read_file("fixture", path, FX_MAX_BYTES, &buf, &n)) return CLI_EXIT_USAGE;
+    char name[4200];
+    snprintf(name, sizeof name, "fixture '%s'", path);
+    const int rc = fx_load_mem(buf, n, name, set);
+    free(buf);
+    return rc;
+}
+
+int fx_load_mem(const char *buf, size_t len, const char *name, fx_set *set)
+{
+    memset(set, 0, sizeof *set);
+    json_t *root;
+    if (cli_json_parse(buf, len, name, &root)) return CLI_EXIT_USAGE;
     const json_t *cases = json_object_get(root, "cases");
     const char *fmt = json_string_value(json_object_get(root, "format"));
     if (!fmt || strcmp(fmt, "shlab-rotation-fixtures/1") || !json_is_array(cases)) {
         json_decref(root);
-        return cli_fail("fixture '%s': not a shlab rotation fixture file (format "
-                        "\"shlab-rotation-fixtures/1\" with \"cases\")", path);
+        return cli_fail("%s: not a shlab rotation fixture file (format "
+                        "\"shlab-rotation-fixtures/1\" with \"cases\")", name);
     }
-    set->ncases = (int)json_array_size(cases);
-    set->cases = calloc((size_t)set->ncases + 1, sizeof *set->cases);
-    if (!set->cases) { json_decref(root); return cli_fail("out of memory"); }
+    const size_t nc = json_array_size(cases);
+    if (nc == 0 || nc > 1000000) {
+        json_decref(root);
+        return cli_fail("%s: %s", name, nc ? "more than 10^6 cases" : "\"cases\" is empty");
+    }
+    set->ncases = (int)nc;
+    set->cases = calloc(nc, sizeof *set->cases);
+    if (!set->cases) { set->ncases = 0; json_decref(root); return cli_fail("out of memory"); }
     for (int k = 0; k < set->ncases; k++) {
         const json_t *c = json_array_get(cases, (size_t)k);
         fx_case *x = &set->cases[k];
         const char *id = json_string_value(json_object_get(c, "id"));
-        const json_t *order = json_object_get(c, "order"), *band = json_object_get(c, "band");
         const char *conv = json_string_value(json_object_get(c, "convention"));
         const json_t *eul = json_object_get(json_object_get(c, "rotation"), "euler");
         const json_t *tol = json_object_get(c, "tolerance");
-        x->band = json_is_integer(band) ? (int)json_integer_value(band) : -1;
-        x->order = json_is_integer(order) ? (int)json_integer_value(order) : 0;
-        int ok = id && strlen(id) < sizeof x->id && x->order >= 1 && x->order <= 1001 && conv &&
-                 !sh_convention_parse(conv, &x->conv) && x->band < x->order;
+        /* orders up to 1001 (a band up to 1000): checked before any arithmetic */
+        int ok = json_is_object(c) && good_id(id, sizeof x->id) &&
+                 int_member(c, "order", 1, 1001, 0, &x->order) && x->order >= 1 &&
+                 int_member(c, "band", -1, 1000, -1, &x->band) && x->band < x->order && conv &&
+                 !sh_convention_parse(conv, &x->conv);
+        for (int j = 0; ok && j < k; j++)
+            if (!strcmp(set->cases[j].id, id)) ok = 0; /* ids name the cases of a candidate */
         double *e = ok ? numbers(eul, 3) : NULL;
         if (e) {
             snprintf(x->id, sizeof x->id, "%s", id);
@@ -69,8 +115,8 @@ int fx_load(const char *path, fx_set *set)
         } else {
             ok = 0;
         }
-        x->n = x->band >= 0 ? 2 * x->band + 1 : x->order * x->order;
         if (ok) {
+            x->n = x->band >= 0 ? 2 * x->band + 1 : x->order * x->order;
             x->input = numbers(json_object_get(c, "input"), x->n);
             x->expected = numbers(json_object_get(c, "expected"), x->n);
             x->expected_f = numbers(json_object_get(c, "expected_float32"), x->n);
@@ -81,8 +127,51 @@ int fx_load(const char *path, fx_set *set)
         if (!ok) {
             json_decref(root);
             fx_free(set);
-            return cli_fail("fixture '%s': case %d is malformed (id, order, band, convention, "
-                            "rotation.euler, input, expected, expected_float32, tolerance)", path, k);
+            return cli_fail("%s: case %d is malformed (id: unique printable text; order: 1..1001; "
+                            "band: -1..order-1; convention, rotation.euler, input, expected, "
+                            "expected_float32, tolerance)", name, k);
+        }
+    }
+    json_decref(root);
+    return 0;
+}
+
+int fx_load_candidate(const char *path, const fx_set *fx, double **out)
+{
+    char *buf;
+    size_t n;
+    if (cli_read_file("candidate", path, FX_MAX_BYTES, &buf, &n)) return CLI_EXIT_USAGE;
+    char name[4200];
+    snprintf(name, sizeof name, "candidate '%s'", path);
+    const int rc = fx_load_candidate_mem(buf, n, name, fx, out);
+    free(buf);
+    return rc;
+}
+
+int fx_load_candidate_mem(const char *buf, size_t len, const char *name, const fx_set *fx,
+                          double **out)
+{
+    json_t *root;
+    if (cli_json_parse(buf, len, name, &root)) return CLI_EXIT_USAGE;
+    const json_t *res = json_object_get(root, "results");
+    if (!json_is_object(res)) {
+        json_decref(root);
+        return cli_fail("%s: expected {\"results\": {\"<case id>\": [...]}}", name);
+    }
+    for (int k = 0; k < fx->ncases; k++) {
+        const fx_case *c = &fx->cases[k];
+        const json_t *a = json_object_get(res, c->id);
+        if (!json_is_array(a) || json_array_size(a) != (size_t)c->n) {
+            json_decref(root);
+            return cli_fail("%s: case '%s' missing or not %d numbers", name, c->id, c->n);
+        }
+        for (int i = 0; i < c->n; i++) {
+            const json_t *x = json_array_get(a, (size_t)i);
+            if (!json_is_number(x)) {
+                json_decref(root);
+                return cli_fail("%s: case '%s' entry %d is not a number", name, c->id, i);
+            }
+            out[k][i] = json_number_value(x);
         }
     }
     json_decref(root);

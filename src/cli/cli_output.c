@@ -13,7 +13,9 @@
  */
 #define _GNU_SOURCE
 #include "cli.h"
+#include "core/shlab_internal.h"
 
+#include <signal.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -329,6 +331,95 @@ int cli_emit(json_t *root, cli_format fmt)
     if (!buf || len == 0) { free(buf); return cli_fail("could not render the result"); }
     size_t w = fwrite(buf, 1, len, stdout);
     free(buf);
-    if (w != len || fflush(stdout) != 0) return cli_fail("cannot write to standard output");
-    return CLI_EXIT_OK;
+    if (w != len || fflush(stdout) != 0) {
+        cli_out_discard();
+        return cli_fail("cannot write to standard output");
+    }
+    return cli_out_commit();
+}
+
+/* ---- output files --------------------------------------------------------
+ * Each output is a temporary file next to its target (sh__make_temp_path,
+ * registered for the signal handler); cli_emit renames them all onto their
+ * targets once the result is on stdout.  Anything not committed is removed:
+ * by cli_out_discard, at exit (main registers sh_temp_files_unlink), or by
+ * the signal handler. */
+#define CLI_MAX_OUT 8
+static struct {
+    char *tmp, *path;
+} outs[CLI_MAX_OUT];
+static int nouts;
+
+int cli_out_open(const char *cmd, const char *path, const char **tmp)
+{
+    *tmp = NULL;
+    if (!path || !*path) return cli_fail("%s: empty output file name", cmd);
+    for (int k = 0; k < nouts; k++)
+        if (!strcmp(outs[k].path, path)) return cli_fail("%s: '%s' is written twice", cmd, path);
+    if (nouts == CLI_MAX_OUT) return cli_fail("%s: too many output files", cmd);
+    char *t = NULL, *p = strdup(path);
+    if (!p) return cli_fail("out of memory");
+    if (sh__make_temp_path(path, &t)) {
+        free(p);
+        return cli_fail("%s: %s", cmd, sh_last_error());
+    }
+    outs[nouts].tmp = t;
+    outs[nouts].path = p;
+    nouts++;
+    *tmp = t;
+    return 0;
+}
+
+int cli_out_commit(void)
+{
+    int rc = CLI_EXIT_OK;
+    for (int k = 0; k < nouts; k++) {
+        if (rc == CLI_EXIT_OK) {
+            if (sh__commit_temp(outs[k].tmp, outs[k].path)) rc = cli_fail("%s", sh_last_error());
+        } else {
+            sh__discard_temp(outs[k].tmp);
+        }
+        free(outs[k].tmp);
+        free(outs[k].path);
+    }
+    nouts = 0;
+    return rc;
+}
+
+void cli_out_discard(void)
+{
+    for (int k = 0; k < nouts; k++) {
+        sh__discard_temp(outs[k].tmp);
+        free(outs[k].tmp);
+        free(outs[k].path);
+    }
+    nouts = 0;
+}
+
+/* ---- signals -------------------------------------------------------------
+ * SIGINT, SIGTERM, SIGHUP and SIGPIPE: remove the temporary files (the
+ * library's registry holds every one, the CLI's and sh_exr_write's), then
+ * die by the same signal (SA_RESETHAND restored the default action; the
+ * re-raised signal is delivered when the handler returns). */
+static void on_signal(int sig)
+{
+    sh_temp_files_unlink();
+    raise(sig);
+}
+
+void cli_signals_install(void)
+{
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sa.sa_flags = SA_RESETHAND;
+    sigemptyset(&sa.sa_mask);
+    for (size_t k = 0; k < sizeof sigs / sizeof *sigs; k++) {
+        struct sigaction old;
+        /* a signal ignored by whoever started us stays ignored */
+        if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+        sigaction(sigs[k], &sa, NULL);
+    }
+    atexit(sh_temp_files_unlink);
 }

@@ -471,6 +471,19 @@ static int run(int argc, char **argv)
     }
     if (instructions && bo.count == 0) bo.count = 64;
 
+    /* every plan once before the first progress line: an order that cannot
+     * be planned (memory) fails before any work is reported */
+    for (int k = 0; k < nm; k++)
+        for (int kk = 0; kk < nk; kk++)
+            for (int q = 0; q < no; q++) {
+                sh_rot_plan *p;
+                if (sh_rot_plan_create_kernel(orders[q], ms[k], prec, com.conv, kernels[kk], &p)) {
+                    free(slot);
+                    return cli_fail("bench: %s", sh_last_error());
+                }
+                sh_rot_plan_free(p);
+            }
+
     const int S = bo.repeat;
     sh_bench_entry *ent = calloc((size_t)ne, sizeof *ent);
     sh_bench_stats *st = calloc((size_t)ne * no, sizeof *st);

@@ -122,7 +122,7 @@ static void unit_vector(gsl_rng *r, double *v, int n)
 }
 
 /* Write {"format", "description", "cases": [one case per line]} into the
- * temporary file tmp (reserved before computing, see run). */
+ * temporary file of an output (cli_out_open; cli_emit renames it onto path). */
 static int write_file(const char *tmp, const char *path, const char *description, json_t *cases)
 {
     FILE *f = fopen(tmp, "w");
@@ -146,25 +146,6 @@ static int write_file(const char *tmp, const char *path, const char *description
         bad |= fclose(f) != 0;
     }
     return bad ? cli_fail("fixtures: cannot write '%s'", path) : 0;
-}
-
-/* Every output is checked before anything is computed, and the files are
- * written all or nothing: each target gets its temporary file first (which
- * fails at once for a missing or unwritable directory, or a target that is
- * a directory or not a regular file), the cases are computed and written
- * into the temporary files, and only when all of them are complete are they
- * renamed onto their targets.  On any failure the temporary files are
- * removed and no target is touched.  (The renames themselves are the one
- * step that could still fail between two files; they follow checks that
- * make that unlikely.) */
-#define FX_NFILES 2
-static void drop_temps(char *tmp[FX_NFILES])
-{
-    for (int q = 0; q < FX_NFILES; q++) {
-        if (tmp[q]) remove(tmp[q]);
-        free(tmp[q]);
-        tmp[q] = NULL;
-    }
 }
 
 static int run(int argc, char **argv)
@@ -191,23 +172,17 @@ static int run(int argc, char **argv)
     const sh_rot_method method = com.have_method ? com.method : SH_ROT_REFERENCE;
     if (method == SH_ROT_Z) return cli_fail("fixtures: method z rotates about z only");
 
-    /* the targets, checked (temporary files reserved) before computing */
-    char *path[FX_NFILES] = {NULL, NULL}, *tmp[FX_NFILES] = {NULL, NULL};
-    const int nfiles = method == SH_ROT_REFERENCE ? 2 : 1;
-    for (int q = 0; q < nfiles; q++) {
-        const size_t len = strlen(dir) + 64;
-        if (!(path[q] = malloc(len))) { free(path[0]); return cli_fail("out of memory"); }
-        if (q == 1) snprintf(path[q], len, "%s/bands_50_200.json", dir);
-        else if (method == SH_ROT_REFERENCE) snprintf(path[q], len, "%s/orders_1_10.json", dir);
-        else snprintf(path[q], len, "%s/orders_1_10_%s.json", dir, sh_rot_method_name(method));
-    }
-    for (int q = 0; q < nfiles; q++)
-        if (sh__make_temp_path(path[q], &tmp[q])) {
-            const int e = cli_fail("fixtures: %s", sh_last_error());
-            drop_temps(tmp);
-            free(path[0]), free(path[1]);
-            return e;
-        }
+    /* the output files first: an unwritable target fails before the work */
+    char p1[4096], p2[4096], desc[512];
+    const char *t1 = NULL, *t2 = NULL;
+    const char *suffix = method == SH_ROT_REFERENCE ? "" : "_";
+    const char *mname = method == SH_ROT_REFERENCE ? "" : sh_rot_method_name(method);
+    if ((size_t)snprintf(p1, sizeof p1, "%s/orders_1_10%s%s.json", dir, suffix, mname) >= sizeof p1 ||
+        (size_t)snprintf(p2, sizeof p2, "%s/bands_50_200.json", dir) >= sizeof p2)
+        return cli_fail("fixtures: --out: directory name too long");
+    if (cli_out_open("fixtures", p1, &t1) ||
+        (method == SH_ROT_REFERENCE && cli_out_open("fixtures", p2, &t2)))
+        return CLI_EXIT_USAGE;
 
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
@@ -243,7 +218,6 @@ static int run(int argc, char **argv)
                 if (c) { json_array_append_new(high, c); ncase++; }
             }
     if (st) goto done;
-    char desc[512];
     if (method == SH_ROT_REFERENCE) {
         snprintf(desc, sizeof desc, "shlab golden SH rotation fixtures: orders 1-10, 10 rotations (extremes "
                                     "included), cs and nocs; expected = MPFR reference. See README.md.");
@@ -253,40 +227,26 @@ static int run(int argc, char **argv)
                                     "See README.md.", sh_rot_method_name(method), sh_rot_method_name(method),
                  sh_rot_method_is_exact(method) ? "" : " (an approximation, not the exact rotation)");
     }
-    rc = write_file(tmp[0], path[0], desc, low);
-    if (!rc && nfiles == 2)
-        rc = write_file(tmp[1], path[1], "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
-                                         "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
+    rc = write_file(t1, p1, desc, low);
+    if (!rc && method == SH_ROT_REFERENCE)
+        rc = write_file(t2, p2, "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
+                                "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
     if (!rc) {
         root = json_object();
         root = cli_put(root, "out", json_string(dir));
         root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
         root = cli_put(root, "convention", json_string("cs+nocs")); /* every case names its own */
-        root = cli_put(root, "files", nfiles == 2 ? json_pack("[s,s]", path[0], path[1]) : json_pack("[s]", path[0]));
+        root = cli_put(root, "files", method == SH_ROT_REFERENCE ? json_pack("[s,s]", p1, p2) : json_pack("[s]", p1));
         root = cli_put(root, "cases", json_integer(ncase));
-        if (!root) rc = cli_fail("out of memory");
-    }
-    /* all files complete and the summary printed (a failed write to stdout
-     * leaves nothing behind): rename them onto their targets */
-    if (!rc) {
-        rc = cli_emit(root, com.fmt);
-        root = NULL;
-    }
-    for (int q = 0; q < nfiles && !rc; q++) {
-        if (sh__commit_temp(tmp[q], path[q])) rc = cli_fail("fixtures: %s", sh_last_error());
-        free(tmp[q]);
-        tmp[q] = NULL;
     }
 done:
-    drop_temps(tmp);
-    free(path[0]), free(path[1]);
     gsl_rng_free(rng);
     free(in);
     json_decref(low);
     json_decref(high);
-    json_decref(root);
     if (st) return cli_fail("fixtures: %s", sh_last_error());
-    return rc;
+    if (rc) return rc;
+    return cli_emit(root, com.fmt);
 }
 
 const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", help};

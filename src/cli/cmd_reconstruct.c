@@ -96,6 +96,9 @@ static int run(int argc, char **argv)
     if (!coeff_arg == !in) return cli_fail("reconstruct: give exactly one of --coeffs and --in");
     if (!out || !*out) return cli_fail("reconstruct: --out FILE is required");
 
+    const char *tmp_out = NULL; /* written there, renamed onto `out` by cli_emit */
+    if (cli_out_open("reconstruct", out, &tmp_out)) return CLI_EXIT_USAGE;
+
     double *v = NULL;
     int len = 0, nchan = 1;
     char names[SH_IMAGE_MAX_CHANNELS][8] = {"Y"};
@@ -168,12 +171,10 @@ static int run(int argc, char **argv)
         return cli_fail("reconstruct: could not build the result");
     }
     /* write only once the result is known to be printable */
-    st = sh_exr_write(out, &img);
+    st = sh_exr_write(tmp_out, &img);
     sh_image_free(&img);
-    if (st) { json_decref(root); return cli_fail_status(st); }
-    const int rc = cli_emit(root, fmt);
-    if (rc != CLI_EXIT_OK) remove(out); /* the result could not be printed: no output file either */
-    return rc;
+    if (st) { json_decref(root); return cli_fail("reconstruct: cannot write '%s' (%s)", out, sh_last_error()); }
+    return cli_emit(root, fmt);
 }
 
 const cli_command cmd_reconstruct = {"reconstruct", run,

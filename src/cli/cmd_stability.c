@@ -82,7 +82,7 @@ static int run(int argc, char **argv)
     sh_rot_method method = SH_ROT_IVANIC;
     sh_precision prec = SH_PREC_DOUBLE;
     int lmax = -1, ref_max = 40, exact_max = 128, have_method = 0, quiet = 0, nb = 0;
-    int *bands = NULL;
+    int band_list[1001], *bands = NULL; /* increasing, in 0..1000: at most 1001 */
     double stop_above = 0;
     opterr = 0;
     optind = 1;
@@ -108,18 +108,16 @@ static int run(int argc, char **argv)
             break;
         case 'B': {
             double *v = NULL;
-            if (bands) { free(bands); return cli_fail("stability: --bands given twice"); }
             if (cli_doubles("--bands", optarg, &v, &nb)) return CLI_EXIT_USAGE;
-            bands = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *bands);
-            for (int q = 0; bands && q < nb; q++) {
-                if (v[q] != floor(v[q]) || v[q] < 0 || v[q] > 1000 || (q && v[q] <= v[q - 1])) {
-                    free(v); free(bands);
+            for (int q = 0; q < nb; q++) {
+                if (q > 1000 || v[q] != floor(v[q]) || v[q] < 0 || v[q] > 1000 || (q && v[q] <= v[q - 1])) {
+                    free(v);
                     return cli_fail("--bands: need increasing integers in 0..1000");
                 }
-                bands[q] = (int)v[q];
+                band_list[q] = (int)v[q];
             }
             free(v);
-            if (!bands || nb < 1) { free(bands); return cli_fail("--bands: empty list"); }
+            bands = band_list;
             break;
         }
         default: {
@@ -132,19 +130,18 @@ static int run(int argc, char **argv)
     method = com.method;
     prec = com.prec;
     have_method = com.have_method;
-    if (optind < argc) { free(bands); return cli_fail("stability: unexpected argument '%s'", argv[optind]); }
-    if (!have_method) { free(bands); return cli_fail("stability: --method is required"); }
-    if (bands && lmax >= 0) { free(bands); return cli_fail("stability: give --lmax or --bands, not both"); }
+    if (optind < argc) return cli_fail("stability: unexpected argument '%s'", argv[optind]);
+    if (!have_method) return cli_fail("stability: --method is required");
+    if (bands && lmax >= 0) return cli_fail("stability: give --lmax or --bands, not both");
     if (bands) lmax = bands[nb - 1];
     if (lmax < 0) return cli_fail("stability: --lmax (or --bands) is required");
     if (lmax + 1 > sh_rot_method_max_order(method))
-        return free(bands), cli_fail("stability: method %s is limited to order %d (lmax %d)",
+        return cli_fail("stability: method %s is limited to order %d (lmax %d)",
                         sh_rot_method_name(method), sh_rot_method_max_order(method),
                         sh_rot_method_max_order(method) - 1);
     acc a = {json_array(), lmax, quiet, 0, bands != NULL};
     int st = sh_rot_stability(method, prec, com.conv, lmax, bands, bands ? nb : 0, ref_max,
                               exact_max, stop_above, on_row, &a);
-    free(bands);
     if (st) { json_decref(a.rows); return cli_fail_status(st); }
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];

@@ -130,66 +130,31 @@ static double max_err(const double *a, const double *b, int n, int *at)
     return w;
 }
 
-static int load_candidate(const char *path, const fx_set *fx, double **out)
+/* {"results": {"<id>": [...], ...}}, one case per line, into the temporary
+ * file of the output (cli_out_open; cli_emit renames it onto `path`). */
+static int write_candidate(const char *tmp, const char *path, const fx_set *fx, double **got)
 {
-    json_error_t err;
-    errno = 0;
-    json_t *root = json_load_file(path, 0, &err);
-    if (!root) return cli_fail_json("candidate", path, errno, &err);
-    const json_t *res = json_object_get(root, "results");
-    if (!json_is_object(res)) {
-        json_decref(root);
-        return cli_fail("candidate '%s': expected {\"results\": {\"<case id>\": [...]}}", path);
-    }
-    for (int k = 0; k < fx->ncases; k++) {
-        const fx_case *c = &fx->cases[k];
-        const json_t *a = json_object_get(res, c->id);
-        if (!json_is_array(a) || (int)json_array_size(a) != c->n) {
-            json_decref(root);
-            return cli_fail("candidate '%s': case '%s' missing or not %d numbers", path, c->id, c->n);
-        }
-        for (int i = 0; i < c->n; i++) {
-            const json_t *x = json_array_get(a, (size_t)i);
-            if (!json_is_number(x)) {
-                json_decref(root);
-                return cli_fail("candidate '%s': case '%s' entry %d is not a number", path, c->id, i);
-            }
-            out[k][i] = json_number_value(x);
-        }
-    }
-    json_decref(root);
-    return 0;
-}
-
-/* {"results": {"<id>": [...], ...}}, one case per line, written atomically. */
-static int write_candidate(const char *path, const fx_set *fx, double **got)
-{
-    char *tmp = NULL;
-    if (sh__make_temp_path(path, &tmp)) return cli_fail("verify: %s", sh_last_error());
     FILE *f = fopen(tmp, "w");
     int bad = !f;
     if (f) {
         fputs("{\"results\":{\n", f);
         for (int k = 0; k < fx->ncases && !bad; k++) {
+            json_t *id = json_string(fx->cases[k].id);
             json_t *a = cli_json_array(got[k], (size_t)fx->cases[k].n);
+            char *si = id ? json_dumps(id, JSON_ENCODE_ANY) : NULL;
             char *s = a ? json_dumps(a, JSON_COMPACT | JSON_REAL_PRECISION(17)) : NULL;
-            if (!s) bad = 1;
-            else fprintf(f, "\"%s\":%s%s\n", fx->cases[k].id, s, k + 1 < fx->ncases ? "," : "");
+            if (!s || !si) bad = 1;
+            else fprintf(f, "%s:%s%s\n", si, s, k + 1 < fx->ncases ? "," : "");
             free(s);
+            free(si);
             json_decref(a);
+            json_decref(id);
         }
         fputs("}}\n", f);
         bad |= ferror(f) != 0;
         bad |= fclose(f) != 0;
     }
-    if (bad) {
-        remove(tmp);
-        free(tmp);
-        return cli_fail("verify: cannot write candidate '%s'", path);
-    }
-    int st = sh__commit_temp(tmp, path);
-    free(tmp);
-    return st ? cli_fail("verify: %s", sh_last_error()) : 0;
+    return bad ? cli_fail("verify: cannot write candidate '%s'", path) : 0;
 }
 
 static int run(int argc, char **argv)
@@ -248,6 +213,8 @@ static int run(int argc, char **argv)
     if (emit && !have_method) return cli_fail("verify: --emit-candidate needs --method");
     if (simulate != -1 && !emit) return cli_fail("verify: --simulate needs --emit-candidate");
     if ((com.have_kernel || matrix_input) && !have_method) return cli_fail("verify: --kernel and --matrix-input need --method");
+    const char *emit_tmp = NULL;
+    if (emit && cli_out_open("verify", emit, &emit_tmp)) return CLI_EXIT_USAGE;
     fx_set fx;
     if (fx_load(fixture, &fx)) return CLI_EXIT_USAGE;
     double **got = calloc((size_t)fx.ncases + 1, sizeof *got);
@@ -258,7 +225,7 @@ static int run(int argc, char **argv)
         if (!(got[k] = malloc((size_t)fx.cases[k].n * sizeof **got))) { free(got); got = NULL; }
     if (!got || !tmp) { rc = cli_fail("out of memory"); goto done; }
     if (cand) {
-        if ((rc = load_candidate(cand, &fx, got))) goto done;
+        if ((rc = fx_load_candidate(cand, &fx, got))) goto done;
     } else {
         for (int k = 0; k < fx.ncases && !st; k++) {
             const fx_case *c = &fx.cases[k];
@@ -278,7 +245,7 @@ static int run(int argc, char **argv)
                                      matrix_input, c, &c->rot, c->conv, c->input, got[k]);
         }
         if (st) { rc = cli_fail("verify: %s", sh_last_error()); goto done; }
-        if (emit && (rc = write_candidate(emit, &fx, got))) goto done;
+        if (emit && (rc = write_candidate(emit_tmp, emit, &fx, got))) goto done;
     }
     /* the verdict */
     int failed = 0, fail_double = 0, worst_k = 0, worst_i = 0, failed_near = 0;

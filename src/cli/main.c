@@ -66,6 +66,7 @@ static void usage(FILE *o)
 
 int main(int argc, char **argv)
 {
+    cli_signals_install();
     if (argc < 2) return cli_fail("no command given (try 'shlab --help')");
     const char *c = argv[1];
     if (!strcmp(c, "--help") || !strcmp(c, "-h") || !strcmp(c, "help")) {

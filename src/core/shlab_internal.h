@@ -4,6 +4,22 @@
 
 #include "shlab.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* error.c: copy src into dst (cap bytes, always terminated) as one printable
+ * line: control characters as \n, \r, \t or \xNN, bytes that are not UTF-8
+ * (and the C1 controls) as \xNN; "..." marks a cut.  Used by sh_error and by
+ * the CLI for every message that quotes input.  Returns dst. */
+char *sh__escape_line(char *dst, size_t cap, const char *src);
+
+/* number.c: read one number at s (strtod; *end after it).  SH__NUM_NONE: no
+ * number there; SH__NUM_RANGE: infinite, NaN, or outside double's range
+ * (overflow, or underflow of a non-zero value to 0 or a subnormal). */
+enum { SH__NUM_OK = 0, SH__NUM_NONE, SH__NUM_RANGE };
+int sh__parse_double(const char *s, char **end, double *out);
+
 /* legendre.c: Q_l^m(x) for 0<=m<=l<=lmax, stored at l(l+1)/2+m (sh_layout=0)
  * or at the SH flat index l(l+1)+m (sh_layout=1). */
 void sh__legendre_core(int lmax, double x, double *out, int sh_layout);
@@ -24,12 +40,15 @@ void sh__ring_accumulate(int order, sh_convention conv, const double *Q, double 
  * GSL's computed nodes for sizes outside its tables are good to ~1e-10 only). */
 int sh__gauss_legendre(long S, double *x, double *w);
 
-/* exr_io.c: atomic output.  sh__make_temp_path creates an empty temporary
- * file next to `path` (mkstemp, name malloc'd into *tmp_out); sh__commit_temp
- * renames it onto `path` (removing it on failure).  Writers write the temp,
- * then commit, so a failure never leaves a partial output file. */
+/* io/tempfile.c: atomic output.  sh__make_temp_path creates an empty
+ * temporary file next to `path` (mkstemp, name malloc'd into *tmp_out, and
+ * registered for sh_temp_files_unlink); sh__commit_temp renames it onto
+ * `path` (removing it on failure); sh__discard_temp removes it.  Neither
+ * frees the name (the caller does).  Writers write the temp, then commit,
+ * so a failure never leaves a partial output file. */
 int sh__make_temp_path(const char *path, char **tmp_out);
 int sh__commit_temp(const char *tmp, const char *path);
+void sh__discard_temp(const char *tmp);
 
 /* light_zonal.c: the zonal coefficients z[l] (of y_l^0, l < order) of
  * max(0, cosθ)^e about +z scaled to a unit vector (sh_lobe_zonal / its norm). */
@@ -43,4 +62,7 @@ size_t sh__mem_available(void);
 const char *sh__bytes_str(double bytes, char *buf, size_t n);
 int sh__mem_check(double bytes, const char *what);
 
+#ifdef __cplusplus
+}
+#endif
 #endif

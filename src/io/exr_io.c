@@ -2,39 +2,63 @@
  * OpenEXR 3.1): read scanline or tiled parts with half, float or uint
  * channels into planar float images, and write float images (ZIP).
  *
- * Reading.  The first non-deep part is read.  Channels are taken by name:
- * R,G,B (A and everything else is ignored) or, failing those, a single Y.
- * Every channel type is converted to float by OpenEXRCore's unpacker
- * (user_data_type = EXR_PIXEL_FLOAT).  OpenEXRCore 3.1 cannot decompress
- * DWAA/DWAB ("not yet implemented"), so those files — recognised from the
- * header's compression attribute, or from EXR_ERR_FEATURE_NOT_IMPLEMENTED
- * during decoding — are read through the C++ library's ImfCRgbaFile C
- * interface instead (exr_rgba_fallback.c).
+ * Reading.  Everything goes through sh_exr_read_mem (sh_exr_read reads the
+ * file into memory first), with explicit limits (sh_exr_limits).  The first
+ * non-deep part is read.  Channels are taken by name: R,G,B (A and
+ * everything else is ignored) or, failing those, a single Y.
+ *
+ * Before a pixel is decoded or the image allocated, the header and the chunk
+ * table are checked against the data: the offset table and every chunk of
+ * level 0 must lie inside the data (a 2 KB file cannot describe 32768×32768
+ * pixels in 8-byte chunks), the declared uncompressed size may exceed the
+ * data's size at most max_ratio times, and the image plus the decoding
+ * buffers must fit in max_bytes.  OpenEXRCore's own allocations go through a
+ * budget allocator that refuses what would exceed max_bytes, so no header
+ * reaches a multi-gigabyte malloc.
+ *
+ * Decoding.  Every channel of the part, used or not, is decoded to FLOAT into
+ * a per-chunk scratch buffer (OpenEXRCore converts half and uint), and the
+ * used channels are copied into the image.  OpenEXRCore 3.1.5 documents that a
+ * channel whose decode_to_ptr is NULL is skipped, but its specialised
+ * unpackers for parts of 3 or 4 half channels (chosen when every channel with
+ * a destination is half with the same output layout) convert every channel,
+ * writing through the NULL pointer: half RGBA, BGRZ or A/Y/Z files crashed in
+ * exr_decoding_run.  Giving every channel a destination avoids that path's
+ * fault for every layout (tests/test_exr_layouts.c reads every compression ×
+ * pixel type × channel layout × scanline/tiled that OpenEXR writes).
+ * OpenEXRCore 3.1 cannot decompress DWAA/DWAB ("not yet implemented"), so
+ * those files — recognised from the header's compression attribute, or from
+ * EXR_ERR_FEATURE_NOT_IMPLEMENTED during decoding — are decoded by the C++
+ * library from the same memory, after the same checks (exr_cxx.cpp).
  *
  * Status mapping: the file cannot be opened → SH_EIO; the header or a chunk
  * is corrupt or missing (truncated file, garbage) → SH_EFORMAT; no R,G,B or
- * Y channel → SH_EFORMAT naming the channels found; sub-sampled channels or
- * deep data → SH_ENOTSUP.
+ * Y channel → SH_EFORMAT naming the channels found; a limit exceeded →
+ * SH_ENOMEM (memory) or SH_EFORMAT (sizes the data cannot hold);
+ * sub-sampled channels or deep data → SH_ENOTSUP.
  *
  * Writing.  A temporary file "<path>.tmp.XXXXXX" is created next to the
- * target with mkstemp(), written by OpenEXRCore (one scanline part, FLOAT
+ * target (tempfile.c), written by OpenEXRCore (one scanline part, FLOAT
  * channels, ZIP compression) and renamed over the target; on any failure it
  * is removed, so a partial file is never left under either name.
  *
  * [1] OpenEXR Core API, openexr_context.h / openexr_decode.h /
- *     openexr_encode.h (OpenEXR 3.1.5).
+ *     openexr_coding.h / openexr_encode.h (OpenEXR 3.1.5).
+ * [2] OpenEXR file layout: magic 76 2f 31 01, version, header, offset table
+ *     (one uint64 per chunk), chunks (scanline: y, size; tile: x, y, level
+ *     x, level y, size; multi-part files add a part number).
  */
 #include "core/shlab_internal.h"
+#include "io/exr_internal.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <openexr.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-#define TMP_SUFFIX ".tmp.XXXXXX"
 
 
 void sh_image_free(sh_image *img)
@@ -43,6 +67,25 @@ void sh_image_free(sh_image *img)
     free(img->data);
     img->data = NULL;
     img->width = img->height = img->nchan = 0;
+}
+
+void sh_exr_limits_default(sh_exr_limits *lim)
+{
+    const long pages = sysconf(_SC_PHYS_PAGES), psize = sysconf(_SC_PAGESIZE);
+    lim->max_pixels = SH_IMAGE_MAX_PIXELS;
+    lim->max_bytes = pages > 0 && psize > 0 ? (long long)pages * psize : 1LL << 34;
+    lim->max_channels = 1024;
+    lim->max_ratio = 65536.0;
+}
+
+/* "12.9 GB" */
+static const char *human(char buf[32], double bytes)
+{
+    static const char *const unit[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
+    int u = 0;
+    while (bytes >= 1000.0 && u < 5) { bytes /= 1000.0; u++; }
+    snprintf(buf, 32, u ? "%.1f %s" : "%.0f %s", bytes, unit[u]);
+    return buf;
 }
 
 /* Last message OpenEXRCore reported on this thread (its default handler
@@ -60,12 +103,62 @@ static const char *core_reason(exr_result_t rv)
     return core_msg[0] ? core_msg : exr_get_default_error_message(rv);
 }
 
-/* Status for a failed OpenEXRCore read call: I/O failures on a file that
- * exists are still format errors (short reads of a truncated file). */
+/* Status for a failed OpenEXRCore read call: I/O failures on data that
+ * exists are format errors (short reads of a truncated file). */
 static int read_status(exr_result_t rv)
 {
     if (rv == EXR_ERR_OUT_OF_MEMORY) return SH_ENOMEM;
     return SH_EFORMAT;
+}
+
+/* ---- OpenEXRCore's allocations, within a budget ------------------------
+ * Each block carries its size in a 16-byte prefix (keeping malloc's
+ * alignment); budget_left is this thread's remaining allowance during a
+ * read.  A refused allocation is EXR_ERR_OUT_OF_MEMORY to the library. */
+static _Thread_local long long budget_left = 1LL << 62;
+
+static void *budget_alloc(size_t n)
+{
+    if (n > (size_t)1 << 60 || (long long)n > budget_left) return NULL;
+    unsigned char *p = malloc(n + 16);
+    if (!p) return NULL;
+    memcpy(p, &n, sizeof n);
+    budget_left -= (long long)n;
+    return p + 16;
+}
+
+static void budget_free(void *q)
+{
+    if (!q) return;
+    unsigned char *p = (unsigned char *)q - 16;
+    size_t n;
+    memcpy(&n, p, sizeof n);
+    budget_left += (long long)n;
+    free(p);
+}
+
+/* ---- reading from memory -------------------------------------------- */
+typedef struct {
+    const unsigned char *data;
+    size_t size;
+} mem_src;
+
+static int64_t mem_read(exr_const_context_t ctxt, void *ud, void *buf, uint64_t sz, uint64_t off,
+                        exr_stream_error_func_ptr_t err)
+{
+    (void)ctxt;
+    (void)err;
+    const mem_src *m = ud;
+    if (off >= m->size) return 0;
+    const uint64_t n = sz < m->size - off ? sz : m->size - off;
+    memcpy(buf, m->data + off, (size_t)n);
+    return (int64_t)n;
+}
+
+static int64_t mem_size(exr_const_context_t ctxt, void *ud)
+{
+    (void)ctxt;
+    return (int64_t)((const mem_src *)ud)->size;
 }
 
 /* Pick channels: R,G,B (all three) or Y.  src[k] is the index in the
@@ -78,6 +171,7 @@ static int pick_channels(const exr_attr_chlist_t *cl, int src[SH_IMAGE_MAX_CHANN
     int idx[3] = {-1, -1, -1}, y = -1;
     for (int i = 0; i < cl->num_channels; i++) {
         const char *n = cl->entries[i].name.str;
+        if (!n) continue;
         for (int k = 0; k < 3; k++)
             if (!strcmp(n, rgb[k])) idx[k] = i;
         if (!strcmp(n, "Y")) y = i;
@@ -97,214 +191,469 @@ static int pick_channels(const exr_attr_chlist_t *cl, int src[SH_IMAGE_MAX_CHANN
     return 0;
 }
 
-static int no_channel_error(const char *path, const exr_attr_chlist_t *cl)
+static int no_channel_error(const char *name, const exr_attr_chlist_t *cl)
 {
     char list[160] = "";
     size_t used = 0;
     for (int i = 0; i < cl->num_channels && used < sizeof list - 1; i++) {
-        int w = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "",
-                         cl->entries[i].name.str);
+        int w = snprintf(list + used, sizeof list - used, "%s%.40s", i ? ", " : "",
+                         cl->entries[i].name.str ? cl->entries[i].name.str : "?");
         if (w < 0) break;
         used += (size_t)w;
         if (used >= sizeof list) { used = sizeof list - 1; break; }
     }
-    return sh_error(SH_EFORMAT, "%s: no usable channel (need R,G,B or Y; found %s)", path,
+    return sh_error(SH_EFORMAT, "%s: no usable channel (need R,G,B or Y; found %s)", name,
                     cl->num_channels ? list : "none");
 }
 
-/* Decode one chunk into the planar float image at (x0, y0) (data-window
- * relative).  `dec` is initialised on first use (*inited = 0 → 1). */
-static exr_result_t decode_chunk(exr_context_t ctxt, int part, const exr_chunk_info_t *ci,
-                                 exr_decode_pipeline_t *dec, int *inited, sh_image *img,
-                                 const int *src, int x0, int y0)
+/* What is known about the part after the header and chunk table checks. */
+typedef struct {
+    exr_context_t ctxt;
+    int part;
+    exr_storage_t storage;
+    exr_compression_t comp;
+    exr_attr_box2i_t dw;
+    int64_t w, h;
+    int nch;                 /* channels in the part */
+    int spc;                 /* scanlines per chunk (scanline parts) */
+    int64_t tw, th, ntx, nty;/* tile size and level-0 tile counts (tiled parts) */
+    int64_t nchunks;         /* level-0 chunks */
+    int64_t max_chunk_px;    /* largest chunk, in pixels */
+} part_info;
+
+/* Chunk k of level 0 (scanline: the k-th block of lines; tiled: row-major
+ * tile k) and where it belongs in the data window. */
+static exr_result_t chunk_at(const part_info *pi, int64_t k, exr_chunk_info_t *ci, int64_t *x0,
+                             int64_t *y0, int64_t *cw, int64_t *chh)
 {
-    exr_result_t rv;
-    if (!*inited) {
-        rv = exr_decoding_initialize(ctxt, part, ci, dec);
-        if (rv != EXR_ERR_SUCCESS) return rv;
-        *inited = 1;
-    } else {
-        rv = exr_decoding_update(ctxt, part, ci, dec);
-        if (rv != EXR_ERR_SUCCESS) return rv;
+    if (pi->storage == EXR_STORAGE_SCANLINE) {
+        *x0 = 0;
+        *y0 = k * pi->spc;
+        *cw = pi->w;
+        *chh = pi->h - *y0 < pi->spc ? pi->h - *y0 : pi->spc;
+        return exr_read_scanline_chunk_info(pi->ctxt, pi->part, (int)(pi->dw.min.y + *y0), ci);
     }
-    const size_t plane = (size_t)img->width * img->height;
-    for (int c = 0; c < dec->channel_count; c++) dec->channels[c].decode_to_ptr = NULL;
-    for (int k = 0; k < img->nchan; k++) {
-        /* channels in the pipeline are in the header's (sorted) order */
-        exr_coding_channel_info_t *ch = &dec->channels[src[k]];
-        ch->user_bytes_per_element = 4;
-        ch->user_data_type = EXR_PIXEL_FLOAT;
-        ch->user_pixel_stride = 4;
-        ch->user_line_stride = 4 * img->width;
-        ch->decode_to_ptr =
-            (uint8_t *)(img->data + k * plane + (size_t)y0 * img->width + x0);
-    }
-    rv = exr_decoding_choose_default_routines(ctxt, part, dec);
-    if (rv != EXR_ERR_SUCCESS) return rv;
-    return exr_decoding_run(ctxt, part, dec);
+    const int64_t tx = k % pi->ntx, ty = k / pi->ntx;
+    *x0 = tx * pi->tw;
+    *y0 = ty * pi->th;
+    *cw = pi->w - *x0 < pi->tw ? pi->w - *x0 : pi->tw;
+    *chh = pi->h - *y0 < pi->th ? pi->h - *y0 : pi->th;
+    return exr_read_tile_chunk_info(pi->ctxt, pi->part, (int)tx, (int)ty, 0, 0, ci);
 }
 
-int sh_exr_read(const char *path, sh_image *img, int *used_fallback)
+/* A DWAA/DWAB chunk, before it reaches the C++ library: it starts with
+ * eleven little-endian uint64 counters (version, unknown uncompressed and
+ * compressed size, AC / DC / RLE compressed size, RLE uncompressed and raw
+ * size, AC and DC coefficient counts, AC compression), from which OpenEXR
+ * 3.1.5 sizes its buffers.  A damaged counter made it allocate gigabytes
+ * for a 12×10 image (found by fuzzing).  Every counter is bounded by what
+ * the chunk can hold: byte sizes by its uncompressed size, coefficient
+ * counts by 8×8 blocks of every channel, compressed sizes by its data. */
+static int check_dwa_leader(const exr_chunk_info_t *ci, int64_t cw, int64_t chh, int nch,
+                            const unsigned char *data, const char *name, int64_t k)
 {
-    if (used_fallback) *used_fallback = 0;
-    if (!img) return sh_error(SH_EINVAL, "sh_exr_read: image is NULL");
-    memset(img, 0, sizeof *img);
-    if (!path || !*path) return sh_error(SH_EINVAL, "sh_exr_read: empty path");
+    if (ci->packed_size >= ci->unpacked_size) return SH_OK; /* stored uncompressed */
+    uint64_t c[11];
+    if (ci->packed_size < sizeof c)
+        return sh_error(SH_EFORMAT, "%s: DWA chunk %lld is shorter than its header", name, (long long)k);
+    for (int i = 0; i < 11; i++) {
+        c[i] = 0;
+        for (int b = 7; b >= 0; b--) c[i] = c[i] << 8 | data[ci->data_offset + 8 * (size_t)i + (size_t)b];
+    }
+    const uint64_t raw = ci->unpacked_size, body = ci->packed_size - sizeof c;
+    const uint64_t blocks = (uint64_t)nch * (uint64_t)((cw + 7) / 8) * (uint64_t)((chh + 7) / 8);
+    if (c[0] > 2 || c[1] > raw || c[6] > raw || c[7] > raw || c[8] > 63 * blocks || c[9] > blocks ||
+        c[10] > 1 || c[2] > body || c[3] > body || c[4] > body || c[5] > body ||
+        c[2] + c[3] + c[4] + c[5] > body)
+        return sh_error(SH_EFORMAT, "%s: DWA chunk %lld has a corrupt header (sizes beyond the "
+                        "chunk's %llu bytes)", name, (long long)k, (unsigned long long)raw);
+    return SH_OK;
+}
 
-    FILE *probe = fopen(path, "rb");
-    if (!probe) return sh_error(SH_EIO, "cannot open '%s': %s", path, strerror(errno));
-    fclose(probe);
+/* Check the chunk table against the data before anything is allocated:
+ * every level-0 chunk must be where the header says, of the size it says,
+ * and inside the data. */
+static int check_chunks(const part_info *pi, const char *name, const unsigned char *data, size_t size,
+                        const sh_exr_limits *lim, int64_t *raw_total, int64_t *max_unpacked)
+{
+    const int dwa = pi->comp == EXR_COMPRESSION_DWAA || pi->comp == EXR_COMPRESSION_DWAB;
+    *raw_total = 0;
+    *max_unpacked = 0;
+    for (int64_t k = 0; k < pi->nchunks; k++) {
+        exr_chunk_info_t ci;
+        int64_t x0, y0, cw, chh;
+        core_msg[0] = '\0';
+        exr_result_t rv = chunk_at(pi, k, &ci, &x0, &y0, &cw, &chh);
+        if (rv != EXR_ERR_SUCCESS)
+            return sh_error(read_status(rv), "%s: chunk %lld of %lld is missing or corrupt (%s)", name,
+                            (long long)k, (long long)pi->nchunks, core_reason(rv));
+        if (ci.width != cw || ci.height != chh)
+            return sh_error(SH_EFORMAT, "%s: chunk %lld is %d×%d pixels, expected %lld×%lld", name,
+                            (long long)k, ci.width, ci.height, (long long)cw, (long long)chh);
+        if (ci.data_offset < 8 || ci.data_offset > size || ci.packed_size > size - ci.data_offset ||
+            (ci.packed_size == 0 && ci.unpacked_size > 0))
+            return sh_error(SH_EFORMAT,
+                            "%s: chunk %lld (%llu bytes at offset %llu) lies outside the %zu bytes of "
+                            "data", name, (long long)k, (unsigned long long)ci.packed_size,
+                            (unsigned long long)ci.data_offset, size);
+        /* at most 4 bytes per sample of every channel */
+        if (ci.unpacked_size > (uint64_t)cw * (uint64_t)chh * 4u * (uint64_t)pi->nch)
+            return sh_error(SH_EFORMAT, "%s: chunk %lld claims %llu uncompressed bytes for %lld×%lld "
+                            "pixels of %d channels", name, (long long)k,
+                            (unsigned long long)ci.unpacked_size, (long long)cw, (long long)chh, pi->nch);
+        int st;
+        if (dwa && (st = check_dwa_leader(&ci, cw, chh, pi->nch, data, name, k))) return st;
+        *raw_total += (int64_t)ci.unpacked_size;
+        if ((int64_t)ci.unpacked_size > *max_unpacked) *max_unpacked = (int64_t)ci.unpacked_size;
+    }
+    if ((double)*raw_total > lim->max_ratio * (double)size) {
+        char a[32], b[32];
+        return sh_error(SH_EFORMAT,
+                        "%s: %lld×%lld pixels of %d channels (%s uncompressed) cannot come from %s of "
+                        "data (more than %.0f:1 compression)", name, (long long)pi->w, (long long)pi->h,
+                        pi->nch, human(a, (double)*raw_total), human(b, (double)size), lim->max_ratio);
+    }
+    return SH_OK;
+}
 
+/* Decode every level-0 chunk with OpenEXRCore: all channels to FLOAT into
+ * `scratch` (see the top of this file), then the used ones into img. */
+static exr_result_t decode_core(const part_info *pi, const int *src, float *scratch, sh_image *img,
+                                const char *name, int *st)
+{
+    exr_decode_pipeline_t dec;
+    memset(&dec, 0, sizeof dec);
+    int inited = 0;
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    const size_t plane = (size_t)img->width * (size_t)img->height;
+    for (int64_t k = 0; k < pi->nchunks && rv == EXR_ERR_SUCCESS; k++) {
+        exr_chunk_info_t ci;
+        int64_t x0, y0, cw, chh;
+        core_msg[0] = '\0';
+        if ((rv = chunk_at(pi, k, &ci, &x0, &y0, &cw, &chh)) != EXR_ERR_SUCCESS) break;
+        if (ci.width != cw || ci.height != chh) { rv = EXR_ERR_CORRUPT_CHUNK; break; }
+        rv = inited ? exr_decoding_update(pi->ctxt, pi->part, &ci, &dec)
+                    : exr_decoding_initialize(pi->ctxt, pi->part, &ci, &dec);
+        if (rv != EXR_ERR_SUCCESS) break;
+        inited = 1;
+        if (dec.channel_count != pi->nch) { rv = EXR_ERR_CORRUPT_CHUNK; break; }
+        /* one plane per channel, each at most the chunk's size */
+        size_t off = 0;
+        for (int c = 0; c < dec.channel_count; c++) {
+            exr_coding_channel_info_t *ch = &dec.channels[c];
+            if (ch->width < 0 || ch->height < 0 || ch->width > cw || ch->height > chh) {
+                rv = EXR_ERR_CORRUPT_CHUNK;
+                break;
+            }
+            ch->user_bytes_per_element = 4;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_pixel_stride = 4;
+            ch->user_line_stride = 4 * (ch->width > 0 ? ch->width : 1);
+            ch->decode_to_ptr = (uint8_t *)(scratch + off);
+            off += (size_t)ch->width * (size_t)ch->height;
+        }
+        if (rv != EXR_ERR_SUCCESS) break;
+        rv = exr_decoding_choose_default_routines(pi->ctxt, pi->part, &dec);
+        if (rv == EXR_ERR_SUCCESS) rv = exr_decoding_run(pi->ctxt, pi->part, &dec);
+        if (rv != EXR_ERR_SUCCESS) break;
+        /* the used channels (full resolution, checked before) into the image */
+        for (int kk = 0; kk < img->nchan && rv == EXR_ERR_SUCCESS; kk++) {
+            if (dec.channels[src[kk]].width != cw || dec.channels[src[kk]].height != chh) {
+                rv = EXR_ERR_CORRUPT_CHUNK;
+                break;
+            }
+            size_t o = 0;
+            for (int c = 0; c < src[kk]; c++)
+                o += (size_t)dec.channels[c].width * (size_t)dec.channels[c].height;
+            const float *from = scratch + o;
+            float *to = img->data + kk * plane + (size_t)y0 * img->width + (size_t)x0;
+            for (int64_t y = 0; y < chh; y++)
+                memcpy(to + (size_t)y * img->width, from + (size_t)y * cw, sizeof(float) * (size_t)cw);
+        }
+    }
+    if (inited) exr_decoding_destroy(pi->ctxt, &dec);
+    if (rv != EXR_ERR_SUCCESS && rv != EXR_ERR_FEATURE_NOT_IMPLEMENTED)
+        *st = sh_error(read_status(rv), "%s: corrupt or truncated pixel data (%s)", name,
+                       core_reason(rv));
+    return rv;
+}
+
+/* The reader behind sh_exr_read_mem and sh_exr_read_rgba (force_cxx: decode
+ * with the C++ library whatever the compression). */
+static int read_mem(const void *data, size_t size, const char *name, const sh_exr_limits *lim,
+                    int force_cxx, sh_image *img, int *used_fallback)
+{
+    static const unsigned char magic[4] = {0x76, 0x2f, 0x31, 0x01};
+    if (size < 8 || memcmp(data, magic, 4) != 0)
+        return sh_error(SH_EFORMAT, "%s: not an OpenEXR file (%s)", name,
+                        size < 8 ? "too short" : "no OpenEXR magic number");
+
+    const long long budget_saved = budget_left;
+    budget_left = lim->max_bytes;
+    mem_src src_mem = {data, size};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = core_error_handler;
+    init.alloc_fn = budget_alloc;
+    init.free_fn = budget_free;
+    init.user_data = &src_mem;
+    init.read_fn = mem_read;
+    init.size_fn = mem_size;
     init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
-    exr_context_t ctxt = NULL;
+    part_info pi;
+    memset(&pi, 0, sizeof pi);
+    pi.part = -1;
     core_msg[0] = '\0';
-    exr_result_t rv = exr_start_read(&ctxt, path, &init);
+    int st = SH_OK;
+    float *scratch = NULL;
+    int src[SH_IMAGE_MAX_CHANNELS];
+    const exr_attr_chlist_t *cl = NULL;
+    exr_result_t rv = exr_start_read(&pi.ctxt, name, &init);
     if (rv != EXR_ERR_SUCCESS) {
-        exr_finish(&ctxt);
-        if (rv == EXR_ERR_FILE_ACCESS)
-            return sh_error(SH_EIO, "cannot read '%s': %s", path, core_reason(rv));
-        return sh_error(read_status(rv), "%s: not a readable OpenEXR file (%s)", path,
-                        core_reason(rv));
+        st = sh_error(read_status(rv), "%s: not a readable OpenEXR file (%s)", name, core_reason(rv));
+        goto done;
     }
 
-    int st = SH_OK;
-    int nparts = 0, part = -1;
-    exr_storage_t storage = EXR_STORAGE_SCANLINE;
-    exr_get_count(ctxt, &nparts);
+    int nparts = 0;
+    exr_get_count(pi.ctxt, &nparts);
     for (int p = 0; p < nparts; p++) {
-        if (exr_get_storage(ctxt, p, &storage) == EXR_ERR_SUCCESS &&
-            (storage == EXR_STORAGE_SCANLINE || storage == EXR_STORAGE_TILED)) {
-            part = p;
+        exr_storage_t s;
+        if (exr_get_storage(pi.ctxt, p, &s) == EXR_ERR_SUCCESS &&
+            (s == EXR_STORAGE_SCANLINE || s == EXR_STORAGE_TILED)) {
+            pi.part = p;
+            pi.storage = s;
             break;
         }
     }
-    const exr_attr_chlist_t *cl = NULL;
-    exr_attr_box2i_t dw;
-    exr_compression_t comp = EXR_COMPRESSION_NONE;
-    int src[SH_IMAGE_MAX_CHANNELS];
-    exr_decode_pipeline_t dec;
-    memset(&dec, 0, sizeof dec);
-    int dec_inited = 0;
-
-    if (part < 0) {
-        st = sh_error(SH_ENOTSUP, "%s: no flat (non-deep) image part", path);
+    if (pi.part < 0) {
+        st = sh_error(SH_ENOTSUP, "%s: no flat (non-deep) image part", name);
         goto done;
     }
-    if (exr_get_channels(ctxt, part, &cl) != EXR_ERR_SUCCESS || !cl ||
-        exr_get_data_window(ctxt, part, &dw) != EXR_ERR_SUCCESS ||
-        exr_get_compression(ctxt, part, &comp) != EXR_ERR_SUCCESS) {
-        st = sh_error(SH_EFORMAT, "%s: header lacks channels, dataWindow or compression", path);
+    if (exr_get_channels(pi.ctxt, pi.part, &cl) != EXR_ERR_SUCCESS || !cl ||
+        exr_get_data_window(pi.ctxt, pi.part, &pi.dw) != EXR_ERR_SUCCESS ||
+        exr_get_compression(pi.ctxt, pi.part, &pi.comp) != EXR_ERR_SUCCESS) {
+        st = sh_error(SH_EFORMAT, "%s: header lacks channels, dataWindow or compression", name);
+        goto done;
+    }
+    pi.nch = cl->num_channels;
+    if (pi.nch < 1 || pi.nch > lim->max_channels) {
+        st = sh_error(SH_EFORMAT, "%s: %d channels (1 to %d are read)", name, pi.nch,
+                      lim->max_channels);
         goto done;
     }
     img->nchan = pick_channels(cl, src, img->names);
     if (img->nchan == 0) {
-        st = no_channel_error(path, cl);
+        st = no_channel_error(name, cl);
         goto done;
     }
     for (int k = 0; k < img->nchan; k++) {
         const exr_attr_chlist_entry_t *e = &cl->entries[src[k]];
         if (e->x_sampling != 1 || e->y_sampling != 1) {
-            st = sh_error(SH_ENOTSUP, "%s: channel %s is sub-sampled (%d×%d)", path,
-                          e->name.str, e->x_sampling, e->y_sampling);
+            st = sh_error(SH_ENOTSUP, "%s: channel %s is sub-sampled (%d×%d)", name, e->name.str,
+                          e->x_sampling, e->y_sampling);
             goto done;
         }
     }
-    if (comp == EXR_COMPRESSION_DWAA || comp == EXR_COMPRESSION_DWAB) {
-        exr_finish(&ctxt);
-        st = sh_exr_read_rgba(path, img);
-        if (st == SH_OK && used_fallback) *used_fallback = 1;
-        return st;
-    }
-    {
-        const int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
-        if (w < 1 || h < 1 || w > (1 << 24) || h > (1 << 24) || w * h > SH_IMAGE_MAX_PIXELS) {
-            st = sh_error(SH_EFORMAT, "%s: unusable data window %lld×%lld", path, (long long)w,
-                          (long long)h);
-            goto done;
-        }
-        img->width = (int)w;
-        img->height = (int)h;
-    }
-    img->data = calloc((size_t)img->width * img->height * img->nchan, sizeof(float));
-    if (!img->data) {
-        st = sh_error(SH_ENOMEM, "%s: cannot allocate %d×%d×%d floats", path, img->width,
-                      img->height, img->nchan);
+    pi.w = (int64_t)pi.dw.max.x - pi.dw.min.x + 1;
+    pi.h = (int64_t)pi.dw.max.y - pi.dw.min.y + 1;
+    if (pi.w < 1 || pi.h < 1 || pi.w > INT32_MAX / 4 || pi.h > INT32_MAX / 4 ||
+        pi.w * pi.h > lim->max_pixels) {
+        st = sh_error(SH_EFORMAT, "%s: data window %lld×%lld (at most %lld pixels are read)", name,
+                      (long long)pi.w, (long long)pi.h, lim->max_pixels);
         goto done;
     }
 
-    if (storage == EXR_STORAGE_SCANLINE) {
+    /* the chunk table: its size against the data, then every level-0 chunk */
+    int32_t count = 0;
+    if (exr_get_chunk_count(pi.ctxt, pi.part, &count) != EXR_ERR_SUCCESS || count < 1) {
+        st = sh_error(SH_EFORMAT, "%s: bad chunk count", name);
+        goto done;
+    }
+    if (pi.storage == EXR_STORAGE_SCANLINE) {
         int32_t spc = 0;
-        if (exr_get_scanlines_per_chunk(ctxt, part, &spc) != EXR_ERR_SUCCESS || spc < 1) {
-            st = sh_error(SH_EFORMAT, "%s: bad scanlines per chunk", path);
+        if (exr_get_scanlines_per_chunk(pi.ctxt, pi.part, &spc) != EXR_ERR_SUCCESS || spc < 1) {
+            st = sh_error(SH_EFORMAT, "%s: bad scanlines per chunk", name);
             goto done;
         }
-        for (int64_t y = dw.min.y; y <= dw.max.y; y += spc) {
-            exr_chunk_info_t ci;
-            rv = exr_read_scanline_chunk_info(ctxt, part, (int)y, &ci);
-            if (rv == EXR_ERR_SUCCESS) {
-                /* the chunk starts at ci.start_y, which is y rounded to a chunk boundary */
-                const int y0 = ci.start_y - dw.min.y;
-                if (y0 < 0 || y0 + ci.height > img->height || ci.width != img->width) {
-                    st = sh_error(SH_EFORMAT, "%s: chunk at line %d does not fit the data window",
-                                  path, (int)y);
-                    goto done;
-                }
-                rv = decode_chunk(ctxt, part, &ci, &dec, &dec_inited, img, src, 0, y0);
-            }
-            if (rv != EXR_ERR_SUCCESS) goto decode_failed;
-        }
+        pi.spc = spc;
+        pi.nchunks = (pi.h + spc - 1) / spc;
+        pi.max_chunk_px = pi.w * (pi.h < spc ? pi.h : spc);
     } else {
         uint32_t tw = 0, th = 0;
         exr_tile_level_mode_t lm;
         exr_tile_round_mode_t rm;
-        if (exr_get_tile_descriptor(ctxt, part, &tw, &th, &lm, &rm) != EXR_ERR_SUCCESS ||
+        if (exr_get_tile_descriptor(pi.ctxt, pi.part, &tw, &th, &lm, &rm) != EXR_ERR_SUCCESS ||
             tw < 1 || th < 1) {
-            st = sh_error(SH_EFORMAT, "%s: bad tile description", path);
+            st = sh_error(SH_EFORMAT, "%s: bad tile description", name);
             goto done;
         }
-        const int ntx = (int)((img->width + (int64_t)tw - 1) / tw);
-        const int nty = (int)((img->height + (int64_t)th - 1) / th);
-        for (int ty = 0; ty < nty; ty++)
-            for (int tx = 0; tx < ntx; tx++) {
-                exr_chunk_info_t ci;
-                rv = exr_read_tile_chunk_info(ctxt, part, tx, ty, 0, 0, &ci);
-                if (rv == EXR_ERR_SUCCESS) {
-                    const int x0 = tx * (int)tw, y0 = ty * (int)th;
-                    if (x0 + ci.width > img->width || y0 + ci.height > img->height) {
-                        st = sh_error(SH_EFORMAT, "%s: tile (%d,%d) does not fit the data window",
-                                      path, tx, ty);
-                        goto done;
-                    }
-                    rv = decode_chunk(ctxt, part, &ci, &dec, &dec_inited, img, src, x0, y0);
-                }
-                if (rv != EXR_ERR_SUCCESS) goto decode_failed;
-            }
+        pi.tw = tw;
+        pi.th = th;
+        pi.ntx = (pi.w + pi.tw - 1) / pi.tw;
+        pi.nty = (pi.h + pi.th - 1) / pi.th;
+        pi.nchunks = pi.ntx * pi.nty;
+        pi.max_chunk_px = (pi.w < pi.tw ? pi.w : pi.tw) * (pi.h < pi.th ? pi.h : pi.th);
     }
-    goto done;
+    /* each chunk: an 8-byte offset, a header of at least 8 bytes, and data */
+    const int64_t min_bytes = 17 * (int64_t)(count > pi.nchunks ? count : pi.nchunks);
+    if (pi.nchunks > count || (uint64_t)min_bytes > size) {
+        st = sh_error(SH_EFORMAT,
+                      "%s: the header describes %lld×%lld pixels in %lld chunks (the table lists "
+                      "%d), which needs at least %lld bytes; the data has %zu", name,
+                      (long long)pi.w, (long long)pi.h, (long long)pi.nchunks, count,
+                      (long long)min_bytes, size);
+        goto done;
+    }
+    int64_t raw_total = 0, max_unpacked = 0;
+    if ((st = check_chunks(&pi, name, data, size, lim, &raw_total, &max_unpacked))) goto done;
 
-decode_failed:
-    if (rv == EXR_ERR_FEATURE_NOT_IMPLEMENTED) {
-        /* a compression OpenEXRCore cannot decode: try the C++ library */
-        if (dec_inited) exr_decoding_destroy(ctxt, &dec);
-        exr_finish(&ctxt);
-        sh_image_free(img);
-        st = sh_exr_read_rgba(path, img);
-        if (st == SH_OK && used_fallback) *used_fallback = 1;
-        return st;
+    /* memory: the image, the scratch of one chunk (every channel as float),
+     * and OpenEXRCore's packed, unpacked and scratch buffers of one chunk */
+    /* the C++ library decodes what OpenEXRCore 3.1.5 cannot (DWA) or decodes
+     * wrongly (B44 with non-half channels, sub-sampled channels) */
+    int use_cxx = force_cxx || pi.comp == EXR_COMPRESSION_DWAA || pi.comp == EXR_COMPRESSION_DWAB;
+    for (int c = 0; c < pi.nch; c++) {
+        const exr_attr_chlist_entry_t *e = &cl->entries[c];
+        if (e->x_sampling != 1 || e->y_sampling != 1) use_cxx = 1;
+        if ((pi.comp == EXR_COMPRESSION_B44 || pi.comp == EXR_COMPRESSION_B44A) &&
+            e->pixel_type != EXR_PIXEL_HALF)
+            use_cxx = 1;
     }
-    st = sh_error(read_status(rv), "%s: corrupt or truncated pixel data (%s)", path,
-                  core_reason(rv));
+    const double img_bytes = (double)pi.w * (double)pi.h * img->nchan * sizeof(float);
+    const double scratch_bytes = (double)pi.max_chunk_px * pi.nch * sizeof(float);
+    const double need = img_bytes + scratch_bytes + 3.0 * (double)max_unpacked;
+    if (need > (double)budget_left) {
+        char a[32], b[32];
+        st = sh_error(SH_ENOMEM, "%s: reading %lld×%lld pixels needs %s, more than the %s allowed",
+                      name, (long long)pi.w, (long long)pi.h, human(a, need),
+                      human(b, (double)(budget_left > 0 ? budget_left : 0)));
+        goto done;
+    }
+    img->width = (int)pi.w;
+    img->height = (int)pi.h;
+    img->data = calloc((size_t)pi.w * (size_t)pi.h * (size_t)img->nchan, sizeof(float));
+    if (!img->data) {
+        char a[32];
+        st = sh_error(SH_ENOMEM, "%s: cannot allocate %s for %d×%d×%d floats", name,
+                      human(a, img_bytes), img->width, img->height, img->nchan);
+        goto done;
+    }
+    budget_left -= (long long)img_bytes;
+    if (!use_cxx) {
+        scratch = malloc((size_t)pi.max_chunk_px * (size_t)pi.nch * sizeof(float));
+        if (!scratch) {
+            st = sh_error(SH_ENOMEM, "%s: out of memory", name);
+            goto done;
+        }
+        budget_left -= (long long)scratch_bytes;
+        rv = decode_core(&pi, src, scratch, img, name, &st);
+        if (rv != EXR_ERR_FEATURE_NOT_IMPLEMENTED) goto done;
+        st = SH_OK; /* a compression OpenEXRCore cannot decode: the C++ library */
+    }
+    st = sh__exr_read_cxx(data, size, name, pi.part, pi.dw.min.x, pi.dw.min.y, img);
+    if (st == SH_OK && used_fallback) *used_fallback = 1;
 
 done:
-    if (dec_inited) exr_decoding_destroy(ctxt, &dec);
-    exr_finish(&ctxt);
+    free(scratch);
+    if (pi.ctxt) exr_finish(&pi.ctxt);
+    budget_left = budget_saved;
     if (st != SH_OK) {
         sh_image_free(img);
         memset(img, 0, sizeof *img);
     }
     return st;
+}
+
+static int check_limits(const sh_exr_limits *lim)
+{
+    if (!(lim->max_pixels >= 1 && lim->max_bytes >= 1 && lim->max_channels >= 1 &&
+          lim->max_ratio >= 1.0))
+        return sh_error(SH_EINVAL, "sh_exr_limits: every limit must be positive (ratio >= 1)");
+    return SH_OK;
+}
+
+int sh_exr_read_mem(const void *data, size_t size, const char *name, const sh_exr_limits *lim,
+                    sh_image *img, int *used_fallback)
+{
+    if (used_fallback) *used_fallback = 0;
+    if (!img) return sh_error(SH_EINVAL, "sh_exr_read_mem: image is NULL");
+    memset(img, 0, sizeof *img);
+    if (!data && size) return sh_error(SH_EINVAL, "sh_exr_read_mem: data is NULL");
+    sh_exr_limits l;
+    if (lim) l = *lim;
+    else sh_exr_limits_default(&l);
+    int st = check_limits(&l);
+    if (st) return st;
+    return read_mem(data ? data : "", size, name ? name : "EXR data", &l, 0, img, used_fallback);
+}
+
+/* Read a whole file into memory, counting it against lim->max_bytes. */
+static int slurp(const char *path, sh_exr_limits *lim, unsigned char **buf, size_t *n)
+{
+    *buf = NULL;
+    *n = 0;
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return sh_error(SH_EIO, "cannot open '%s': %s", path, strerror(errno));
+    struct stat sb;
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close(fd);
+        return sh_error(SH_EIO, "cannot read '%s': not a regular file", path);
+    }
+    if ((long long)sb.st_size >= lim->max_bytes) {
+        char a[32], b[32];
+        close(fd);
+        return sh_error(SH_ENOMEM, "%s: the file has %s, more than the %s allowed", path,
+                        human(a, (double)sb.st_size), human(b, (double)lim->max_bytes));
+    }
+    size_t cap = (size_t)sb.st_size, got = 0;
+    unsigned char *b = malloc(cap ? cap : 1);
+    if (!b) {
+        close(fd);
+        return sh_error(SH_ENOMEM, "%s: cannot allocate %zu bytes", path, cap);
+    }
+    while (got < cap) {
+        ssize_t r = read(fd, b + got, cap - got);
+        if (r < 0 && errno == EINTR) continue;
+        if (r < 0) {
+            int e = errno;
+            free(b);
+            close(fd);
+            return sh_error(SH_EIO, "cannot read '%s': %s", path, strerror(e));
+        }
+        if (r == 0) break; /* the file shrank: read what is there */
+        got += (size_t)r;
+    }
+    close(fd);
+    lim->max_bytes -= (long long)cap;
+    *buf = b;
+    *n = got;
+    return SH_OK;
+}
+
+static int read_path(const char *path, int force_cxx, sh_image *img, int *used_fallback)
+{
+    if (used_fallback) *used_fallback = 0;
+    if (!img) return sh_error(SH_EINVAL, "EXR reader: image is NULL");
+    memset(img, 0, sizeof *img);
+    if (!path || !*path) return sh_error(SH_EINVAL, "EXR reader: empty path");
+    sh_exr_limits lim;
+    sh_exr_limits_default(&lim);
+    unsigned char *buf;
+    size_t n;
+    int st = slurp(path, &lim, &buf, &n);
+    if (st) return st;
+    st = read_mem(buf, n, path, &lim, force_cxx, img, used_fallback);
+    free(buf);
+    return st;
+}
+
+int sh_exr_read(const char *path, sh_image *img, int *used_fallback)
+{
+    return read_path(path, 0, img, used_fallback);
+}
+
+int sh_exr_read_rgba(const char *path, sh_image *img)
+{
+    return read_path(path, 1, img, NULL);
 }
 
 /* ------------------------------------------------------------- writing */
@@ -323,66 +672,6 @@ static int check_image(const sh_image *img, const char *who)
         for (int j = 0; j < k; j++)
             if (!strcmp(img->names[j], img->names[k]))
                 return sh_error(SH_EINVAL, "%s: channel name %s repeated", who, img->names[k]);
-    }
-    return SH_OK;
-}
-
-int sh__make_temp_path(const char *path, char **tmp_out)
-{
-    /* The file really written is the link's target when path is a symbolic
-     * link (the link stays a link), and an existing target must be a regular
-     * file: renaming over /dev/null or a FIFO would replace the node itself. */
-    struct stat sb;
-    char *target = NULL;
-    if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) {
-        target = realpath(path, NULL);
-        if (!target) return sh_error(SH_EIO, "cannot write '%s': it is a symbolic link to nowhere", path);
-    } else {
-        target = strdup(path);
-        if (!target) return sh_error(SH_ENOMEM, "out of memory");
-    }
-    if (stat(target, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-        free(target);
-        return sh_error(SH_EIO, "cannot write '%s': not a regular file", path);
-    }
-    const size_t n = strlen(target) + 16;
-    char *tmp = malloc(n);
-    if (!tmp) {
-        free(target);
-        return sh_error(SH_ENOMEM, "out of memory");
-    }
-    snprintf(tmp, n, "%s" TMP_SUFFIX, target);
-    free(target);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        int e = errno;
-        free(tmp);
-        return sh_error(SH_EIO, "cannot write '%s': %s", path, strerror(e));
-    }
-    close(fd);
-    *tmp_out = tmp;
-    return SH_OK;
-}
-
-int sh__commit_temp(const char *tmp, const char *path)
-{
-    /* the target is the temporary name without its suffix (see above) */
-    const size_t n = strlen(tmp) - (sizeof TMP_SUFFIX - 1);
-    char *target = strndup(tmp, n);
-    if (!target) {
-        unlink(tmp);
-        return sh_error(SH_ENOMEM, "out of memory");
-    }
-    /* mkstemp makes the file 0600; give it the usual 0666 & ~umask */
-    mode_t um = umask(0);
-    umask(um);
-    chmod(tmp, 0666 & ~um);
-    int rc = rename(tmp, target);
-    int e = errno;
-    free(target);
-    if (rc != 0) {
-        unlink(tmp);
-        return sh_error(SH_EIO, "cannot write '%s': %s", path, strerror(e));
     }
     return SH_OK;
 }
@@ -444,7 +733,7 @@ int sh_exr_write(const char *path, const sh_image *img)
     exr_result_t frv = exr_finish(&ctxt);
     if (rv == EXR_ERR_SUCCESS) rv = frv;
     if (rv != EXR_ERR_SUCCESS) {
-        unlink(tmp);
+        sh__discard_temp(tmp);
         free(tmp);
         return sh_error(rv == EXR_ERR_OUT_OF_MEMORY ? SH_ENOMEM : SH_EIO,
                         "cannot write '%s': %s", path, core_reason(rv));

@@ -49,14 +49,16 @@ static int parse_numbers(const char *spec, const char *s, int n, double *v)
     const char *p = s;
     for (int k = 0; k < n; k++) {
         char *end;
-        errno = 0;
         if (!*p || *p == ',' || *p == ' ')
             return sh_error(SH_EINVAL, "light '%s': expected %d number%s after ':'", spec, n,
                             n > 1 ? "s" : "");
-        double x = strtod(p, &end);
-        if (end == p)
+        double x = 0;
+        const int r = sh__parse_double(p, &end, &x);
+        if (r == SH__NUM_NONE)
             return sh_error(SH_EINVAL, "light '%s': cannot read a number at '%.20s'", spec, p);
-        if (!isfinite(x)) return sh_error(SH_EINVAL, "light '%s': number %d is not finite", spec, k + 1);
+        if (r == SH__NUM_RANGE)
+            return sh_error(SH_EINVAL, "light '%s': number %d is not finite or is outside double's "
+                            "range (it overflows or underflows)", spec, k + 1);
         v[k] = x;
         p = end;
         if (k + 1 < n) {

@@ -52,10 +52,10 @@ int sh_window_parse(const char *s, sh_window *out)
         w.param = 0.0; /* W = order */
     } else {
         char *end;
-        errno = 0;
-        const double p = strtod(colon + 1, &end);
-        if (end == colon + 1 || *end != '\0' || errno || !isfinite(p))
-            return sh_error(SH_EINVAL, "window '%s': parameter is not a finite number", s);
+        double p = 0;
+        if (sh__parse_double(colon + 1, &end, &p) != SH__NUM_OK || *end != '\0')
+            return sh_error(SH_EINVAL, "window '%s': parameter is not a finite number within "
+                            "double's range", s);
         if (w.kind == SH_WINDOW_GAUSS && !(p >= 0.0))
             return sh_error(SH_EINVAL, "window '%s': S must be >= 0", s);
         if (w.kind != SH_WINDOW_GAUSS && !(p > 0.0))

@@ -21,24 +21,49 @@ typedef struct {
 } sh_image;
 
 void sh_image_free(sh_image *img);
-/* Read an OpenEXR file (scanline or tiled; half, float or uint channels; any
- * compression).  Channels R,G,B (or a single Y) are read by name; missing
- * file, corrupt file or no usable channel is an error.  OpenEXRCore is used
- * first; DWAA/DWAB data (not decodable by OpenEXRCore 3.1) falls back to the
- * ImfCRgbaFile C interface.  *used_fallback (may be NULL) reports which. */
+
+/* Limits of the EXR reader.  Everything is checked before a pixel is decoded
+ * or the image allocated; exceeding a limit is an error with one line that
+ * says what was asked for. */
+typedef struct {
+    long long max_pixels; /* width × height (default SH_IMAGE_MAX_PIXELS) */
+    long long max_bytes;  /* memory for the file's bytes, the image and the
+                             decoding buffers (default: physical memory) */
+    int max_channels;     /* channels in the part read (default 1024) */
+    double max_ratio;     /* declared uncompressed pixel bytes per byte of
+                             data (default 65536; valid files reach ~2·10⁴,
+                             DWAB of a constant image) */
+} sh_exr_limits;
+void sh_exr_limits_default(sh_exr_limits *lim);
+
+/* Read an OpenEXR image from memory (scanline or tiled; half, float or uint
+ * channels; any compression).  Channels R,G,B (or a single Y) are read by
+ * name; corrupt data or no usable channel is an error.  The header and the
+ * chunk table are checked against `size` and `lim` (NULL: defaults) before
+ * anything is decoded.  OpenEXRCore decodes; DWAA/DWAB data (not decodable by
+ * OpenEXRCore 3.1) is decoded by OpenEXR's C++ library, and *used_fallback
+ * (may be NULL) reports which.  `name` (may be NULL) names the data in
+ * messages. */
+int sh_exr_read_mem(const void *data, size_t size, const char *name, const sh_exr_limits *lim,
+                    sh_image *img, int *used_fallback);
+/* sh_exr_read_mem of a file's contents, with the default limits (the file's
+ * size counts against max_bytes).  Missing or unreadable file: SH_EIO. */
 int sh_exr_read(const char *path, sh_image *img, int *used_fallback);
 /* Write a float EXR with OpenEXRCore; written to a temporary name and renamed,
  * so that a failure never leaves a partial file. */
 int sh_exr_write(const char *path, const sh_image *img);
+/* Remove every temporary file that a writer of this library (sh_exr_write,
+ * ...) has created and not yet renamed into place.  Async-signal-safe: meant
+ * for SIGINT/SIGTERM handlers and atexit. */
+void sh_temp_files_unlink(void);
 
 typedef enum { SH_LAYOUT_LATLONG = 0, SH_LAYOUT_PROBE } sh_layout;
 int sh_layout_parse(const char *s, sh_layout *out);
 /* Exact solid angle of every pixel (w*h weights, row-major). */
 int sh_pixel_solid_angles(sh_layout layout, int width, int height, double *w);
 
-/* Read an EXR through OpenEXR's ImfCRgbaFile C interface (the DWAA/DWAB
- * fallback of sh_exr_read; any compression the C++ library knows).  R,G,B
- * → 3 channels; a luminance-only (Y) file → 1 channel "Y"; half → float. */
+/* Read an EXR file as sh_exr_read does, but decode its pixels with OpenEXR's
+ * C++ library whatever the compression (the DWAA/DWAB path of sh_exr_read). */
 int sh_exr_read_rgba(const char *path, sh_image *img);
 /* Write img (1 channel → Y; 3 → RGB; 4 → RGBA) as a half-float DWAB file
  * through ImfCRgbaFile, via a temporary file renamed into place. */

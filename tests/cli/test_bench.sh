@@ -102,17 +102,17 @@ expect_usage_error "plan bad measure" plan --order 4 --max-beta 0.1 --tolerance 
 expect_usage_error "plan negative tolerance" plan --order 4 --max-beta 0.1 --tolerance -1
 expect_usage_error "plan beta > pi" plan --order 4 --max-beta 200 --degrees --tolerance 1e-3
 expect_usage_error "plan missing exr" plan --order auto --exr "$TMP/none.exr" --max-beta 0.1 --tolerance 1e-3
-expect_success "plan order 4" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --degrees --format json --quiet
+expect_success "plan order 4" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --format json --quiet
 grep -q '"order":4' "$TMP/out" && grep -q '"convention":"cs"' "$TMP/out" && grep -q '"choice":{"method"' "$TMP/out" \
     && grep -q '"runner_up":{"method"' "$TMP/out" && ok "plan json: order, convention, choice, runner_up" || notok "plan json: $(head -c 300 "$TMP/out")"
 # table and csv show the nested choice / runner_up objects under dotted keys;
 # the chosen method must be one of the candidates marked ok (structure only, no timing)
-expect_success "plan order 4 table" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --degrees --quiet
+expect_success "plan order 4 table" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --quiet
 cm=$(sed -n 's/^choice\.method: //p' "$TMP/out"); rm_=$(sed -n 's/^runner_up\.method: //p' "$TMP/out")
 [ -n "$cm" ] && [ -n "$rm_" ] && [ "$cm" != "$rm_" ] && grep -q "^choice\.max_error: " "$TMP/out" \
     && awk -v m="$cm" -F'\t' '$1 == m && $3 == "true" { f = 1 } END { exit !f }' "$TMP/out" \
     && ok "plan table: choice.method $cm (ok candidate), runner_up.method $rm_" || notok "plan table: $(head -c 600 "$TMP/out")"
-expect_success "plan order 4 csv" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --degrees --quiet --format csv
+expect_success "plan order 4 csv" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --quiet --format csv
 head -1 "$TMP/out" | grep -q ',precision,choice\.method,choice\.ns_per_rotation,choice\.max_error,runner_up\.method,.*,method,exact,ok,' \
     && [ "$(awk -F, 'NR > 1 { print NF }' "$TMP/out" | sort -u)" = "$(head -1 "$TMP/out" | awk -F, '{ print NF }')" ] \
     && ok "plan csv: choice.* and runner_up.* columns on every row" || notok "plan csv: $(head -c 400 "$TMP/out")"
@@ -123,11 +123,11 @@ head -1 "$TMP/out" | grep -q ',precision,choice\.method,choice\.ns_per_rotation,
 # Residual (Parseval) at orders 1, 2 = 0.3/√1.09 = 0.287, at order 3 ≈ 0.
 "$SHLAB" reconstruct --order 3 --coeffs 1,0,0,0,0,0,0,0.3,0 --out "$TMP/p.exr" --width 128 --format json >/dev/null 2>"$TMP/err" \
     && ok "synthetic EXR written" || notok "reconstruct: $(cat "$TMP/err")"
-expect_success "plan auto tol 0.01" plan --order auto --exr "$TMP/p.exr" --tolerance 0.01 --max-beta 5 --degrees --beta-step 1 --degrees --format json --quiet
+expect_success "plan auto tol 0.01" plan --order auto --exr "$TMP/p.exr" --tolerance 0.01 --max-beta 5 --degrees --beta-step 1 --format json --quiet
 grep -q '"order":3' "$TMP/out" && ok "plan auto: order 3 at 1e-2" || notok "plan auto: $(head -c 300 "$TMP/out")"
 r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
 close "$r" 0 1e-2 && ok "plan auto: residual at order 3 ~ 0 ($r; pixel quadrature)" || notok "residual $r"
-expect_success "plan auto tol 0.3" plan --order auto --exr "$TMP/p.exr" --tolerance 0.3 --max-beta 5 --degrees --beta-step 1 --degrees --format json --quiet
+expect_success "plan auto tol 0.3" plan --order auto --exr "$TMP/p.exr" --tolerance 0.3 --max-beta 5 --degrees --beta-step 1 --format json --quiet
 r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
 grep -q '"order":1' "$TMP/out" && close "$r" 0.28734788556634538 2e-3 && ok "plan auto: order 1 at 0.3, residual $r = 0.3/sqrt(1.09)" || notok "plan auto 0.3: $(head -c 300 "$TMP/out")"
 # no order <= 2 reaches 1e-9: a failed check (exit 1, one stderr line), the

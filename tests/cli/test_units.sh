@@ -49,7 +49,7 @@ d=$(paste -d, "$TMP/deg" "$TMP/eul" | awk -F, 'NR > 1 { h = NF / 2; for (i = 6; 
 close "$d" 0 1e-15 && ok "rotmat --matrix Rz(90°) = --euler 0,0,90 --degrees" || notok "rotmat matrix vs euler: $d"
 
 # ---- plan: max_beta and worst_beta in the unit asked for ------------------
-expect_success "plan --degrees" plan --order 3 --max-beta 5 --degrees --tolerance 1e-3 --measure max --beta-step 1 --degrees --quiet --format json
+expect_success "plan --degrees" plan --order 3 --max-beta 5 --degrees --tolerance 1e-3 --measure max --beta-step 1 --quiet --format json
 cp "$TMP/out" "$TMP/plan_deg"
 b=$(json_num "$TMP/plan_deg" max_beta)
 [ "$(json_str "$TMP/plan_deg" unit)" = degrees ] && close "$b" 5 1e-15 && ok "plan --degrees: max_beta 5, unit degrees" \

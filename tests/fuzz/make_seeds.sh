@@ -1,0 +1,67 @@
+#!/bin/sh
+# make_seeds.sh — (re)write the seed corpus in tests/fuzz/corpus/ (kept in
+# the repository: make check replays it, make fuzz starts from it).
+# Usage: tests/fuzz/make_seeds.sh [BUILD]   (BUILD: build dir with exr_writer.o)
+set -eu
+cd "$(dirname "$0")/../.."
+B=${1:-build}
+C=tests/fuzz/corpus
+mkdir -p $C/exr $C/fixture $C/candidate $C/coeffs $C/light $C/rotation
+
+# exr: written by OpenEXR's C++ library
+make -s "$B/tests/exr_writer.o"
+cc -std=c11 -O1 -Itests -Isrc $(pkg-config --cflags OpenEXR) -o "$B/exr_seeds" tests/fuzz/exr_seeds.c \
+   "$B/tests/exr_writer.o" $(pkg-config --libs OpenEXR) -lstdc++
+"$B/exr_seeds" $C/exr
+# two small files whose headers claim 32768×32768 pixels (dataWindow, and for
+# the tiled one a single 32768×32768 tile): refused before any allocation
+perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,32767,32767)/se' \
+    $C/exr/rgba-half-scan-zip.exr > $C/exr/huge-window-scan.exr
+perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,32767,32767)/se;
+               s/(tiles\0tiledesc\0\x09\0\0\0).{8}/$1.pack("L<2",32768,32768)/se' \
+    $C/exr/rgb-float-tiled-zip.exr > $C/exr/huge-window-tile.exr
+
+# fixture: the first cases of the golden fixtures, and broken variants
+F=data/fixtures/rotation/orders_1_10.json
+{ sed -n '1,3p' $F; sed -n '4,6p' $F | sed '$ s/,$//'; echo ']}'; } > $C/fixture/orders_1_3.json
+{ sed -n '1,3p' data/fixtures/rotation/bands_50_200.json; sed -n '4p' data/fixtures/rotation/bands_50_200.json | sed 's/,$//'; echo ']}'; } > $C/fixture/band_50.json
+printf '{"format":"shlab-rotation-fixtures/1","cases":[]}' > $C/fixture/empty.json
+sed 's/"order":1,/"order":4294967297,/' $C/fixture/orders_1_3.json > $C/fixture/order_2p32.json
+sed 's/"order":2,/"order":2147483648,/' $C/fixture/orders_1_3.json > $C/fixture/order_2p31.json
+head -c 300 $C/fixture/orders_1_3.json > $C/fixture/truncated.json
+
+# candidate: for the fixture built into fuzz_candidate.c
+printf '{"results":{"o3":[1,0,0,0,0,0,0,0,0],\n"b2":[0,0,1,0,0],\n"\\u00e91":[2]}}\n' > $C/candidate/good.json
+printf '{"results":{"o3":[1,0,0,0,0,0,0,0,0],"b2":[0,0,1,0]}}\n' > $C/candidate/short.json
+printf '{"results":{"o3":[1,0,0,0,0,0,0,0,1e-400],"b2":[0,0,1,0,0],"\\u00e91":[2]}}\n' > $C/candidate/underflow.json
+printf '{"results":{"o3":"x"}}' > $C/candidate/not_numbers.json
+
+# coeffs
+printf '1 0.5 0 0\n' > $C/coeffs/text.txt
+printf '[1, 0.5, -0.25, 0.125, 0, 0, 0, 0, 0.1]\n' > $C/coeffs/brackets.txt
+printf '{"coeffs":[1,0.5,0,0]}' > $C/coeffs/coeffs.json
+printf '{"channels":{"R":[1,0,0,0],"G":[0.5,0,0,0],"B":[0.25,0,0,0]}}' > $C/coeffs/channels.json
+printf '{"channels":{"R":[1,0,0,0],"G":[0.5,0,0]}}' > $C/coeffs/unequal.json
+printf '{"coeffs":[1,1e-400,0,0]}' > $C/coeffs/underflow.json
+
+# light and the other text specs: first byte = parser (and flags), then the spec
+i=0
+for spec in '\000green' '\000cap:0.5' '\020cap:90' '\000cie-overcast' '\000cie-clear:0.3,1' \
+            '\001cie-partly:1.5,2' '\040const:2' '\140lobe:3.5' '\000cap:1e-400' \
+            '\002gauss:0.01' '\002hann:4' '\002lanczos' '\002none' '\003quad' '\003mc' \
+            '\004ivanic' '\004taylor1.5' '\005float' '\006nocs' '\0074pi' '\007schmidt' \
+            '\010latlong' '\010probe' '\011cone' '\012lobe' '\013uniform' '\053cubic' '\013sphere'; do
+    printf "$spec" > $C/light/spec_$i
+    i=$((i + 1))
+done
+
+# rotation: lines "<letter><value>" (see fuzz_rotation.c)
+printf 'e0.1,0.2,0.3\nO4\nMivanic\n' > $C/rotation/euler
+printf 'e30,60,-45\nd\nO5\nMzxzxz\nCnocs\n' > $C/rotation/euler_degrees
+printf 'q1,0,0,0\nO3\nMwigner\ni\n' > $C/rotation/quat
+printf 'm0,-1,0,1,0,0,0,0,1\no\nO4\nMchoi\n' > $C/rotation/matrix
+printf 'a0,0,1\nA1.5\nO6\nMblanco\nPfloat\n' > $C/rotation/axis_angle
+printf 'e0,0,0.7\nO3\nMz\n' > $C/rotation/z
+printf 'e0.1,0.05,0.2\nO4\nMtaylor1.5\n' > $C/rotation/taylor
+printf 'n1,2,3 4 [5]\nn1e-400\n' > $C/rotation/numbers
+echo "make_seeds: $(find $C -type f | wc -l) files in $C"
