@@ -22,17 +22,20 @@ OPT      := -O2 -g
 endif
 
 PKGS     := gsl OpenEXR jansson
+# scenes (src/scene/): assimp and libpng by pkg-config, Embree 3 (no .pc file in Debian) by name
+PKGS     += assimp libpng
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
             -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
-LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
+LDLIBS   += $(PKG_LIBS) -lembree3 -lpthread -lmpfr -lgmp -lstdc++ -lm
 
 # src/ is grouped by concept, one folder each (README "Layout"): the library is
 # every src/<concept>/*.c except src/cli/ (the command-line tool).
 LIB_DIRS := core basis io project rotate taylor scale measure
+LIB_DIRS += scene
 LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))

@@ -4,6 +4,8 @@
 # the exact command to run and fails.  --quiet: say nothing when all is there.
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
+# scenes: meshes (assimp), ray casting (Embree 3), PNG pictures
+PKGS="$PKGS libassimp-dev libembree-dev libpng-dev"
 missing=""
 for p in $PKGS; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
