@@ -4,6 +4,7 @@
 #   make check SANITIZE=1   the same, built with -fsanitize=address,undefined
 #   make report     build, run every experiment, write reports/
 #   make probes     extract Blender's eight CC0 HDR world probes into data/probes/
+#   make models     copy the real test meshes (assimp-testmodels) into data/models/
 #   make install PREFIX=/usr/local
 #   make deps       install missing Debian packages (as root) or print the command
 
@@ -48,7 +49,7 @@ PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man
+.PHONY: all deps deps-quiet check report experiments probes models install clean man
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -109,6 +110,10 @@ report: all $(EXP_BIN)
 
 probes:
 	@tools/probes.sh data/probes
+
+# ---- scenes (src/scene/, experiments/scene_*) ------------------------------
+models:
+	@tools/models.sh data/models
 
 # ---- install ----------------------------------------------------------------
 $(BUILD)/shlab.1: $(BUILD)/shlab tools/help2man.sh

@@ -320,6 +320,18 @@ int sh_mesh_load(const char *path, int flags, sh_mesh *out, sh_mesh_report *rep)
         vbase += (int)am->mNumVertices;
     }
     aiReleaseImport(sc);
+    if (flags & SH_MESH_Y_UP)
+        for (long long v = 0; v < nv; v++) {
+            /* Rx(+90°): (x, y, z) → (x, −z, y), positions and normals */
+            double *p = out->pos + 3 * v, y = p[1];
+            p[1] = -p[2];
+            p[2] = y;
+            if (out->normal) {
+                double *n = out->normal + 3 * v, ny = n[1];
+                n[1] = -n[2];
+                n[2] = ny;
+            }
+        }
     out->nvert = (int)nv;
     out->ntri = (int)nt;
     int st = sh_mesh_check(out, flags, rep);

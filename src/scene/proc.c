@@ -205,9 +205,10 @@ int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out)
         /* six inward faces of [−½,½]²×[0,1]; each face a grid, vertices on
          * shared edges duplicated (normals computed over equal positions) */
         const double A = box_hole(ps, res);
-        const double fo[6][3] = {{-.5, -.5, 0}, {-.5, -.5, 1}, {-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}};
-        const double fu[6][3] = {{0, 1, 0}, {1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
-        const double fv[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+        /* floor, top, y = −½, x = +½, y = +½, x = −½; eu × ev points inward */
+        const double fo[6][3] = {{-.5, -.5, 0}, {-.5, -.5, 1}, {-.5, -.5, 0}, {.5, -.5, 0}, {-.5, .5, 0}, {-.5, -.5, 0}};
+        const double fu[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+        const double fv[6][3] = {{0, 1, 0}, {1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}};
         for (int f = 0; f < 6; f++)
             b_grid(&b, fo[f], fu[f], fv[f], res, res, NULL, f == 1 ? A : 0);
         compute_normals = 1;

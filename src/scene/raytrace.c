@@ -80,6 +80,7 @@ void sh_scene_free(sh_scene *s)
     if (s->scn) rtcReleaseScene(s->scn);
     if (s->dev) rtcReleaseDevice(s->dev);
     sh_mesh_free(&s->mesh);
+    free(s->flip);
     free(s);
 }
 
@@ -106,6 +107,18 @@ int sh_scene_create(const sh_mesh *m, int threads, sh_scene **out)
     int st = sh_mesh_copy(m, &s->mesh);
     if (st) { free(s); return st; }
     s->threads = threads > 0 ? threads : sh__online_cpus();
+    /* the front of a triangle: the side its vertex normals face (the
+     * winding of a loaded mesh need not agree) */
+    if (!(s->flip = malloc((size_t)m->ntri))) { sh_scene_free(s); return sh_error(SH_ENOMEM, "out of memory"); }
+    for (int t = 0; t < m->ntri; t++) {
+        const int *c = m->tri + 3 * t;
+        const double *a = m->pos + 3 * c[0], *b = m->pos + 3 * c[1], *d = m->pos + 3 * c[2];
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const double g[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double dn = 0;
+        for (int k = 0; k < 3; k++) dn += g[k] * (m->normal[3 * c[0] + k] + m->normal[3 * c[1] + k] + m->normal[3 * c[2] + k]);
+        s->flip[t] = dn < 0;
+    }
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int v = 0; v < m->nvert; v++)
         for (int k = 0; k < 3; k++) {
@@ -172,13 +185,9 @@ int sh__intersect(const sh_scene *s, const double org[3], const double dir[3], f
     *t = rh.ray.tfar;
     *u = rh.hit.u;
     *v = rh.hit.v;
-    const int *c = s->mesh.tri + 3 * tri;
-    const double w0 = 1.0 - *u - *v;
-    double dn = 0;
-    for (int k = 0; k < 3; k++)
-        dn += dir[k] * (w0 * s->mesh.normal[3 * c[0] + k] + *u * s->mesh.normal[3 * c[1] + k] +
-                        *v * s->mesh.normal[3 * c[2] + k]);
-    *front = dn < 0;
+    /* Embree's Ng = e1 × e2 of the stored winding (unnormalised) */
+    const double dn = dir[0] * rh.hit.Ng_x + dir[1] * rh.hit.Ng_y + dir[2] * rh.hit.Ng_z;
+    *front = s->flip[tri] ? dn > 0 : dn < 0;
     return tri + 1;
 }
 

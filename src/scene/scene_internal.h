@@ -14,6 +14,7 @@ struct sh_scene {
     RTCDevice dev;
     RTCScene scn;
     sh_mesh mesh;
+    unsigned char *flip; /* per triangle: its winding disagrees with its vertex normals */
     int threads;
     double diag;
 };
@@ -59,7 +60,7 @@ static inline int sh__occluded(const sh_scene *s, const double org[3], const dou
     return r.tfar < 0.0f; /* Embree sets tfar = −inf on a hit */
 }
 /* 0: no hit; else the triangle index + 1, barycentrics u, v, and whether
- * the side met is the one the interpolated vertex normal faces. */
+ * the side met is the front (the side its vertex normals face). */
 int sh__intersect(const sh_scene *s, const double org[3], const double dir[3], float tfar, double *t,
                   double *u, double *v, int *front);
 

@@ -49,6 +49,7 @@ typedef struct {
 /* Flags of sh_mesh_load / sh_mesh_check. */
 #define SH_MESH_ALLOW_NONMANIFOLD 1 /* report non-manifold edges instead of refusing */
 #define SH_MESH_COMPUTE_NORMALS 2   /* ignore the file's normals, compute them */
+#define SH_MESH_Y_UP 4              /* the file is y up: turned +90° about x, (x,y,z) → (x,−z,y) */
 /* Largest mesh accepted (vertices or triangles). */
 #define SH_MESH_MAX_ELEMS (1 << 26)
 
@@ -140,7 +141,7 @@ typedef struct {
     int hit;        /* 0: the ray left the scene */
     int tri;        /* triangle index */
     double t, u, v; /* distance (dir normalised), barycentrics of corners 1 and 2 */
-    int front;      /* the ray met the side the interpolated vertex normal faces */
+    int front;      /* the ray met the triangle's front: the side its vertex normals face */
 } sh_hit;
 /* One ray, from org along dir (normalised here), over (tnear, tfar).  Safe
  * to call from many threads at once. */
