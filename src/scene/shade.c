@@ -5,12 +5,12 @@
  * transfer (Green 2003, "Shadowed Diffuse Transfer"),
  *   B(x) = (ρ/π) ∫_H L(s) V(x,s) max(0, n·s) ds,
  * with the environment itself (not its SH projection).  An HDR probe's
- * energy sits in few pixels (a sun), which cosine-weighted sampling finds
- * rarely; so the brightest pixels are integrated one by one (their own
- * jittered rays, uniform in each pixel's solid angle) and only the rest by
- * cosine-weighted stratified rays — two unbiased estimators of disjoint
- * parts, summed.  Independent replications (different jitter) give the
- * standard error. */
+ * energy sits in few pixels (a sun), and its pixel-scale detail makes
+ * cosine-weighted sampling no better than plain Monte Carlo at the scale of
+ * a stratum; so light × cosine is summed exactly over the pixels and only
+ * visibility is sampled, one ray per block of pixels drawn in proportion to
+ * the light it carries (scene.h).  Independent replications (different
+ * jitter) give the standard error. */
 #include "scene_internal.h"
 
 #include <stdlib.h>
@@ -71,9 +71,9 @@ int sh_env_from_image(const sh_image *img, sh_env **out)
     for (size_t k = 0; k < np; k++) {
         for (int c = 0; c < 3; c++) {
             const float x = img->data[(size_t)ci[c] * np + k];
-            if (!isfinite(x) || x < 0) {
+            if (!isfinite(x)) { /* small negatives (lossy compression) are kept, as the projection keeps them */
                 sh_env_free(e);
-                return sh_error(SH_EFORMAT, "environment pixel %zu is negative or not finite", k);
+                return sh_error(SH_EFORMAT, "environment pixel %zu is not finite", k);
             }
             e->rgb[c * np + k] = x;
         }
@@ -175,25 +175,77 @@ int sh_shade_error(int n, const double *B, const double *ref, const double *se, 
 typedef struct {
     const sh_scene *s;
     const sh_env *e;
-    double R[9];             /* rotation of the environment (world = R·env) */
+    double R[9];              /* rotation of the environment (world = R·env) */
     const int *verts;
     const sh_reference_opts *o;
-    int sq, reps, nbright, bright_rays;
-    const int *bright;       /* pixel indices */
-    unsigned char *is_bright; /* per pixel */
+    int sq, reps;             /* analytic lights: s×s rays */
+    int bs, bw, bh;           /* images: block side, blocks across and down */
+    float *pdir;              /* images: pixel centre directions (3 per pixel) */
+    double **wbuf;            /* images: per thread, one weight per pixel */
     double rho, eps;
     double *B, *se;
     atomic_llong rays;
 } rctx;
 
-static double rest_eval(const rctx *c, const double d[3])
+/* R·a (world from environment) and Rᵀ·a */
+static void rot_apply(const double R[9], const double a[3], double o[3])
 {
-    /* L(Rᵀ d), the bright pixels excluded */
-    const double q[3] = {c->R[0] * d[0] + c->R[3] * d[1] + c->R[6] * d[2], c->R[1] * d[0] + c->R[4] * d[1] + c->R[7] * d[2],
-                         c->R[2] * d[0] + c->R[5] * d[1] + c->R[8] * d[2]};
-    if (!c->e->is_image) return sh_env_eval(c->e, q, NULL);
-    const size_t k = env_pixel(c->e, q);
-    return c->is_bright[k] ? 0.0 : c->e->lum[k];
+    for (int k = 0; k < 3; k++) o[k] = R[3 * k] * a[0] + R[3 * k + 1] * a[1] + R[3 * k + 2] * a[2];
+}
+static void rot_applyT(const double R[9], const double a[3], double o[3])
+{
+    for (int k = 0; k < 3; k++) o[k] = R[k] * a[0] + R[3 + k] * a[1] + R[6 + k] * a[2];
+}
+
+/* one replication of the image estimator at a vertex (see scene.h) */
+static double image_replication(rctx *c, const double *w, const double nenv[3], const double org[3], uint64_t *x,
+                                long long *rays)
+{
+    const sh_env *e = c->e;
+    const double dth = M_PI / e->h, dph = 2 * M_PI / e->w;
+    double sum = 0;
+    for (int by = 0; by < c->bh; by++)
+        for (int bx = 0; bx < c->bw; bx++) {
+            const int y0 = by * c->bs, x0 = bx * c->bs;
+            const int y1 = y0 + c->bs < e->h ? y0 + c->bs : e->h, x1 = x0 + c->bs < e->w ? x0 + c->bs : e->w;
+            double W = 0;
+            for (int y = y0; y < y1; y++)
+                for (int xx = x0; xx < x1; xx++) W += fabs(w[(size_t)y * e->w + xx]);
+            if (!(W > 0)) continue;
+            /* the pixel, with probability |w_p| / W */
+            double u = sh__uniform(x) * W, acc = 0;
+            int py = y1 - 1, px = x1 - 1;
+            for (int y = y0; y < y1; y++)
+                for (int xx = x0; xx < x1; xx++) {
+                    const double a = fabs(w[(size_t)y * e->w + xx]);
+                    if (a > 0 && u < acc + a) {
+                        py = y;
+                        px = xx;
+                        goto chosen;
+                    }
+                    acc += a;
+                }
+            while (!(fabs(w[(size_t)py * e->w + px]) > 0)) { /* rounding at the end: the last non-zero */
+                if (--px < x0) { px = x1 - 1; --py; }
+            }
+        chosen:;
+            const size_t p = (size_t)py * e->w + px;
+            const float *cd = c->pdir + 3 * p;
+            const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
+            /* s uniform in the pixel's solid angle: cosθ uniform between the rows' edges */
+            const double z0 = cos(py * dth), z1 = cos((py + 1) * dth);
+            const double z = z0 + (z1 - z0) * sh__uniform(x), ph = (px + sh__uniform(x)) * dph;
+            const double st = sqrt(fmax(0.0, 1 - z * z));
+            const double se_[3] = {st * cos(ph), st * sin(ph), z};
+            const double cs = nenv[0] * se_[0] + nenv[1] * se_[1] + nenv[2] * se_[2];
+            if (cs <= 0) continue;
+            double d[3];
+            rot_apply(c->R, se_, d);
+            (*rays)++;
+            if (sh__occluded(c->s, org, d, INFINITY)) continue;
+            sum += (w[p] > 0 ? W : -W) * cs / cp;
+        }
+    return c->rho / M_PI * sum;
 }
 
 static int ref_pass(void *vc, int thread, int begin, int end)
@@ -201,65 +253,51 @@ static int ref_pass(void *vc, int thread, int begin, int end)
     rctx *c = vc;
     const sh_scene *s = c->s;
     const sh_mesh *m = &s->mesh;
+    const sh_env *e = c->e;
     const int N = c->sq * c->sq;
-    double *dir = malloc(sizeof(double) * 3 * (size_t)N);
-    if (!dir) return sh_error(SH_ENOMEM, "out of memory");
+    double *dir = e->is_image ? NULL : malloc(sizeof(double) * 3 * (size_t)N);
+    if (!e->is_image && !dir) return sh_error(SH_ENOMEM, "out of memory");
     long long rays = 0;
-    const double dth = M_PI / (c->e ? (c->e->h ? c->e->h : 1) : 1), dph = 2 * M_PI / (c->e->w ? c->e->w : 1);
-    /* a pixel lies wholly below the horizon when its centre is more than
-     * its angular half-diagonal below it */
-    const double half_diag = 0.5 * sqrt(dth * dth + dph * dph);
     for (int iv = begin; iv < end; iv++) {
         const int v = c->verts ? c->verts[iv] : iv;
         const double *n = m->normal + 3 * v;
-        double M[9], org[3];
+        double M[9], org[3], nenv[3];
         sh__tangent_frame(n, M);
         sh_scene_ray_origin(s, v, c->eps, org);
+        rot_applyT(c->R, n, nenv); /* the normal in the environment's frame */
+        double *w = e->is_image ? c->wbuf[thread] : NULL;
+        if (w) {
+            /* w_p = L_p Ω_p max(0, n·centre_p) */
+            const size_t np = (size_t)e->w * e->h;
+            for (size_t p = 0; p < np; p++) {
+                const float *cd = c->pdir + 3 * p;
+                const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
+                w[p] = cp > 0 ? e->lum[p] * e->omega[p] * cp : 0.0;
+            }
+        }
         double sum = 0, sum2 = 0;
         for (int r = 0; r < c->reps; r++) {
             uint64_t seed = (uint64_t)c->o->seed * 1000003u + (uint64_t)v * 7919u + (uint64_t)r * 104729u + 1;
-            /* the rest of the environment: cosine-weighted stratified rays,
-             * estimator (ρ/N) Σ V L (density cosθ/π) */
-            sh__cosine_samples(c->sq, seed, dir);
             double est = 0;
-            for (int k = 0; k < N; k++) {
-                const double *dl = dir + 3 * k;
-                const double d[3] = {M[0] * dl[0] + M[1] * dl[1] + M[2] * dl[2], M[3] * dl[0] + M[4] * dl[1] + M[5] * dl[2],
-                                     M[6] * dl[0] + M[7] * dl[1] + M[8] * dl[2]};
-                const double L = rest_eval(c, d);
-                if (L == 0) continue; /* no light: visibility does not matter */
-                rays++;
-                if (!sh__occluded(s, org, d, INFINITY)) est += L;
-            }
-            est *= c->rho / N;
-            /* bright pixels: (ρ/π) L_p Ω_p · mean over jittered rays in the
-             * pixel (uniform in solid angle) of V max(0, n·s) */
-            uint64_t x = seed ^ 0xA5A5A5A5DEADBEEFull;
-            double eb = 0;
-            for (int b = 0; b < c->nbright; b++) {
-                const int p = c->bright[b], py = p / c->e->w, px = p % c->e->w;
-                const double th0 = py * dth, ph0 = px * dph;
-                double ce[3], cw[3];
-                sh_dir_from_angles(th0 + 0.5 * dth, ph0 + 0.5 * dph, ce);
-                for (int k = 0; k < 3; k++) cw[k] = c->R[3 * k] * ce[0] + c->R[3 * k + 1] * ce[1] + c->R[3 * k + 2] * ce[2];
-                if (n[0] * cw[0] + n[1] * cw[1] + n[2] * cw[2] < -sin(half_diag)) continue;
-                double acc = 0;
-                for (int k = 0; k < c->bright_rays; k++) {
-                    /* uniform in solid angle: cosθ uniform between the rows' edges */
-                    const double z0 = cos(th0), z1 = cos(th0 + dth);
-                    const double z = z0 + (z1 - z0) * sh__uniform(&x), ph = ph0 + dph * sh__uniform(&x);
-                    const double st_ = sqrt(fmax(0.0, 1 - z * z));
-                    const double de[3] = {st_ * cos(ph), st_ * sin(ph), z};
-                    double d[3];
-                    for (int q = 0; q < 3; q++) d[q] = c->R[3 * q] * de[0] + c->R[3 * q + 1] * de[1] + c->R[3 * q + 2] * de[2];
-                    const double cs = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-                    if (cs <= 0) continue;
+            if (w) {
+                uint64_t x = seed ^ 0xA5A5A5A5DEADBEEFull;
+                est = image_replication(c, w, nenv, org, &x, &rays);
+            } else {
+                /* cosine-weighted stratified rays, estimator (ρ/N) Σ V L(Rᵀd) */
+                sh__cosine_samples(c->sq, seed, dir);
+                for (int k = 0; k < N; k++) {
+                    const double *dl = dir + 3 * k;
+                    const double d[3] = {M[0] * dl[0] + M[1] * dl[1] + M[2] * dl[2], M[3] * dl[0] + M[4] * dl[1] + M[5] * dl[2],
+                                         M[6] * dl[0] + M[7] * dl[1] + M[8] * dl[2]};
+                    double q[3];
+                    rot_applyT(c->R, d, q);
+                    const double L = sh_env_eval(e, q, NULL);
+                    if (L == 0) continue; /* no light: visibility does not matter */
                     rays++;
-                    if (!sh__occluded(s, org, d, INFINITY)) acc += cs;
+                    if (!sh__occluded(s, org, d, INFINITY)) est += L;
                 }
-                eb += c->e->lum[p] * c->e->omega[p] * acc / c->bright_rays;
+                est *= c->rho / N;
             }
-            est += c->rho / M_PI * eb;
             sum += est;
             sum2 += est * est;
         }
@@ -271,13 +309,6 @@ static int ref_pass(void *vc, int thread, int begin, int end)
     free(dir);
     atomic_fetch_add(&c->rays, rays);
     return sh__embree_status(s, "casting reference rays");
-}
-
-static const float *g_key;
-static int cmp_bright(const void *a, const void *b)
-{
-    const float x = g_key[*(const int *)a], y = g_key[*(const int *)b];
-    return x > y ? -1 : x < y ? 1 : *(const int *)a - *(const int *)b;
 }
 
 int sh_shade_reference(const sh_scene *s, const sh_env *env, const sh_rotation *rot, const int *verts, int nv,
@@ -292,53 +323,50 @@ int sh_shade_reference(const sh_scene *s, const sh_env *env, const sh_rotation *
     for (int i = 0; verts && i < nv; i++)
         if (verts[i] < 0 || verts[i] >= s->mesh.nvert) return sh_error(SH_EINVAL, "sh_shade_reference: vertex %d out of range", verts[i]);
     if (o->samples < 0 || o->samples > 1L << 24 || o->replications == 1 || o->replications < 0 || o->replications > 1000 ||
-        o->bright_rays < 0 || o->bright_rays > 1024 || o->threads < 0 || o->threads > 256)
-        return sh_error(SH_EINVAL, "sh_shade_reference: samples, replications (>= 2), bright rays or threads out of range");
+        o->threads < 0 || o->threads > 256)
+        return sh_error(SH_EINVAL, "sh_shade_reference: samples, replications (>= 2) or threads out of range");
     const double rho = o->albedo > 0 ? o->albedo : 1.0;
     if (!(rho <= 1)) return sh_error(SH_EINVAL, "albedo %g not in (0, 1]", o->albedo);
     rctx c = {.s = s, .e = env, .verts = verts, .o = o, .rho = rho, .eps = o->ray_eps, .B = B, .se = se};
     atomic_init(&c.rays, 0);
-    c.sq = (int)floor(sqrt((double)(o->samples > 0 ? o->samples : 4096)) + 0.5);
+    const long samples = o->samples > 0 ? o->samples : 8192;
+    c.sq = (int)floor(sqrt((double)samples) + 0.5);
     if (c.sq < 1) c.sq = 1;
     c.reps = o->replications > 0 ? o->replications : 4;
-    c.bright_rays = o->bright_rays > 0 ? o->bright_rays : 4;
     static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     memcpy(c.R, rot ? rot->R : I, sizeof c.R);
-    int *bright = NULL;
-    if (env->is_image && o->bright >= 0) {
-        const size_t np = (size_t)env->w * env->h;
-        c.nbright = o->bright > 0 ? o->bright : 2048;
-        if ((size_t)c.nbright > np) c.nbright = (int)np;
-        int *idx = malloc(sizeof(int) * np);
-        float *key = malloc(sizeof(float) * np);
-        c.is_bright = calloc(np, 1);
-        if (!idx || !key || !c.is_bright) {
-            free(idx); free(key); free(c.is_bright);
-            return sh_error(SH_ENOMEM, "out of memory");
-        }
-        for (size_t k = 0; k < np; k++) {
-            idx[k] = (int)k;
-            key[k] = (float)(env->lum[k] * env->omega[k]);
-        }
-        g_key = key;
-        qsort(idx, np, sizeof(int), cmp_bright);
-        free(key);
-        bright = idx;
-        for (int b = 0; b < c.nbright; b++) c.is_bright[bright[b]] = 1;
-    } else if (env->is_image) {
-        c.is_bright = calloc((size_t)env->w * env->h, 1);
-        if (!c.is_bright) return sh_error(SH_ENOMEM, "out of memory");
-    }
-    c.bright = bright;
     const int threads = o->threads > 0 ? o->threads : s->threads;
+    int st = SH_OK;
+    if (env->is_image) {
+        /* blocks of bs×bs pixels, about `samples` of them on the sphere */
+        const double per = (double)env->w * env->h / (double)samples;
+        c.bs = (int)floor(sqrt(per) + 0.5);
+        if (c.bs < 1) c.bs = 1;
+        c.bw = (env->w + c.bs - 1) / c.bs;
+        c.bh = (env->h + c.bs - 1) / c.bs;
+        const size_t np = (size_t)env->w * env->h;
+        c.pdir = malloc(sizeof(float) * 3 * np);
+        c.wbuf = calloc((size_t)threads, sizeof *c.wbuf);
+        if (!c.pdir || !c.wbuf) st = sh_error(SH_ENOMEM, "out of memory");
+        for (int t = 0; !st && t < threads; t++)
+            if (!(c.wbuf[t] = malloc(sizeof(double) * np))) st = sh_error(SH_ENOMEM, "out of memory");
+        for (int y = 0; !st && y < env->h; y++)
+            for (int x = 0; x < env->w; x++) {
+                double d[3];
+                sh_dir_from_angles(M_PI * (y + 0.5) / env->h, 2 * M_PI * (x + 0.5) / env->w, d);
+                for (int k = 0; k < 3; k++) c.pdir[3 * ((size_t)y * env->w + x) + k] = (float)d[k];
+            }
+    }
     stats->threads = threads;
     const double t0 = sh__now();
-    int st = sh__parallel_for(threads, nv, 4, ref_pass, &c, o->progress, o->progress_ctx, "reference vertices");
+    if (!st) st = sh__parallel_for(threads, nv, 2, ref_pass, &c, o->progress, o->progress_ctx, "reference vertices");
     stats->seconds = sh__now() - t0;
     stats->rays = atomic_load(&c.rays);
     stats->rays_per_s = stats->seconds > 0 ? stats->rays / stats->seconds : 0;
-    stats->rays_per_vertex = c.sq * c.sq * c.reps;
-    free(bright);
-    free(c.is_bright);
+    stats->rays_per_vertex = env->is_image ? c.bw * c.bh * c.reps : c.sq * c.sq * c.reps;
+    if (c.wbuf)
+        for (int t = 0; t < threads; t++) free(c.wbuf[t]);
+    free(c.wbuf);
+    free(c.pdir);
     return st;
 }

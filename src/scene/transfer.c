@@ -92,7 +92,8 @@ static int first_pass(void *vc, int thread, int begin, int end)
     if (kind == SH_TRANSFER_INTERREFLECTED && !(buf = malloc(sizeof(hitrec) * (size_t)N)))
         return sh_error(SH_ENOMEM, "out of memory");
     long long esc = 0, back = 0;
-    for (int v = begin; v < end; v++) {
+    for (int iv = begin; iv < end; iv++) {
+        const int v = c->o->verts ? c->o->verts[iv] : iv;
         const double *n = m->normal + 3 * v;
         double M[9], org[3];
         sh__tangent_frame(n, M);
@@ -122,7 +123,7 @@ static int first_pass(void *vc, int thread, int begin, int end)
             for (int i = 0; i < n2; i++) acc[i] += y[i];
         }
         for (int i = 0; i < n2; i++) loc[i] = c->rho / N * acc[i];
-        int st = sh__rotate_frame(c->plans[thread], M, loc, c->T + (size_t)v * n2);
+        int st = sh__rotate_frame(c->plans[thread], M, loc, c->T + (size_t)iv * n2);
         if (st) { free(buf); return st; }
         if (buf) {
             c->nhits[v] = nh;
@@ -192,12 +193,19 @@ int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_tran
         return sh_error(SH_EINVAL, "bounce tolerance must be >= 0 and ray offset in [0, 0.1)");
     if (o->threads < 0 || o->threads > 256) return sh_error(SH_EINVAL, "threads %d not in 0..256", o->threads);
     const sh_mesh *m = &s->mesh;
-    const int n2 = o->order * o->order, nv = m->nvert;
+    if (o->verts && o->kind == SH_TRANSFER_INTERREFLECTED)
+        return sh_error(SH_EINVAL, "sh_transfer: interreflection needs every vertex (no subset)");
+    if (o->verts && (o->nverts < 0 || o->nverts > m->nvert)) return sh_error(SH_EINVAL, "sh_transfer: bad subset size");
+    for (int k = 0; o->verts && k < o->nverts; k++)
+        if (o->verts[k] < 0 || o->verts[k] >= m->nvert) return sh_error(SH_EINVAL, "sh_transfer: vertex %d out of range", o->verts[k]);
+    const int n2 = o->order * o->order, nv = o->verts ? o->nverts : m->nvert;
     const int threads = o->threads > 0 ? o->threads : s->threads;
     stats->threads = threads;
     if (o->kind == SH_TRANSFER_UNSHADOWED && o->closed_form) {
         for (int v = 0; v < nv; v++)
-            if ((st = sh_transfer_unshadowed(o->order, o->conv, rho, m->normal + 3 * v, T + (size_t)v * n2))) return st;
+            if ((st = sh_transfer_unshadowed(o->order, o->conv, rho, m->normal + 3 * (o->verts ? o->verts[v] : v),
+                                             T + (size_t)v * n2)))
+                return st;
         return SH_OK;
     }
     int sq = (int)floor(sqrt((double)(o->rays > 0 ? o->rays : 1024)) + 0.5);

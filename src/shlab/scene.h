@@ -191,6 +191,8 @@ typedef struct {
     int threads;          /* 0: the scene's */
     sh_progress_fn progress; /* optional: vertices done, then bounces */
     void *progress_ctx;
+    const int *verts;     /* optional (not for interreflected): only these */
+    int nverts;           /*   nverts vertices, T row k for vertex verts[k] */
 } sh_transfer_opts;
 #define SH_TRANSFER_MAX_BOUNCES 1000
 typedef struct {
@@ -205,7 +207,8 @@ typedef struct {
     long long escaped;    /* rays of the first pass that left the scene */
     long long backface;   /* rays of the first pass that met a back face */
 } sh_transfer_stats;
-/* T receives nvert·order² doubles (vertex-major).  stats may be NULL. */
+/* T receives nvert·order² doubles (vertex-major; nverts·order² with
+ * verts).  stats may be NULL. */
 int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_transfer_stats *stats);
 /* Closed-form unshadowed transfer of one normal (ρ = albedo). */
 int sh_transfer_unshadowed(int order, sh_convention conv, double albedo, const double n[3], double *t);
@@ -239,18 +242,23 @@ int sh_shade(int nvert, int tord, const double *T, int order, const double *L, d
  *   B(x) = (ρ/π) ∫_H L(Rᵀs) V(x,s) max(0, n·s) ds,
  * by direct integration of the environment itself with ray-cast
  * visibility, at the vertices listed (NULL: all), in `replications`
- * independent replications whose mean is B and whose standard error is se:
- *   an image's `bright` brightest pixels (by luminance × solid angle) are
- *   integrated pixel by pixel (bright_rays jittered rays in each pixel,
- *   uniform in its solid angle), the rest of the environment (those pixels
- *   zeroed) by `samples` cosine-weighted stratified rays (as sh_transfer);
- *   an analytic light by the stratified rays alone.
+ * independent replications whose mean is B and whose standard error is se.
+ *   An image: the pixels are taken as a piecewise constant function, and
+ *   the sum over pixels Σ_p L_p ∫_p V cos is grouped into blocks of b×b
+ *   pixels; each block contributes W·V(s)·cos(s)/c_p with one ray per
+ *   replication, the pixel p drawn with probability ∝ |L_p| Ω_p c_p
+ *   (c_p = max(0, n·centre of p), W = Σ_block |L_p| Ω_p c_p) and s uniform
+ *   in p.  Light is thus integrated exactly up to visibility, which alone is
+ *   sampled (a sun costs no variance unless it is partly hidden).  Pixels
+ *   whose centre lies below the horizon are left out (their part above it
+ *   has cos ≤ half a pixel's angle).  b is chosen so that about `samples`
+ *   blocks cover the sphere.
+ *   An analytic light: `samples` cosine-weighted stratified rays (as
+ *   sh_transfer), estimator (ρ/N) Σ V L.
  * rot may be NULL (identity). */
 typedef struct {
-    long samples;     /* per replication (0: 4096), rounded to a square */
+    long samples;     /* per replication (0: 8192) */
     int replications; /* ≥ 2 (0: 4) */
-    int bright;       /* (0: 2048; < 0: none) */
-    int bright_rays;  /* (0: 4) */
     unsigned long seed;
     double albedo;    /* (0: 1) */
     double ray_eps;   /* (0: 1e-4) */
@@ -269,6 +277,44 @@ int sh_shade_reference(const sh_scene *s, const sh_env *env, const sh_rotation *
  *             standard error in the rel_l2 measure; se may be NULL → 0). */
 typedef struct { double rel_l2, rel_max, ref_l2; } sh_shade_err;
 int sh_shade_error(int n, const double *B, const double *ref, const double *se, sh_shade_err *e);
+
+/* ----------------------------------------------------------- shading study
+ * What a viewer sees of each approximation, on a scene lit by an
+ * environment: shadowed transfer of order max_order at a seeded subset of
+ * the vertices, the environment's luminance projected to max_order, and the
+ * reference of sh_shade_reference at the same vertices.  The SH shading of
+ * order n ≤ max_order uses the first n² coefficients of both (rotation is
+ * block diagonal, so rotating at max_order and truncating is rotating at n).
+ * Not thread-safe; its routines use threads inside. */
+typedef struct sh_study sh_study;
+typedef struct {
+    int max_order;      /* 0: 12 */
+    long rays;          /* transfer rays per vertex (0: 1024) */
+    int nverts;         /* vertices studied: a seeded random subset (0: all) */
+    unsigned long seed;
+    double albedo;      /* 0: 1 */
+    sh_reference_opts ref;
+    int threads;        /* 0: the scene's */
+    sh_progress_fn progress;
+    void *progress_ctx;
+} sh_study_opts;
+typedef struct {
+    int nverts, max_order;
+    sh_transfer_stats transfer, reference; /* the last reference computed */
+    double ref_l2;      /* the reference's own standard error, rel_l2 measure */
+} sh_study_info;
+int sh_study_create(const sh_scene *s, const sh_env *env, const sh_study_opts *o, sh_study **out);
+void sh_study_free(sh_study *st);
+/* Rotate the environment (NULL: identity): the reference is recomputed with
+ * rays for L(Rᵀs), and the lighting coefficients are rotated by each
+ * method on demand. */
+int sh_study_set_rotation(sh_study *st, const sh_rotation *rot);
+/* Shading error at order n with the lighting rotated by `method` (any
+ * method at the identity). */
+int sh_study_error(sh_study *st, sh_rot_method method, int order, sh_shade_err *err);
+int sh_study_info_get(const sh_study *st, sh_study_info *info);
+/* The vertices studied (st keeps them). */
+const int *sh_study_vertices(const sh_study *st, int *n);
 
 /* ------------------------------------------------------------------ pictures */
 typedef struct {
