@@ -235,9 +235,10 @@ static double howell_b3(double a, double b, double c)
 }
 
 int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int order, sh_convention conv,
-                        double albedo, double *t, double *bound, int *known)
+                        double albedo, double lift, double *t, double *bound, int *known)
 {
-    if (!ps || !m || !t || !known || v < 0 || v >= m->nvert) return sh_error(SH_EINVAL, "sh_proc_closed_form: bad arguments");
+    if (!ps || !m || !t || !known || v < 0 || v >= m->nvert || !(lift >= 0 && lift < 0.1))
+        return sh_error(SH_EINVAL, "sh_proc_closed_form: bad arguments");
     int st = sh_check_order(order);
     if (st) return st;
     *known = 0;
@@ -264,21 +265,21 @@ int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int or
     if (ps->kind == SH_PROC_BOX_OPEN || ps->kind == SH_PROC_BOX_CLOSED) {
         if (!(p[2] == 0 && fabs(p[0]) < 0.5 - 1e-9 && fabs(p[1]) < 0.5 - 1e-9)) return SH_OK;
         const double A = box_hole(ps, res);
-        /* [2]: F of the hole [−A,A]² at height 1, by four signed corners */
+        /* [2]: F of the hole [−A,A]² at height 1 − lift, by four signed corners */
         double F = 0;
+        const double c = 1 - lift;
         if (A > 0) {
             const double x0 = -A - p[0], x1 = A - p[0], y0 = -A - p[1], y1 = A - p[1];
-            F = howell_b3(x1, y1, 1) - howell_b3(x0, y1, 1) - howell_b3(x1, y0, 1) + howell_b3(x0, y0, 1);
+            F = howell_b3(x1, y1, c) - howell_b3(x0, y1, c) - howell_b3(x1, y0, c) + howell_b3(x0, y0, c);
         }
         t[0] = rho * F / sqrt(4 * M_PI);
-        if (bound) bound[0] = rho * 1e-3 / sqrt(4 * M_PI); /* the ray origin offset */
         *known = 1;
         return SH_OK;
     }
     /* sphere-plane: a plane vertex (z = 0, normal +z) */
     if (!(p[2] == 0 && nv[2] == 1)) return SH_OK;
     const double R = ps->p[0], H = ps->p[1];
-    const double c[3] = {-p[0], -p[1], H};
+    const double c[3] = {-p[0], -p[1], H - lift};
     const double d = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
     const double u[3] = {c[0] / d, c[1] / d, c[2] / d};
     const double w = asin(R / d), alpha = acos(fmin(1.0, u[2]));

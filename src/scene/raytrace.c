@@ -366,7 +366,11 @@ int sh_scene_rotate_coeffs(int order, sh_convention conv, sh_rot_method method, 
 
 void sh__cosine_samples(int s, uint64_t seed, double *d)
 {
-    uint64_t x = seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull;
+    /* the stream starts at a hash of the seed: seeds k and k+1 must not
+     * give the same stream shifted by one step (splitmix steps by the
+     * golden constant, so a state of seed·golden would) */
+    uint64_t h = seed ^ 0x632BE59BD9B4E019ull;
+    uint64_t x = sh__splitmix(&h);
     for (int i = 0; i < s; i++)
         for (int j = 0; j < s; j++) {
             const double u = (i + sh__uniform(&x)) / s, v = (j + sh__uniform(&x)) / s;

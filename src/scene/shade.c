@@ -280,7 +280,7 @@ static int ref_pass(void *vc, int thread, int begin, int end)
             uint64_t seed = (uint64_t)c->o->seed * 1000003u + (uint64_t)v * 7919u + (uint64_t)r * 104729u + 1;
             double est = 0;
             if (w) {
-                uint64_t x = seed ^ 0xA5A5A5A5DEADBEEFull;
+                uint64_t h = seed ^ 0xA5A5A5A5DEADBEEFull, x = sh__splitmix(&h);
                 est = image_replication(c, w, nenv, org, &x, &rays);
             } else {
                 /* cosine-weighted stratified rays, estimator (ρ/N) Σ V L(Rᵀd) */

@@ -114,9 +114,11 @@ int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out);
  * *known is the number of bands given (order, 1 or 0 when no closed form
  * applies to that vertex).  bound[i] (may be NULL) bounds |t_i − truth| due
  * to the tessellation (the polyhedral sphere lies between its inscribed and
- * circumscribed spheres; the polygonal rim and hole are exact or bounded). */
+ * circumscribed spheres; the polygonal rim and hole are exact or bounded).
+ * lift: the point is p + lift·n, as the rays leave it (sh_scene_ray_origin:
+ * ε·diagonal); taken into the sphere-plane and box closed forms. */
 int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int order,
-                        sh_convention conv, double albedo, double *t, double *bound, int *known);
+                        sh_convention conv, double albedo, double lift, double *t, double *bound, int *known);
 /* The converged interreflected DC answer under a constant environment of
  * radiance 1 where one exists: bowl ρ/(2−ρ); box-open and sphere-plane with
  * ρ = 1: 1 (the furnace: every ray escapes or meets a surface of radiance
