@@ -97,6 +97,9 @@ EXPERIMENTS := legendre_stability green_vector projection_convergence orthonorma
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
                rotation_extremes rotation_cost
+# ---- scenes: experiments of src/scene/ (helper `scenes`) -------------------
+EXPERIMENTS += scene_transfer scene_shading
+# ---- end scenes ---------------------------------------------------------------
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
