@@ -181,7 +181,7 @@ typedef struct {
     int sq, reps;             /* analytic lights: s×s rays */
     int bs, bw, bh;           /* images: block side, blocks across and down */
     float *pdir;              /* images: pixel centre directions (3 per pixel) */
-    double **wbuf;            /* images: per thread, one weight per pixel */
+    double **wbuf;            /* images: per thread, a weight and a block sum per pixel */
     double rho, eps;
     double *B, *se;
     atomic_llong rays;
@@ -197,9 +197,33 @@ static void rot_applyT(const double R[9], const double a[3], double o[3])
     for (int k = 0; k < 3; k++) o[k] = R[k] * a[0] + R[3 + k] * a[1] + R[6 + k] * a[2];
 }
 
+/* Per vertex, once: w[p] = L_p Ω_p max(0, n·centre_p) and, block by block
+ * in scan order, cum[p] = Σ |w| of the block's pixels up to p. */
+static void image_weights(const rctx *c, const double nenv[3], double *w, double *cum)
+{
+    const sh_env *e = c->e;
+    const size_t np = (size_t)e->w * e->h;
+    for (size_t p = 0; p < np; p++) {
+        const float *cd = c->pdir + 3 * p;
+        const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
+        w[p] = cp > 0 ? e->lum[p] * e->omega[p] * cp : 0.0;
+    }
+    for (int by = 0; by < c->bh; by++)
+        for (int bx = 0; bx < c->bw; bx++) {
+            const int y0 = by * c->bs, x0 = bx * c->bs;
+            const int y1 = y0 + c->bs < e->h ? y0 + c->bs : e->h, x1 = x0 + c->bs < e->w ? x0 + c->bs : e->w;
+            double acc = 0;
+            for (int y = y0; y < y1; y++)
+                for (int x = x0; x < x1; x++) {
+                    acc += fabs(w[(size_t)y * e->w + x]);
+                    cum[(size_t)y * e->w + x] = acc;
+                }
+        }
+}
+
 /* one replication of the image estimator at a vertex (see scene.h) */
-static double image_replication(rctx *c, const double *w, const double nenv[3], const double org[3], uint64_t *x,
-                                long long *rays)
+static double image_replication(rctx *c, const double *w, const double *cum, const double nenv[3], const double org[3],
+                                uint64_t *x, long long *rays)
 {
     const sh_env *e = c->e;
     const double dth = M_PI / e->h, dph = 2 * M_PI / e->w;
@@ -208,30 +232,24 @@ static double image_replication(rctx *c, const double *w, const double nenv[3], 
         for (int bx = 0; bx < c->bw; bx++) {
             const int y0 = by * c->bs, x0 = bx * c->bs;
             const int y1 = y0 + c->bs < e->h ? y0 + c->bs : e->h, x1 = x0 + c->bs < e->w ? x0 + c->bs : e->w;
-            double W = 0;
-            for (int y = y0; y < y1; y++)
-                for (int xx = x0; xx < x1; xx++) W += fabs(w[(size_t)y * e->w + xx]);
+            const int bwid = x1 - x0, n = (y1 - y0) * bwid;
+#define CUM(j) cum[(size_t)(y0 + (j) / bwid) * e->w + x0 + (j) % bwid]
+            const double W = CUM(n - 1);
             if (!(W > 0)) continue;
-            /* the pixel, with probability |w_p| / W */
-            double u = sh__uniform(x) * W, acc = 0;
-            int py = y1 - 1, px = x1 - 1;
-            for (int y = y0; y < y1; y++)
-                for (int xx = x0; xx < x1; xx++) {
-                    const double a = fabs(w[(size_t)y * e->w + xx]);
-                    if (a > 0 && u < acc + a) {
-                        py = y;
-                        px = xx;
-                        goto chosen;
-                    }
-                    acc += a;
-                }
-            while (!(fabs(w[(size_t)py * e->w + px]) > 0)) { /* rounding at the end: the last non-zero */
-                if (--px < x0) { px = x1 - 1; --py; }
+            /* the pixel, with probability |w_p| / W: the first j with cum > u */
+            const double u = sh__uniform(x) * W;
+            int lo = 0, hi = n - 1;
+            while (lo < hi) {
+                const int mid = (lo + hi) / 2;
+                if (CUM(mid) > u) hi = mid;
+                else lo = mid + 1;
             }
-        chosen:;
+#undef CUM
+            const int py = y0 + lo / bwid, px = x0 + lo % bwid;
             const size_t p = (size_t)py * e->w + px;
             const float *cd = c->pdir + 3 * p;
             const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
+            if (!(cp > 0)) continue; /* cannot happen: w_p ≠ 0 */
             /* s uniform in the pixel's solid angle: cosθ uniform between the rows' edges */
             const double z0 = cos(py * dth), z1 = cos((py + 1) * dth);
             const double z = z0 + (z1 - z0) * sh__uniform(x), ph = (px + sh__uniform(x)) * dph;
@@ -265,23 +283,15 @@ static int ref_pass(void *vc, int thread, int begin, int end)
         sh__tangent_frame(n, M);
         sh_scene_ray_origin(s, v, c->eps, org);
         rot_applyT(c->R, n, nenv); /* the normal in the environment's frame */
-        double *w = e->is_image ? c->wbuf[thread] : NULL;
-        if (w) {
-            /* w_p = L_p Ω_p max(0, n·centre_p) */
-            const size_t np = (size_t)e->w * e->h;
-            for (size_t p = 0; p < np; p++) {
-                const float *cd = c->pdir + 3 * p;
-                const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
-                w[p] = cp > 0 ? e->lum[p] * e->omega[p] * cp : 0.0;
-            }
-        }
+        double *w = e->is_image ? c->wbuf[thread] : NULL, *cum = w ? w + (size_t)e->w * e->h : NULL;
+        if (w) image_weights(c, nenv, w, cum);
         double sum = 0, sum2 = 0;
         for (int r = 0; r < c->reps; r++) {
             uint64_t seed = (uint64_t)c->o->seed * 1000003u + (uint64_t)v * 7919u + (uint64_t)r * 104729u + 1;
             double est = 0;
             if (w) {
                 uint64_t h = seed ^ 0xA5A5A5A5DEADBEEFull, x = sh__splitmix(&h);
-                est = image_replication(c, w, nenv, org, &x, &rays);
+                est = image_replication(c, w, cum, nenv, org, &x, &rays);
             } else {
                 /* cosine-weighted stratified rays, estimator (ρ/N) Σ V L(Rᵀd) */
                 sh__cosine_samples(c->sq, seed, dir);
@@ -349,7 +359,7 @@ int sh_shade_reference(const sh_scene *s, const sh_env *env, const sh_rotation *
         c.wbuf = calloc((size_t)threads, sizeof *c.wbuf);
         if (!c.pdir || !c.wbuf) st = sh_error(SH_ENOMEM, "out of memory");
         for (int t = 0; !st && t < threads; t++)
-            if (!(c.wbuf[t] = malloc(sizeof(double) * np))) st = sh_error(SH_ENOMEM, "out of memory");
+            if (!(c.wbuf[t] = malloc(sizeof(double) * 2 * np))) st = sh_error(SH_ENOMEM, "out of memory");
         for (int y = 0; !st && y < env->h; y++)
             for (int x = 0; x < env->w; x++) {
                 double d[3];
