@@ -7,7 +7,7 @@ envs = system("grep -v '^#' ".pairs." | awk '{print $2}' | awk '!s[$0]++' | tr '
 NS = words(scenes)
 NE = words(envs)
 set output outdir.'/scene_orders.png'
-set multiplot layout 2,2 title "Relative L2 shading error vs SH order (shadowed transfer, 4096 rays, 200 vertices)"
+set multiplot layout 2,2 title "Relative L2 shading error vs SH order (shadowed transfer, 4096 rays, 150 vertices)"
 set logscale y
 set format y "10^{%T}"
 set yrange [1e-3:2]
