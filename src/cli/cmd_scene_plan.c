@@ -63,7 +63,8 @@ static const char help[] =
     "       \"orders\":[{\"order\",\"rel_l2\",\"rel_max\"}],\n"
     "       \"budgets\":[{\"budget\",\"order\" (null: none ≤ max-order),\"rel_l2\",\n"
     "                   \"ref_ok\",[\"max_beta\":{\"taylor1\",\"taylor15\",\"taylor2\"}]}],\n"
-    "       [\"rotation\":{\"alpha\",\"gamma\",\"rows\":[{\"beta\",\"method\",\"order\",\"rel_l2\"}]}]}\n"
+    "       [\"rotation\":{\"units\",\"alpha\",\"gamma\",\"rows\":[{\"beta\",\"method\",\"order\",\"rel_l2\",\"ref_l2\"}]}]}\n"
+    "Angles (alpha, gamma, beta, max_beta) are in degrees with --degrees, else radians.\n"
     "Exit 0 when every budget has an order, 1 when some has none (the result is\n"
     "still printed).\n";
 
@@ -254,7 +255,7 @@ static int run(int argc, char **argv)
                     sh_shade_err er;
                     if ((e = sh_study_error(st, meth, chosen[k], &er))) break;
                     json_t *r = json_object();
-                    r = cli_put(r, "beta", json_real(beta));
+                    r = cli_put(r, "beta", json_real(beta / deg));
                     r = cli_put(r, "method", json_string(t < 0 ? "exact" : sh_rot_method_name(meth)));
                     r = cli_put(r, "order", json_integer(chosen[k]));
                     r = cli_put(r, "rel_l2", json_real(er.rel_l2));
@@ -289,6 +290,7 @@ static int run(int argc, char **argv)
         root = cli_put(root, "budgets", bj);
         if (max_beta > 0) {
             json_t *rj = json_object();
+            rj = cli_put(rj, "units", json_string(com.degrees ? "degrees" : "radians"));
             rj = cli_put(rj, "alpha", json_real(alpha / deg));
             rj = cli_put(rj, "gamma", json_real(gamma / deg));
             rj = cli_put(rj, "rows", rows);
