@@ -19,6 +19,15 @@ struct sh_scene {
     double diag;
 };
 
+/* An environment (shade.c): a lat-long image or an analytic light. */
+struct sh_env {
+    int is_image;
+    sh_light light;
+    int w, h;
+    float *lum, *rgb; /* w·h luminance; 3·w·h planar R, G, B */
+    double *omega;    /* w·h pixel solid angles */
+};
+
 /* Work split over threads (pthreads): fn(ctx, thread, begin, end) is called
  * for chunks [begin, end) of [0, n) handed out dynamically; thread is in
  * [0, threads).  The calling thread works as thread 0 and alone calls

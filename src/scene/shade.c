@@ -16,14 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-struct sh_env {
-    int is_image;
-    sh_light light;
-    int w, h;
-    float *lum, *rgb; /* w·h luminance; 3·w·h planar R, G, B */
-    double *omega;    /* w·h pixel solid angles */
-};
-
 void sh_env_free(sh_env *e)
 {
     if (!e) return;

@@ -344,6 +344,117 @@ int sh_image_colormap(const sh_image *in, double vmax, sh_image *out);
  * temporary file renamed into place. */
 int sh_png_write(const char *path, const sh_image *img, double exposure);
 
+/* ----------------------------------------------------------- radiance cache
+ * Křivánek et al. 2005 (Sec. 4.2, after Křivánek, Gautron, Pattanaik &
+ * Bouatouch's radiance caching, itself after Ward's irradiance caching):
+ * the incident radiance is computed in SH at sparse records, each in its
+ * own tangent frame (sh__tangent_frame of the vertex normal), and reused at
+ * nearby vertices: a vertex p takes the records i with
+ *   1/w_i(p) = ‖p − p_i‖/R_i + √(1 − n·n_i) < a
+ * (R_i the harmonic mean distance of the rays leaving p_i, a the allowed
+ * error) and interpolates them after rotating each into its own frame,
+ *   Λ(p) = Σ_S w_i (R_sh(M_pᵀ M_i) Λ_i) / Σ_S w_i        (their Eq. 1),
+ * without translation gradients (as their Table 1).  The β of that
+ * rotation is the angle between n and n_i, small by construction, which is
+ * where the Taylor rotation was meant to pay off.
+ *
+ * Incident radiance at a vertex (sh_incident_radiance), R, G, B, in its
+ * frame (t, b, n): Λ_c,i = ∫_H L_c(s) V(s) y_i(Mᵀs) ds (plus, with bounce,
+ * the light reflected once by the scene), estimated as
+ *   environment image: blocks of b×b pixels (about env_samples of them on
+ *     the sphere), one sample per block: a pixel drawn ∝ Ω_p·(|R|+|G|+|B|),
+ *     s uniform in it, contribution W_block·L_c,p/(|R|+|G|+|B|)_p·V(s)·y(s)
+ *     where s is above the horizon (unbiased; light exact up to
+ *     visibility, as sh_shade_reference);
+ *   analytic light: env_samples stratified uniform hemisphere directions,
+ *     (2π/N) Σ L V y;
+ *   bounce: `rays` stratified uniform hemisphere directions; a ray meeting
+ *     a front face adds (2π/N)·B_d(hit) y, B_d the direct exit radiance
+ *     (shadowed transfer of order min(order, 8) with `rays` rays dotted with
+ *     the environment's projection, clamped at 0) interpolated
+ *     barycentrically at the hit.
+ * R_i: the harmonic mean of the hit distances of 64 stratified uniform
+ * hemisphere rays per vertex (escaping rays count 1/t = 0), clamped to
+ * [rmin, rmax]·diagonal.  Every vertex's random streams depend on (seed,
+ * vertex) only, so a record equals the direct computation at its vertex.
+ *
+ * Record placement (Ward's lazy criterion): the vertices are visited in a
+ * seeded random order; a vertex no existing record covers (1/w < a)
+ * becomes a record.  Every vertex is then covered by ≥ 1 record.
+ *
+ * Shading from the local Λ: diffuse B_c = Σ_i t_i Λ_c,i with
+ * t = sh_transfer_unshadowed(ẑ) (ρ/π times the clamped cosine); Phong
+ * (exponent E, Křivánek's glossy use) B_c = ρ (E+1)/(2π) ∫ Λ_c(s)
+ * max(0, r·s)^E ds, r the mirror direction of the direction to `eye`,
+ * i.e. Σ_lm Λ_c,lm ρ (E+1)/(2π) √(4π/(2l+1)) z_l y_lm(r), z_l the zonal
+ * coefficients of max(0, cosθ)^E (sh_lobe_zonal). */
+typedef struct {
+    int phong;        /* 0: diffuse; 1: Phong lobe about the mirror direction */
+    double exponent;  /* Phong exponent E > 0 */
+    double eye[3];    /* Phong: the viewer's position */
+} sh_cache_brdf;
+typedef struct {
+    int order;           /* bands (0: 6) */
+    long env_samples;    /* environment samples per record (0: 4096) */
+    long rays;           /* bounce rays per record, rounded to a square (0: 1024) */
+    int bounce;          /* add one bounce of the direct light */
+    double albedo;       /* ρ in (0, 1] (0: 1) */
+    double a;            /* allowed error a > 0 (0: 0.2) */
+    double rmin, rmax;   /* clamp of R_i, fractions of the diagonal (0: 0.01, 0.25) */
+    sh_cache_brdf brdf;
+    unsigned long seed;
+    double ray_eps;      /* ray origin offset (0: 1e-4 of the diagonal) */
+    int threads;         /* 0: the scene's */
+    sh_progress_fn progress;
+    void *progress_ctx;
+} sh_cache_opts;
+/* The incident radiance Λ at the listed vertices (NULL: all; nv·3·order²
+ * doubles, vertex-major, then R, G, B), by the estimator above. */
+int sh_incident_radiance(const sh_scene *s, const sh_env *env, const sh_cache_opts *o, const int *verts, int nv,
+                         double *L, sh_transfer_stats *stats);
+/* How a record is rotated into a vertex's frame. */
+typedef struct {
+    sh_rot_method method; /* any method (exact or Taylor) */
+    int ignore;           /* 1: not rotated at all (Křivánek's "Ignore" row) */
+    double beta_lim;      /* Taylor methods: zxzxz instead where β > beta_lim (≤ 0: never) */
+} sh_cache_rot;
+typedef struct sh_cache sh_cache;
+typedef struct {
+    int nverts, records;
+    long long uses;          /* (vertex, record) pairs interpolated: one rotation each (3 channels) */
+    double mean_uses;        /* per vertex */
+    double beta_max, beta_mean, beta_p50, beta_p90, beta_p99; /* angle between n and n_i, radians */
+    double harm_clamped_lo, harm_clamped_hi; /* fractions of vertices whose R was clamped */
+    double seconds_placement; /* R at every vertex, placement, neighbour lists (wall) */
+    double seconds_records;  /* the records' incident radiance (wall) */
+    long long rays;          /* rays of the records (and R) */
+    int threads;
+} sh_cache_info;
+/* Compute R at every vertex, place the records, compute them, list each
+ * vertex's records with weights and rotations, set up the BRDF. */
+int sh_cache_create(const sh_scene *s, const sh_env *env, const sh_cache_opts *o, sh_cache **out);
+void sh_cache_free(sh_cache *c);
+int sh_cache_info_get(const sh_cache *c, sh_cache_info *info);
+/* The vertices that hold records (c keeps them). */
+const int *sh_cache_records(const sh_cache *c, int *n);
+/* The interpolated Λ(v) (3·order²) in v's frame. */
+int sh_cache_incident(sh_cache *c, const sh_cache_rot *rot, int v, double *L);
+/* Shade every vertex from the cache: B (3·nvert, vertex-major R, G, B).
+ * threads 1 for timing.  seconds: wall time of the interpolation and
+ * shading loop alone (plans made before); cpu_seconds: the calling
+ * thread's CPU time of that loop when threads = 1 (else 0), which time
+ * slices lost to other processes do not inflate; fallbacks: Taylor
+ * rotations replaced by zxzxz (β > beta_lim). */
+typedef struct { double seconds, cpu_seconds; long long rotations, fallbacks; } sh_cache_timing;
+int sh_cache_shade(sh_cache *c, const sh_cache_rot *rot, int threads, double *B, sh_cache_timing *t);
+/* Every vertex computed directly (sh_incident_radiance at each) and
+ * shaded: B as sh_cache_shade; stats->seconds the wall time.  With the
+ * cache's own seed a record's vertex gets exactly the record; another seed
+ * gives an independent estimate (the direct computation's noise). */
+int sh_cache_shade_direct(sh_cache *c, unsigned long seed, int threads, double *B, sh_transfer_stats *stats);
+/* Luminance of 3-channel values: Y[v] = 0.2126 R + 0.7152 G + 0.0722 B. */
+void sh_rgb_luminance(int n, const double *rgb, double *Y);
+
 #ifdef __cplusplus
 }
 #endif
