@@ -383,6 +383,7 @@ static int run(int argc, char **argv)
             else M[k].sec[r] = cpu / reps;
         }
     }
+    for (int k = 0; k < nm && !e; k++) sh_rgb_luminance(nv, M[k].B, M[k].Y);
     double noise_l2 = -1;
     if (!e && noise) {
         /* every vertex again with the next seed: two independent estimates */
@@ -466,7 +467,6 @@ static int run(int argc, char **argv)
     if (!e) {
         double tig = -1;
         for (int k = 0; k < nm; k++) {
-            sh_rgb_luminance(nv, M[k].B, M[k].Y);
             if (M[k].rot.ignore) {
                 double t[1000];
                 memcpy(t, M[k].sec, sizeof(double) * repeat);

@@ -455,6 +455,57 @@ int sh_cache_shade_direct(sh_cache *c, unsigned long seed, int threads, double *
 /* Luminance of 3-channel values: Y[v] = 0.2126 R + 0.7152 G + 0.0722 B. */
 void sh_rgb_luminance(int n, const double *rgb, double *Y);
 
+/* ------------------------------------------------------------ shadow fields
+ * Wang et al. 2006, Sec. 3.1 (object occlusion fields after Zhou et al.
+ * 2005): the occlusion of an occluder is sampled at one distance d0 and
+ * scaled to the distance d of each receiver with an SH scaling matrix
+ * M(k), k = d/d0 (scale.h), instead of being sampled at many radii.
+ * Here the occluder is a sphere (radius R, centre C), whose occlusion from
+ * distance d is exactly the cap of half-angle asin(R/d) about the
+ * direction to C; its field at d0 is that cap's zonal projection.
+ *   exact   the cap projected at d itself (no scaling: what a fully
+ *           sampled field gives);
+ *   cone    Wang's cone family, k = d/d0, half-angle cone_angle (0: π/4);
+ *   sphere  the sphere's own τ: the cap at d (half-angle w_d) linearly
+ *           onto the cap at d0 (w0) and the rest of the sphere onto the
+ *           rest — exact geometry, so only the truncation of the sampled
+ *           field remains.  (The linear family τ = min(k'θ, π) with
+ *           k' = w0/w_d is exact geometry too, but spreads the truncated
+ *           field's value at θ = π over every θ > π/k'.)
+ * With samples ≥ 2, M is tabulated at that many k geometric in [kmin,
+ * kmax] (both 0: the receivers' range) and interpolated linearly in k
+ * (Wang Sec. 2.2: "40 values of k in an exponential distribution"); k
+ * outside the table takes its end.  The field is placed on the direction
+ * to C (addition theorem) and the receiver's transfer is the product of
+ * shadow fields truncated to the order:
+ *   t = P_n(V·c⁺),  V = 1 − O,  c⁺ = sh_transfer_unshadowed(n) (ρ/π times
+ * the clamped cosine), by real Gaunt coefficients — so B = Σ L_i t_i is
+ * the triple product of lighting, visibility and cosine. */
+typedef enum { SH_SF_EXACT = 0, SH_SF_CONE, SH_SF_SPHERE } sh_sf_scaling;
+const char *sh_sf_scaling_name(sh_sf_scaling s);
+int sh_sf_scaling_parse(const char *s, sh_sf_scaling *out);
+typedef struct {
+    int order;             /* ≤ 16 */
+    sh_sf_scaling scaling;
+    double cone_angle;     /* cone: θ0 (0: π/4) */
+    double d0;             /* the distance the field is sampled at (> R) */
+    int samples;           /* 0: M(k) at every receiver; ≥ 2: a table over k */
+    double kmin, kmax;     /* the table's range (both 0: the receivers') */
+    double albedo;         /* ρ (0: 1) */
+} sh_sf_opts;
+typedef struct {
+    double kmin, kmax;     /* the receivers' k = d/d0 */
+    int matrices;          /* scaling matrices computed */
+    double seconds;
+} sh_sf_stats;
+/* The field at distance d (order² coefficients, zonal about +z), M(d/d0)
+ * computed directly (samples ignored). */
+int sh_sf_field(const sh_sf_opts *o, double radius, double d, double *O);
+/* Transfer vectors T (n·order²) at n receivers (positions and unit
+ * normals, 3 each) shadowed by the sphere (centre, radius). */
+int sh_shadow_field_transfer(const sh_sf_opts *o, const double centre[3], double radius, int n, const double *pos,
+                             const double *normal, double *T, sh_sf_stats *stats);
+
 #ifdef __cplusplus
 }
 #endif
