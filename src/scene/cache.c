@@ -645,6 +645,19 @@ const int *sh_cache_records(const sh_cache *c, int *n)
     return c ? c->rec_vertex : NULL;
 }
 
+int sh_cache_uses(const sh_cache *c, int v, int max, int *rec_vertex, double *inv_weight)
+{
+    if (!c || v < 0 || v >= c->nv || max < 0 || (max > 0 && (!rec_vertex || !inv_weight))) return -1;
+    const int b = c->nb_start[v], n = c->nb_start[v + 1] - b;
+    for (int k = 0; k < n && k < max; k++) {
+        rec_vertex[k] = c->rec_vertex[c->nb_rec[b + k]];
+        inv_weight[k] = c->nb_iw[b + k];
+    }
+    return n;
+}
+
+double sh_cache_radius(const sh_cache *c, int v) { return c && v >= 0 && v < c->nv ? c->harm[v] : 0; }
+
 /* ------------------------------------------------------------ rotation */
 
 typedef struct {

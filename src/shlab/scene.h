@@ -437,6 +437,12 @@ void sh_cache_free(sh_cache *c);
 int sh_cache_info_get(const sh_cache *c, sh_cache_info *info);
 /* The vertices that hold records (c keeps them). */
 const int *sh_cache_records(const sh_cache *c, int *n);
+/* The records vertex v uses: up to max of them, their vertices and 1/w
+ * (0: the record sits at v's position with v's normal, and is used alone);
+ * returns the number (all of them, even beyond max), or −1 on bad
+ * arguments.  sh_cache_radius: R(v), the clamped harmonic mean distance. */
+int sh_cache_uses(const sh_cache *c, int v, int max, int *rec_vertex, double *inv_weight);
+double sh_cache_radius(const sh_cache *c, int v);
 /* The interpolated Λ(v) (3·order²) in v's frame. */
 int sh_cache_incident(sh_cache *c, const sh_cache_rot *rot, int v, double *L);
 /* Shade every vertex from the cache: B (3·nvert, vertex-major R, G, B).
