@@ -100,6 +100,9 @@ EXPERIMENTS := legendre_stability green_vector projection_convergence orthonorma
 # ---- scenes: experiments of src/scene/ (helper `scenes`) -------------------
 EXPERIMENTS += scene_transfer scene_shading
 # ---- end scenes ---------------------------------------------------------------
+# ---- cache: the radiance cache and shadow fields (helper `cache`) ----------
+EXPERIMENTS += scene_cache scene_shadowfield
+# ---- end cache ----------------------------------------------------------------
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a

@@ -345,7 +345,6 @@ static int run(int argc, char **argv)
     for (int k = 0; k < nm; k++) {
         M[k].B = malloc(sizeof(double) * 3 * nv);
         M[k].Y = malloc(sizeof(double) * nv);
-        M[k].sec = sec + (size_t)k * repeat;
         ok_alloc = ok_alloc && M[k].B && M[k].Y;
     }
     if (!e && !ok_alloc) e = sh_error(SH_ENOMEM, "out of memory");
@@ -358,31 +357,24 @@ static int run(int argc, char **argv)
     const sh_cache_rot exact = {SH_ROT_ZXZXZ, 0, 0};
     if (!e) e = sh_cache_shade(c, &exact, 1, Bx, NULL);
     if (!e) sh_rgb_luminance(nv, Bx, Yx);
-    /* timing: rounds, every method once per round in a rotated order, one
-     * thread, CPU time of that thread; each measurement repeats the loop
-     * over the vertices `reps` times (≥ 20 ms of CPU, calibrated on zxzxz);
-     * an extra zxzxz measurement per round is the baseline of the ratios */
-    double *zsec = sec + (size_t)nm * repeat;
-    int reps = 1;
+    /* timing (sh_cache_bench): the methods and an extra zxzxz, the
+     * baseline of the per-round ratios, interleaved; ≥ 20 ms of CPU each */
+    sh_cache_rot rots[CACHE_MAX_METHODS + 1];
+    for (int k = 0; k < nm; k++) rots[k] = M[k].rot;
+    rots[nm] = exact;
+    for (int k = 0; k < nm && !e; k++) e = sh_cache_shade(c, &M[k].rot, 1, M[k].B, &M[k].t);
     if (!e) {
-        sh_cache_timing t;
-        if (!(e = sh_cache_shade(c, &exact, 1, Bx, &t))) reps = (int)fmin(1000.0, ceil(0.02 / fmax(t.cpu_seconds, 1e-6)));
+        if (!quiet) fprintf(stderr, "cache: timing, %d rounds of %d loops\n", repeat, nm + 1);
+        e = sh_cache_bench(c, rots, nm + 1, repeat, 0.02, sec);
     }
+    /* sec is round-major: sec[r·(nm+1) + k] */
+    double *zsec = malloc(sizeof(double) * repeat), *msec = malloc(sizeof(double) * repeat * nm);
+    if (!e && (!zsec || !msec)) e = sh_error(SH_ENOMEM, "out of memory");
     for (int r = 0; r < repeat && !e; r++) {
-        if (!quiet) fprintf(stderr, "cache: timing round %d of %d (%d loops per measurement)\n", r + 1, repeat, reps);
-        for (int j = 0; j <= nm && !e; j++) {
-            const int k = (j + r) % (nm + 1);
-            double cpu = 0;
-            for (int q = 0; q < reps && !e; q++) {
-                sh_cache_timing t;
-                e = k == nm ? sh_cache_shade(c, &exact, 1, Bx, &t) : sh_cache_shade(c, &M[k].rot, 1, M[k].B, &t);
-                cpu += t.cpu_seconds;
-                if (k < nm) M[k].t = t;
-            }
-            if (k == nm) zsec[r] = cpu / reps;
-            else M[k].sec[r] = cpu / reps;
-        }
+        zsec[r] = sec[(size_t)r * (nm + 1) + nm];
+        for (int k = 0; k < nm; k++) msec[(size_t)k * repeat + r] = sec[(size_t)r * (nm + 1) + k];
     }
+    for (int k = 0; k < nm && !e; k++) M[k].sec = msec + (size_t)k * repeat;
     for (int k = 0; k < nm && !e; k++) sh_rgb_luminance(nv, M[k].B, M[k].Y);
     double noise_l2 = -1;
     if (!e && noise) {
@@ -563,7 +555,7 @@ static int run(int argc, char **argv)
         free(M[k].B);
         free(M[k].Y);
     }
-    free(Bd); free(Yd); free(Bx); free(Yx); free(ratio); free(sec);
+    free(Bd); free(Yd); free(Bx); free(Yx); free(ratio); free(sec); free(zsec); free(msec);
     free(ref); free(se); free(sub); free(rv);
     sh_cache_free(c);
     sh_env_free(env);

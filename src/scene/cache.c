@@ -837,6 +837,30 @@ int sh_cache_shade(sh_cache *c, const sh_cache_rot *rot, int threads, double *B,
     return st;
 }
 
+int sh_cache_bench(sh_cache *c, const sh_cache_rot *rots, int n, int rounds, double min_cpu_seconds, double *sec)
+{
+    if (!c || !rots || !sec || n < 1 || rounds < 1 || !(min_cpu_seconds >= 0 && min_cpu_seconds < 100))
+        return sh_error(SH_EINVAL, "sh_cache_bench: bad arguments");
+    double *B = malloc(sizeof(double) * 3 * (size_t)c->nv);
+    if (!B) return sh_error(SH_ENOMEM, "out of memory");
+    int st = SH_OK;
+    for (int r = 0; r < rounds && !st; r++)
+        for (int j = 0; j < n && !st; j++) {
+            const int k = (j + r) % n;
+            double cpu = 0;
+            int loops = 0;
+            do {
+                sh_cache_timing t;
+                st = sh_cache_shade(c, &rots[k], 1, B, &t);
+                cpu += t.cpu_seconds;
+                loops++;
+            } while (!st && cpu < min_cpu_seconds && loops < 100000);
+            sec[(size_t)r * n + k] = cpu / loops;
+        }
+    free(B);
+    return st;
+}
+
 int sh_cache_shade_direct(sh_cache *c, unsigned long seed, int threads, double *B, sh_transfer_stats *stats)
 {
     sh_transfer_stats st0;

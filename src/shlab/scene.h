@@ -453,6 +453,14 @@ int sh_cache_incident(sh_cache *c, const sh_cache_rot *rot, int v, double *L);
  * rotations replaced by zxzxz (β > beta_lim). */
 typedef struct { double seconds, cpu_seconds; long long rotations, fallbacks; } sh_cache_timing;
 int sh_cache_shade(sh_cache *c, const sh_cache_rot *rot, int threads, double *B, sh_cache_timing *t);
+/* Time the shading loop of each of n rotation specs in the calling thread:
+ * `rounds` rounds, every spec once per round in an order rotated by one
+ * each round; a measurement repeats the loop until it has taken
+ * min_cpu_seconds of this thread's CPU time (at least once) and gives the
+ * CPU seconds per loop in sec[r·n + k].  Loads from other processes lengthen
+ * wall time, not this thread's CPU time; ratios of specs within a round
+ * are the trustworthy output. */
+int sh_cache_bench(sh_cache *c, const sh_cache_rot *rots, int n, int rounds, double min_cpu_seconds, double *sec);
 /* Every vertex computed directly (sh_incident_radiance at each) and
  * shaded: B as sh_cache_shade; stats->seconds the wall time.  With the
  * cache's own seed a record's vertex gets exactly the record; another seed
