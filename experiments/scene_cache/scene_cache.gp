@@ -8,7 +8,8 @@ set multiplot layout NS,2 title "Radiance cache: relative L2 error of the lumina
 set logscale xy
 set format y "10^{%T}"
 set xrange [0.04:0.6]
-set yrange [1e-5:1]
+set xtics ("0.05" 0.05, "0.1" 0.1, "0.2" 0.2, "0.3" 0.3, "0.5" 0.5)
+set yrange [1e-6:1]
 set grid
 set xlabel "allowed error a"
 set ylabel "relative L2 error"
