@@ -125,3 +125,35 @@ int cli_env_build(const char *cmd, const cli_scene_args *a, int degrees, int opt
     *desc = d;
     return 0;
 }
+
+int cli_picture_opt(int o, const char *arg, cli_picture_args *p)
+{
+    switch (o) {
+    case CLI_OPT_VIEW:
+        if (cli_vec3("--view", arg, p->view)) return CLI_EXIT_USAGE;
+        if (!(p->view[0] * p->view[0] + p->view[1] * p->view[1] + p->view[2] * p->view[2] > 0))
+            return cli_fail("--view: must be a non-zero vector");
+        return 0;
+    case CLI_OPT_WIDTH:
+        if (cli_int("--width", arg, &p->width)) return CLI_EXIT_USAGE;
+        if (p->width < 8 || p->width > 8192) return cli_fail("--width: out of range 8..8192");
+        return 0;
+    case CLI_OPT_HEIGHT:
+        if (cli_int("--height", arg, &p->height)) return CLI_EXIT_USAGE;
+        if (p->height < 8 || p->height > 8192) return cli_fail("--height: out of range 8..8192");
+        return 0;
+    case CLI_OPT_EMAX:
+        if (cli_double("--error-max", arg, &p->error_max)) return CLI_EXIT_USAGE;
+        if (!(p->error_max > 0)) return cli_fail("--error-max: must be > 0");
+        return 0;
+    case CLI_OPT_REFS:
+        if (cli_long("--ref-samples", arg, &p->ref_samples)) return CLI_EXIT_USAGE;
+        if (p->ref_samples < 16 || p->ref_samples > 1L << 22) return cli_fail("--ref-samples: out of range 16..4194304");
+        return 0;
+    case CLI_OPT_REPL:
+        if (cli_int("--replications", arg, &p->replications)) return CLI_EXIT_USAGE;
+        if (p->replications < 2 || p->replications > 1000) return cli_fail("--replications: out of range 2..1000");
+        return 0;
+    default: return -1;
+    }
+}

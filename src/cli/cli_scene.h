@@ -47,4 +47,25 @@ int cli_scene_build(const char *cmd, const cli_scene_args *a, sh_mesh *m, sh_pro
 /* The environment (exactly one of --probe/--light, unless optional). */
 int cli_env_build(const char *cmd, const cli_scene_args *a, int degrees, int optional, sh_env **e, json_t **desc);
 
+/* Options of the scene commands that make pictures and judge against the
+ * reference (cache, shadow-field): --view X,Y,Z (camera direction from the
+ * scene's centre), --width, --height, --error-max (top of the false-colour
+ * scale), --ref-samples, --replications. */
+enum { CLI_OPT_VIEW = 0x221, CLI_OPT_WIDTH, CLI_OPT_HEIGHT, CLI_OPT_EMAX, CLI_OPT_REFS, CLI_OPT_REPL };
+#define CLI_LONGOPTS_PICTURE                                                                           \
+    {"view", required_argument, 0, CLI_OPT_VIEW}, {"width", required_argument, 0, CLI_OPT_WIDTH},     \
+        {"height", required_argument, 0, CLI_OPT_HEIGHT}, {"error-max", required_argument, 0, CLI_OPT_EMAX}, \
+        {"ref-samples", required_argument, 0, CLI_OPT_REFS},                                           \
+        {"replications", required_argument, 0, CLI_OPT_REPL}
+typedef struct {
+    double view[3];
+    int width, height;
+    double error_max;
+    long ref_samples;
+    int replications;
+} cli_picture_args;
+#define CLI_PICTURE_DEFAULTS {{1, -1.4, 0.9}, 640, 480, 0.1, 16384, 4}
+/* Handle one of those options: -1 if o is not one, 0 if handled, else an exit code. */
+int cli_picture_opt(int o, const char *arg, cli_picture_args *p);
+
 #endif

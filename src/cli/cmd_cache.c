@@ -150,12 +150,13 @@ static int picture(sh_scene *s, const sh_camera *cam, int nchan, const double *v
 static int run(int argc, char **argv)
 {
     enum { O_A = 0x301, O_METHODS, O_BLIM, O_BRDF, O_BOUNCE, O_ENVS, O_RAYS, O_ALBEDO, O_RMIN, O_RMAX, O_REPEAT,
-           O_NOISE, O_REF, O_REFS, O_REPL, O_VIEW, O_PNG, O_DPNG, O_EPNG, O_PMETH, O_EMAX, O_W, O_H, O_SEED, O_QUIET };
+           O_NOISE, O_REF, O_PNG, O_DPNG, O_EPNG, O_PMETH, O_SEED, O_QUIET };
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPTS_SCENE,
                                          CLI_LONGOPTS_ENV,
                                          CLI_LONGOPT_ORDER,
                                          CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPTS_PICTURE,
                                          {"allowed-error", required_argument, 0, O_A},
                                          {"methods", required_argument, 0, O_METHODS},
                                          {"beta-lim", required_argument, 0, O_BLIM},
@@ -169,16 +170,10 @@ static int run(int argc, char **argv)
                                          {"repeat", required_argument, 0, O_REPEAT},
                                          {"noise", no_argument, 0, O_NOISE},
                                          {"reference", required_argument, 0, O_REF},
-                                         {"ref-samples", required_argument, 0, O_REFS},
-                                         {"replications", required_argument, 0, O_REPL},
-                                         {"view", required_argument, 0, O_VIEW},
                                          {"png", required_argument, 0, O_PNG},
                                          {"direct-png", required_argument, 0, O_DPNG},
                                          {"error-png", required_argument, 0, O_EPNG},
                                          {"picture-method", required_argument, 0, O_PMETH},
-                                         {"error-max", required_argument, 0, O_EMAX},
-                                         {"width", required_argument, 0, O_W},
-                                         {"height", required_argument, 0, O_H},
                                          {"seed", required_argument, 0, O_SEED},
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
@@ -188,12 +183,10 @@ static int run(int argc, char **argv)
     co.a = 0.2;
     co.albedo = 0.8;
     co.seed = 1;
-    sh_reference_opts ro = {0};
-    ro.samples = 16384;
-    ro.replications = 4;
+    cli_picture_args pa = CLI_PICTURE_DEFAULTS;
     meth M[CACHE_MAX_METHODS];
-    int nm = 0, repeat = 5, nref = 0, noise = 0, quiet = 0, W = 640, H = 480;
-    double beta_lim = 0, view[3] = {1, -1.4, 0.9}, emax = 0.1;
+    int nm = 0, repeat = 5, nref = 0, noise = 0, quiet = 0;
+    double beta_lim = 0;
     const char *png = NULL, *dpng = NULL, *epng = NULL, *pmeth = NULL;
     long seed = 1;
     if (parse_methods("ignore,taylor1,taylor1.5,taylor2,zxzxz,ivanic", M, &nm)) return CLI_EXIT_USAGE;
@@ -201,7 +194,8 @@ static int run(int argc, char **argv)
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        const int e = cli_scene_opt("cache", o, optarg, &sa);
+        int e = cli_scene_opt("cache", o, optarg, &sa);
+        if (e < 0) e = cli_picture_opt(o, optarg, &pa);
         if (e > 0) return e;
         if (e == 0) continue;
         switch (o) {
@@ -254,38 +248,14 @@ static int run(int argc, char **argv)
             if (cli_int("--reference", optarg, &nref)) return CLI_EXIT_USAGE;
             if (nref < 0) return cli_fail("--reference: must be >= 0");
             break;
-        case O_REFS:
-            if (cli_long("--ref-samples", optarg, &ro.samples)) return CLI_EXIT_USAGE;
-            if (ro.samples < 16 || ro.samples > 1L << 22) return cli_fail("--ref-samples: out of range 16..4194304");
-            break;
-        case O_REPL:
-            if (cli_int("--replications", optarg, &ro.replications)) return CLI_EXIT_USAGE;
-            if (ro.replications < 2 || ro.replications > 1000) return cli_fail("--replications: out of range 2..1000");
-            break;
-        case O_VIEW:
-            if (cli_vec3("--view", optarg, view)) return CLI_EXIT_USAGE;
-            if (!(view[0] * view[0] + view[1] * view[1] + view[2] * view[2] > 0)) return cli_fail("--view: must be a non-zero vector");
-            break;
         case O_PNG: png = optarg; break;
         case O_DPNG: dpng = optarg; break;
         case O_EPNG: epng = optarg; break;
         case O_PMETH: pmeth = optarg; break;
-        case O_EMAX:
-            if (cli_double("--error-max", optarg, &emax)) return CLI_EXIT_USAGE;
-            if (!(emax > 0)) return cli_fail("--error-max: must be > 0");
-            break;
-        case O_W:
-            if (cli_int("--width", optarg, &W)) return CLI_EXIT_USAGE;
-            if (W < 8 || W > 8192) return cli_fail("--width: out of range 8..8192");
-            break;
-        case O_H:
-            if (cli_int("--height", optarg, &H)) return CLI_EXIT_USAGE;
-            if (H < 8 || H > 8192) return cli_fail("--height: out of range 8..8192");
-            break;
         case O_SEED:
             if (cli_long("--seed", optarg, &seed)) return CLI_EXIT_USAGE;
             if (seed < 0) return cli_fail("--seed: must be >= 0");
-            co.seed = ro.seed = (unsigned long)seed;
+            co.seed = (unsigned long)seed;
             break;
         case O_QUIET: quiet = 1; break;
         default: {
@@ -312,6 +282,10 @@ static int run(int argc, char **argv)
     }
     if ((png || epng) && pic < 0)
         return cli_fail("cache: --picture-method %s is not among --methods", pmeth ? pmeth : "(none but ignore)");
+    sh_reference_opts ro = {0};
+    ro.samples = pa.ref_samples;
+    ro.replications = pa.replications;
+    ro.seed = co.seed;
     co.threads = ro.threads = sa.threads;
     ro.albedo = co.albedo;
 
@@ -329,7 +303,7 @@ static int run(int argc, char **argv)
         return rc;
     }
     sh_camera cam;
-    int e = sh_camera_frame(&m, view, 35, W, H, &cam);
+    int e = sh_camera_frame(&m, pa.view, 35, pa.width, pa.height, &cam);
     for (int k = 0; k < 3; k++) co.brdf.eye[k] = cam.eye[k];
     cli_progress prog;
     cli_progress_start(&prog, "cache", quiet);
@@ -450,7 +424,7 @@ static int run(int argc, char **argv)
             for (int v = 0; v < nv; v++) r2 += Yd[v] * Yd[v];
             const double rms = sqrt(r2 / nv);
             for (int v = 0; v < nv; v++) Yc[v] = rms > 0 ? fabs(M[pic].Y[v] - Yd[v]) / rms : 0;
-            e = picture(s, &cam, 1, Yc, NULL, sa.threads, epng, 1, emax);
+            e = picture(s, &cam, 1, Yc, NULL, sa.threads, epng, 1, pa.error_max);
         }
         free(Yc);
         free(tmp);

@@ -77,41 +77,34 @@ static const char help[] =
 
 static int run(int argc, char **argv)
 {
-    enum { O_D0 = 0x301, O_CONE, O_SAMPLES, O_RAYS, O_REF, O_REFS, O_REPL, O_BINS, O_PNG, O_RPNG, O_EPNG, O_PIC,
-           O_EMAX, O_VIEW, O_W, O_H, O_ALBEDO, O_SEED, O_QUIET };
+    enum { O_D0 = 0x301, O_CONE, O_SAMPLES, O_RAYS, O_REF, O_BINS, O_PNG, O_RPNG, O_EPNG, O_PIC, O_ALBEDO, O_SEED,
+           O_QUIET };
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPTS_SCENE,
                                          CLI_LONGOPTS_ENV,
                                          CLI_LONGOPT_ORDER,
                                          CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPTS_PICTURE,
                                          {"field-distance", required_argument, 0, O_D0},
                                          {"cone-angle", required_argument, 0, O_CONE},
                                          {"samples", required_argument, 0, O_SAMPLES},
                                          {"rays", required_argument, 0, O_RAYS},
                                          {"reference", no_argument, 0, O_REF},
-                                         {"ref-samples", required_argument, 0, O_REFS},
-                                         {"replications", required_argument, 0, O_REPL},
                                          {"bins", required_argument, 0, O_BINS},
                                          {"png", required_argument, 0, O_PNG},
                                          {"ray-png", required_argument, 0, O_RPNG},
                                          {"error-png", required_argument, 0, O_EPNG},
                                          {"picture", required_argument, 0, O_PIC},
-                                         {"error-max", required_argument, 0, O_EMAX},
-                                         {"view", required_argument, 0, O_VIEW},
-                                         {"width", required_argument, 0, O_W},
-                                         {"height", required_argument, 0, O_H},
                                          {"albedo", required_argument, 0, O_ALBEDO},
                                          {"seed", required_argument, 0, O_SEED},
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_scene_args sa = {0};
-    sh_reference_opts ro = {0};
-    ro.samples = 16384;
-    ro.replications = 4;
-    double d0 = 0, cone = -1, albedo = 0.8, emax = 0.1, view[3] = {1, -1.4, 0.9};
+    cli_picture_args pa = CLI_PICTURE_DEFAULTS;
+    double d0 = 0, cone = -1, albedo = 0.8;
     int cone_tangent = 0, nsamp = 5, samples[SF_MAX_SAMPLES] = {0, 2, 5, 10, 40}, reference = 0, nbins = 5, quiet = 0;
-    int W = 640, H = 480, pic_samples = 0;
+    int pic_samples = 0;
     sh_sf_scaling pic_scaling = SH_SF_CONE;
     long rays = 4096, seed = 1;
     const char *png = NULL, *rpng = NULL, *epng = NULL;
@@ -119,7 +112,8 @@ static int run(int argc, char **argv)
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        const int e = cli_scene_opt("shadow-field", o, optarg, &sa);
+        int e = cli_scene_opt("shadow-field", o, optarg, &sa);
+        if (e < 0) e = cli_picture_opt(o, optarg, &pa);
         if (e > 0) return e;
         if (e == 0) continue;
         switch (o) {
@@ -155,14 +149,6 @@ static int run(int argc, char **argv)
             if (rays < 1 || rays > 1L << 20) return cli_fail("--rays: out of range 1..1048576");
             break;
         case O_REF: reference = 1; break;
-        case O_REFS:
-            if (cli_long("--ref-samples", optarg, &ro.samples)) return CLI_EXIT_USAGE;
-            if (ro.samples < 16 || ro.samples > 1L << 22) return cli_fail("--ref-samples: out of range 16..4194304");
-            break;
-        case O_REPL:
-            if (cli_int("--replications", optarg, &ro.replications)) return CLI_EXIT_USAGE;
-            if (ro.replications < 2 || ro.replications > 1000) return cli_fail("--replications: out of range 2..1000");
-            break;
         case O_BINS:
             if (cli_int("--bins", optarg, &nbins)) return CLI_EXIT_USAGE;
             if (nbins < 1 || nbins > SF_MAX_BINS) return cli_fail("--bins: out of range 1..%d", SF_MAX_BINS);
@@ -182,22 +168,6 @@ static int run(int argc, char **argv)
             if (pic_scaling == SH_SF_EXACT && pic_samples) return cli_fail("--picture: the exact field has no samples");
             break;
         }
-        case O_EMAX:
-            if (cli_double("--error-max", optarg, &emax)) return CLI_EXIT_USAGE;
-            if (!(emax > 0)) return cli_fail("--error-max: must be > 0");
-            break;
-        case O_VIEW:
-            if (cli_vec3("--view", optarg, view)) return CLI_EXIT_USAGE;
-            if (!(view[0] * view[0] + view[1] * view[1] + view[2] * view[2] > 0)) return cli_fail("--view: must be a non-zero vector");
-            break;
-        case O_W:
-            if (cli_int("--width", optarg, &W)) return CLI_EXIT_USAGE;
-            if (W < 8 || W > 8192) return cli_fail("--width: out of range 8..8192");
-            break;
-        case O_H:
-            if (cli_int("--height", optarg, &H)) return CLI_EXIT_USAGE;
-            if (H < 8 || H > 8192) return cli_fail("--height: out of range 8..8192");
-            break;
         case O_ALBEDO:
             if (cli_double("--albedo", optarg, &albedo)) return CLI_EXIT_USAGE;
             if (!(albedo > 0 && albedo <= 1)) return cli_fail("--albedo: must be in (0, 1]");
@@ -299,6 +269,9 @@ static int run(int argc, char **argv)
     sh_shade_err rvc = {0}, cvr = {0};
     if (!e) e = sh_shade_error(np, Br, Bc, NULL, &rvc);
     if (!e && reference) {
+        sh_reference_opts ro = {0};
+        ro.samples = pa.ref_samples;
+        ro.replications = pa.replications;
         ref = malloc(sizeof(double) * np);
         se = malloc(sizeof(double) * np);
         if (!ref || !se) e = sh_error(SH_ENOMEM, "out of memory");
@@ -383,7 +356,7 @@ static int run(int argc, char **argv)
         double expo = 1, r2 = 0, ymax = 0;
         for (int v = 0; !e && v < nv; v++) { r2 += Yr[v] * Yr[v]; ymax = fmax(ymax, Yr[v]); }
         if (ymax > 0) expo = 0.9 / ymax;
-        if (!e) e = sh_camera_frame(&m, view, 35, W, H, &cam);
+        if (!e) e = sh_camera_frame(&m, pa.view, 35, pa.width, pa.height, &cam);
         if (!e && png) {
             if (!(e = sh_render(s, &cam, 3, col, env, sa.threads, &img))) e = sh_png_write(png, &img, expo);
             sh_image_free(&img);
@@ -395,7 +368,7 @@ static int run(int argc, char **argv)
         if (!e && epng) {
             const double rms = sqrt(r2 / nv);
             for (int v = 0; v < nv; v++) B[v] = rms > 0 ? fabs(Y[v] - Yr[v]) / rms : 0;
-            if (!(e = sh_render(s, &cam, 1, B, NULL, sa.threads, &img)) && !(e = sh_image_colormap(&img, emax, &cm)))
+            if (!(e = sh_render(s, &cam, 1, B, NULL, sa.threads, &img)) && !(e = sh_image_colormap(&img, pa.error_max, &cm)))
                 e = sh_png_write(epng, &cm, 1);
             sh_image_free(&img);
             sh_image_free(&cm);

@@ -91,38 +91,12 @@ static int envtab_build(const sh_env *e, long samples, envtab *t)
         envtab_free(t);
         return sh_error(SH_ENOMEM, "out of memory");
     }
-    for (size_t p = 0; p < np; p++) t->S[p] = fabsf(e->rgb[p]) + fabsf(e->rgb[np + p]) + fabsf(e->rgb[2 * np + p]);
-    for (int by = 0; by < t->bh; by++)
-        for (int bx = 0; bx < t->bw; bx++) {
-            const int y0 = by * t->bs, x0 = bx * t->bs;
-            const int y1 = y0 + t->bs < e->h ? y0 + t->bs : e->h, x1 = x0 + t->bs < e->w ? x0 + t->bs : e->w;
-            double acc = 0;
-            for (int y = y0; y < y1; y++)
-                for (int x = x0; x < x1; x++) {
-                    const size_t p = (size_t)y * e->w + x;
-                    acc += e->omega[p] * t->S[p];
-                    t->cum[p] = acc;
-                }
-            t->W[(size_t)by * t->bw + bx] = acc;
-        }
-    return SH_OK;
-}
-
-/* The pixel of block (bx, by) whose running sum first exceeds u. */
-static size_t envtab_pick(const sh_env *e, const envtab *t, int bx, int by, double u, int *px, int *py)
-{
-    const int y0 = by * t->bs, x0 = bx * t->bs;
-    const int y1 = y0 + t->bs < e->h ? y0 + t->bs : e->h, x1 = x0 + t->bs < e->w ? x0 + t->bs : e->w;
-    const int bwid = x1 - x0, n = (y1 - y0) * bwid;
-    int lo = 0, hi = n - 1;
-    while (lo < hi) {
-        const int mid = (lo + hi) / 2;
-        if (t->cum[(size_t)(y0 + mid / bwid) * e->w + x0 + mid % bwid] > u) hi = mid;
-        else lo = mid + 1;
+    for (size_t p = 0; p < np; p++) {
+        t->S[p] = fabsf(e->rgb[p]) + fabsf(e->rgb[np + p]) + fabsf(e->rgb[2 * np + p]);
+        t->cum[p] = e->omega[p] * t->S[p];
     }
-    *py = y0 + lo / bwid;
-    *px = x0 + lo % bwid;
-    return (size_t)*py * e->w + *px;
+    sh__env_block_sums(e, t->bs, t->cum, t->cum, t->W); /* in place */
+    return SH_OK;
 }
 
 /* A stratified uniform direction on the hemisphere z > 0: cell (i, j) of an
@@ -189,18 +163,15 @@ static int incident_one(ictx *c, int v, double *y, double *out, long long *rays)
     if (e->is_image) {
         /* one sample per block: pixel ∝ Ω_p S_p, s uniform in the pixel;
          * estimate of Σ_p L_c,p ∫_p V y is W_block · L_c,p / S_p · V(s) y(s) */
-        const double dth = M_PI / e->h, dph = 2 * M_PI / e->w;
         const size_t np = (size_t)e->w * e->h;
         for (int by = 0; by < c->et.bh && !st; by++)
             for (int bx = 0; bx < c->et.bw; bx++) {
                 const double W = c->et.W[(size_t)by * c->et.bw + bx];
                 if (!(W > 0)) continue;
                 int px, py;
-                const size_t p = envtab_pick(e, &c->et, bx, by, sh__uniform(&x) * W, &px, &py);
-                const double z0 = cos(py * dth), z1 = cos((py + 1) * dth);
-                const double z = z0 + (z1 - z0) * sh__uniform(&x), ph = (px + sh__uniform(&x)) * dph;
-                const double sr = sqrt(fmax(0.0, 1 - z * z));
-                const double d[3] = {sr * cos(ph), sr * sin(ph), z};
+                const size_t p = sh__env_block_pick(e, c->et.bs, c->et.cum, bx, by, sh__uniform(&x) * W, &px, &py);
+                double d[3];
+                sh__env_pixel_sample(e, px, py, &x, d);
                 if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] <= 0 || !(c->et.S[p] > 0)) continue;
                 (*rays)++;
                 if (sh__occluded(s, org, d, INFINITY)) continue;

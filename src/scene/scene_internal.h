@@ -28,6 +28,17 @@ struct sh_env {
     double *omega;    /* w·h pixel solid angles */
 };
 
+/* Pixel blocks of an environment image (shade.c): bs×bs pixels in scan
+ * order, the last ones cut at the image's edges.  Running sums of |wt|
+ * within each block go to cum (wt == cum allowed), the block totals to W
+ * (may be NULL; one per block, row-major).  pick: the pixel of block
+ * (bx, by) whose running sum first exceeds u (binary search).  sample: a
+ * direction uniform in the solid angle of pixel (px, py) (cosθ uniform
+ * between the rows' edges, φ uniform). */
+void sh__env_block_sums(const sh_env *e, int bs, const double *wt, double *cum, double *W);
+size_t sh__env_block_pick(const sh_env *e, int bs, const double *cum, int bx, int by, double u, int *px, int *py);
+void sh__env_pixel_sample(const sh_env *e, int px, int py, uint64_t *x, double d[3]);
+
 /* Work split over threads (pthreads): fn(ctx, thread, begin, end) is called
  * for chunks [begin, end) of [0, n) handed out dynamically; thread is in
  * [0, threads).  The calling thread works as thread 0 and alone calls

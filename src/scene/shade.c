@@ -200,17 +200,51 @@ static void image_weights(const rctx *c, const double nenv[3], double *w, double
         const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
         w[p] = cp > 0 ? e->lum[p] * e->omega[p] * cp : 0.0;
     }
-    for (int by = 0; by < c->bh; by++)
-        for (int bx = 0; bx < c->bw; bx++) {
-            const int y0 = by * c->bs, x0 = bx * c->bs;
-            const int y1 = y0 + c->bs < e->h ? y0 + c->bs : e->h, x1 = x0 + c->bs < e->w ? x0 + c->bs : e->w;
+    sh__env_block_sums(e, c->bs, w, cum, NULL);
+}
+
+void sh__env_block_sums(const sh_env *e, int bs, const double *wt, double *cum, double *W)
+{
+    const int bw = (e->w + bs - 1) / bs, bh = (e->h + bs - 1) / bs;
+    for (int by = 0; by < bh; by++)
+        for (int bx = 0; bx < bw; bx++) {
+            const int y0 = by * bs, x0 = bx * bs;
+            const int y1 = y0 + bs < e->h ? y0 + bs : e->h, x1 = x0 + bs < e->w ? x0 + bs : e->w;
             double acc = 0;
             for (int y = y0; y < y1; y++)
                 for (int x = x0; x < x1; x++) {
-                    acc += fabs(w[(size_t)y * e->w + x]);
+                    acc += fabs(wt[(size_t)y * e->w + x]);
                     cum[(size_t)y * e->w + x] = acc;
                 }
+            if (W) W[(size_t)by * bw + bx] = acc;
         }
+}
+
+size_t sh__env_block_pick(const sh_env *e, int bs, const double *cum, int bx, int by, double u, int *px, int *py)
+{
+    const int y0 = by * bs, x0 = bx * bs;
+    const int y1 = y0 + bs < e->h ? y0 + bs : e->h, x1 = x0 + bs < e->w ? x0 + bs : e->w;
+    const int bwid = x1 - x0, n = (y1 - y0) * bwid;
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (cum[(size_t)(y0 + mid / bwid) * e->w + x0 + mid % bwid] > u) hi = mid;
+        else lo = mid + 1;
+    }
+    *py = y0 + lo / bwid;
+    *px = x0 + lo % bwid;
+    return (size_t)*py * e->w + *px;
+}
+
+void sh__env_pixel_sample(const sh_env *e, int px, int py, uint64_t *x, double d[3])
+{
+    const double dth = M_PI / e->h, dph = 2 * M_PI / e->w;
+    const double z0 = cos(py * dth), z1 = cos((py + 1) * dth);
+    const double z = z0 + (z1 - z0) * sh__uniform(x), ph = (px + sh__uniform(x)) * dph;
+    const double st = sqrt(fmax(0.0, 1 - z * z));
+    d[0] = st * cos(ph);
+    d[1] = st * sin(ph);
+    d[2] = z;
 }
 
 /* one replication of the image estimator at a vertex (see scene.h) */
@@ -218,35 +252,22 @@ static double image_replication(rctx *c, const double *w, const double *cum, con
                                 uint64_t *x, long long *rays)
 {
     const sh_env *e = c->e;
-    const double dth = M_PI / e->h, dph = 2 * M_PI / e->w;
     double sum = 0;
     for (int by = 0; by < c->bh; by++)
         for (int bx = 0; bx < c->bw; bx++) {
             const int y0 = by * c->bs, x0 = bx * c->bs;
             const int y1 = y0 + c->bs < e->h ? y0 + c->bs : e->h, x1 = x0 + c->bs < e->w ? x0 + c->bs : e->w;
-            const int bwid = x1 - x0, n = (y1 - y0) * bwid;
-#define CUM(j) cum[(size_t)(y0 + (j) / bwid) * e->w + x0 + (j) % bwid]
-            const double W = CUM(n - 1);
+            const double W = cum[(size_t)(y1 - 1) * e->w + x1 - 1]; /* the block's last running sum */
             if (!(W > 0)) continue;
-            /* the pixel, with probability |w_p| / W: the first j with cum > u */
-            const double u = sh__uniform(x) * W;
-            int lo = 0, hi = n - 1;
-            while (lo < hi) {
-                const int mid = (lo + hi) / 2;
-                if (CUM(mid) > u) hi = mid;
-                else lo = mid + 1;
-            }
-#undef CUM
-            const int py = y0 + lo / bwid, px = x0 + lo % bwid;
-            const size_t p = (size_t)py * e->w + px;
+            /* the pixel, with probability |w_p| / W: the first with cum > u */
+            int px, py;
+            const size_t p = sh__env_block_pick(e, c->bs, cum, bx, by, sh__uniform(x) * W, &px, &py);
             const float *cd = c->pdir + 3 * p;
             const double cp = nenv[0] * cd[0] + nenv[1] * cd[1] + nenv[2] * cd[2];
             if (!(cp > 0)) continue; /* cannot happen: w_p ≠ 0 */
-            /* s uniform in the pixel's solid angle: cosθ uniform between the rows' edges */
-            const double z0 = cos(py * dth), z1 = cos((py + 1) * dth);
-            const double z = z0 + (z1 - z0) * sh__uniform(x), ph = (px + sh__uniform(x)) * dph;
-            const double st = sqrt(fmax(0.0, 1 - z * z));
-            const double se_[3] = {st * cos(ph), st * sin(ph), z};
+            /* s uniform in the pixel's solid angle */
+            double se_[3];
+            sh__env_pixel_sample(e, px, py, x, se_);
             const double cs = nenv[0] * se_[0] + nenv[1] * se_[1] + nenv[2] * se_[2];
             if (cs <= 0) continue;
             double d[3];
