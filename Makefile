@@ -5,6 +5,7 @@
 #   make report     build, run every experiment, write reports/
 #   make bench-count  instructions per rotation of every method (valgrind)
 #   make probes     extract Blender's eight CC0 HDR world probes into data/probes/
+#   make models     copy the real test meshes (assimp-testmodels) into data/models/
 #   make install PREFIX=/usr/local
 #   make deps       install missing Debian packages (as root) or print the command
 
@@ -31,13 +32,15 @@ OPT      := -O2 -g
 endif
 
 PKGS     := gsl OpenEXR jansson
+# scenes (src/scene/): assimp and libpng by pkg-config, Embree 3 (no .pc file in Debian) by name
+PKGS     += assimp libpng
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CHECK_LIBS = $(shell pkg-config --libs check 2>/dev/null)
 
 CFLAGS   += -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra \
             -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) -Isrc -MMD -MP
-LDLIBS   += $(PKG_LIBS) -lmpfr -lgmp -lstdc++ -lm
+LDLIBS   += $(PKG_LIBS) -lembree3 -lpthread -lmpfr -lgmp -lstdc++ -lm
 CXX      ?= c++
 CXXFLAGS += -std=c++14 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC $(SANFLAGS) $(PKG_CFLAGS) \
             -Isrc -MMD -MP
@@ -45,6 +48,7 @@ CXXFLAGS += -std=c++14 $(OPT) -Wall -Wextra -Wno-unused-parameter -fPIC $(SANFLA
 # src/ is grouped by concept, one folder each (README "Layout"): the library is
 # every src/<concept>/*.c except src/cli/ (the command-line tool).
 LIB_DIRS := core basis io project rotate taylor scale measure
+LIB_DIRS += scene
 LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
 # C++ sources of the library (io/exr_cxx.cpp: OpenEXR's C++ reader for DWAA/DWAB)
 LIB_CXX  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.cpp)))
@@ -131,7 +135,7 @@ bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count fuzz fuzz-build
+.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -244,6 +248,12 @@ EXPERIMENTS := legendre_stability green_vector projection_convergence orthonorma
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
                rotation_extremes rotation_cost rotation_kernels
+# ---- scenes: experiments of src/scene/ -------------------
+EXPERIMENTS += scene_transfer scene_shading
+# ---- end scenes ---------------------------------------------------------------
+# ---- cache: the radiance cache and shadow fields ----------
+EXPERIMENTS += scene_cache scene_shadowfield
+# ---- end cache ----------------------------------------------------------------
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
@@ -265,12 +275,16 @@ bench-count: all
 probes:
 	@tools/probes.sh data/probes
 
+# ---- scenes (src/scene/, experiments/scene_*) ------------------------------
+models:
+	@tools/models.sh data/models
+
 # ---- install ----------------------------------------------------------------
 $(BUILD)/shlab.1: $(BUILD)/shlab tools/help2man.sh
 	tools/help2man.sh $(BUILD)/shlab > $@
 
 # the libraries libshlab links, for static linking (Libs.private; see the .pc.in)
-PC_PRIVATE = $(shell pkg-config --static --libs gsl OpenEXR fftw3 2>/dev/null) -lmpfr -lgmp -lstdc++ -lm -fopenmp
+PC_PRIVATE = $(shell pkg-config --static --libs gsl OpenEXR jansson fftw3 assimp libpng 2>/dev/null) -lembree3 -lpthread -lmpfr -lgmp -lstdc++ -lm -fopenmp
 $(BUILD)/shlab.pc: tools/shlab.pc.in FORCE
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define SHLAB_VERSION "\(.*\)"/\1/p' src/shlab.h)|g' \
 	    -e 's|@PRIVATE_LIBS@|$(strip $(PC_PRIVATE))|g' $< > $@

@@ -26,5 +26,6 @@
 #include "shlab/taylor.h"
 #include "shlab/scale.h"
 #include "shlab/measure.h"
+#include "shlab/scene.h"
 
 #endif /* SHLAB_H */

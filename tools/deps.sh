@@ -9,6 +9,8 @@
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
 PKGS="$PKGS libfftw3-dev"  # fast transforms (FFTW3 in φ)
+# scenes: meshes (assimp), ray casting (Embree 3), PNG pictures
+PKGS="$PKGS libassimp-dev libembree-dev libpng-dev"
 # peers: HEALPix C++ (rotation oracle), libsharp (transform oracle)
 OPT_PKGS="libhealpix-cxx-dev libsharp-dev"
 OPT_PKGS="$OPT_PKGS valgrind" # bench --instructions (make bench-count) and its test

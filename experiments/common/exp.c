@@ -165,3 +165,36 @@ void exp_check(int st, const char *what)
         exit(1);
     }
 }
+
+int exp_scene_envs(const char *dflt, const char *fallback, sh_env **envs, char names[][64], int max, int *have_probes)
+{
+    const char *pdir = getenv("PROBES_DIR") ? getenv("PROBES_DIR") : "data/probes";
+    const char *list = getenv("SCENE_PROBES") ? getenv("SCENE_PROBES") : dflt;
+    int n = 0;
+    char buf[1024], path[4096];
+    snprintf(buf, sizeof buf, "%s", list ? list : "");
+    for (char *tok = strtok(buf, ", "); tok && n < max; tok = strtok(NULL, ", ")) {
+        snprintf(path, sizeof path, "%s/%s.exr", pdir, tok);
+        FILE *f = fopen(path, "rb");
+        if (!f) continue;
+        fclose(f);
+        sh_image img;
+        exp_check(sh_exr_read(path, &img, NULL), path);
+        exp_check(sh_env_from_image(&img, &envs[n]), path);
+        sh_image_free(&img);
+        snprintf(names[n], 64, "%s", tok);
+        n++;
+    }
+    *have_probes = n > 0;
+    if (n) return n;
+    fprintf(stderr, "no probes (%s) in %s (run `make probes`): analytic lights instead\n", list ? list : "", pdir);
+    snprintf(buf, sizeof buf, "%s", fallback);
+    for (char *tok = strtok(buf, ";"); tok && n < max; tok = strtok(NULL, ";")) {
+        sh_light L;
+        exp_check(sh_light_parse(tok, 0, &L), tok);
+        exp_check(sh_env_from_light(&L, &envs[n]), tok);
+        snprintf(names[n], 64, "%s", tok);
+        n++;
+    }
+    return n;
+}

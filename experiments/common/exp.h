@@ -65,4 +65,13 @@ void exp_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Abort the experiment with a message if st != SH_OK. */
 void exp_check(int st, const char *what);
 
+/* Environments of the scene experiments (scene_cache, scene_shadowfield):
+ * the lat-long probes of PROBES_DIR (default data/probes) whose names
+ * (without .exr) are listed in SCENE_PROBES (comma list), or in `dflt`
+ * when SCENE_PROBES is unset; when none of them is there, the analytic
+ * lights of `fallback` (a ;-separated list of sh_light_parse specs).  Fills up to
+ * `max` environments and names; *have_probes says which kind.  Exits the
+ * experiment on a bad file. */
+int exp_scene_envs(const char *dflt, const char *fallback, sh_env **envs, char names[][64], int max, int *have_probes);
+
 #endif

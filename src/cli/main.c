@@ -10,6 +10,8 @@ extern const cli_command cmd_scale, cmd_scale_interp, cmd_scale_scene;
 extern const cli_command cmd_deriv, cmd_taylor_error;
 extern const cli_command cmd_bench, cmd_plan;
 extern const cli_command cmd_orthonormality;
+extern const cli_command cmd_transfer, cmd_scene_plan, cmd_render;
+extern const cli_command cmd_cache, cmd_shadow_field;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
@@ -18,6 +20,8 @@ static const cli_command *const table[] = {
     &cmd_deriv, &cmd_taylor_error,
     &cmd_bench, &cmd_plan,
     &cmd_orthonormality,
+    &cmd_transfer, &cmd_scene_plan, &cmd_render,
+    &cmd_cache, &cmd_shadow_field,
 };
 
 const cli_command *cli_find(const char *name)

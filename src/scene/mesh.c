@@ -1,0 +1,346 @@
+/* mesh.c — triangle meshes: reading with assimp's C API, validation, normals.
+ *
+ * assimp's contract (include/assimp/cimport.h): aiImportFile returns a
+ * read-only scene owned until aiReleaseImport, or NULL with a message in
+ * aiGetErrorString().  We copy the triangles out and release the import in
+ * sh_mesh_load itself, so no assimp type leaves this file.
+ * aiProcess_ValidateDataStructure is the step that rejects broken scenes. */
+#include "shlab.h"
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void sh_mesh_free(sh_mesh *m)
+{
+    if (!m) return;
+    free(m->pos);
+    free(m->normal);
+    free(m->tri);
+    memset(m, 0, sizeof *m);
+}
+
+int sh_mesh_copy(const sh_mesh *src, sh_mesh *dst)
+{
+    memset(dst, 0, sizeof *dst);
+    if (!src || src->nvert < 0 || src->ntri < 0) return sh_error(SH_EINVAL, "sh_mesh_copy: bad mesh");
+    const size_t nv = (size_t)src->nvert, nt = (size_t)src->ntri;
+    dst->pos = malloc(sizeof(double) * 3 * (nv ? nv : 1));
+    dst->normal = src->normal ? malloc(sizeof(double) * 3 * (nv ? nv : 1)) : NULL;
+    dst->tri = malloc(sizeof(int) * 3 * (nt ? nt : 1));
+    if (!dst->pos || !dst->tri || (src->normal && !dst->normal)) {
+        sh_mesh_free(dst);
+        return sh_error(SH_ENOMEM, "out of memory copying a mesh of %d vertices", src->nvert);
+    }
+    memcpy(dst->pos, src->pos, sizeof(double) * 3 * nv);
+    if (src->normal) memcpy(dst->normal, src->normal, sizeof(double) * 3 * nv);
+    memcpy(dst->tri, src->tri, sizeof(int) * 3 * nt);
+    dst->nvert = src->nvert;
+    dst->ntri = src->ntri;
+    return SH_OK;
+}
+
+/* ------------------------------------------------------------- welding */
+
+static const double *g_pos; /* qsort has no context argument */
+static int cmp_pos(const void *a, const void *b)
+{
+    const double *p = g_pos + 3 * *(const int *)a, *q = g_pos + 3 * *(const int *)b;
+    for (int k = 0; k < 3; k++)
+        if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
+    return *(const int *)a - *(const int *)b;
+}
+
+/* weld[v] = the smallest index of a vertex at exactly v's position.
+ * Not thread-safe (qsort through a static); meshes are loaded serially. */
+static int weld_positions(const sh_mesh *m, int *weld)
+{
+    int *ord = malloc(sizeof(int) * (size_t)(m->nvert ? m->nvert : 1));
+    if (!ord) return sh_error(SH_ENOMEM, "out of memory welding %d vertices", m->nvert);
+    for (int v = 0; v < m->nvert; v++) ord[v] = v;
+    g_pos = m->pos;
+    qsort(ord, (size_t)m->nvert, sizeof(int), cmp_pos);
+    for (int k = 0; k < m->nvert;) {
+        int j = k;
+        while (j < m->nvert && !memcmp(m->pos + 3 * ord[j], m->pos + 3 * ord[k], 3 * sizeof(double))) j++;
+        for (int q = k; q < j; q++) weld[ord[q]] = ord[k]; /* ord sorted by index within equal positions */
+        k = j;
+    }
+    free(ord);
+    return SH_OK;
+}
+
+static int cmp_edge(const void *a, const void *b)
+{
+    const long long x = *(const long long *)a, y = *(const long long *)b;
+    return x < y ? -1 : x > y;
+}
+
+static void cross(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void tri_normal(const sh_mesh *m, int t, double c[3])
+{
+    const double *a = m->pos + 3 * m->tri[3 * t], *b = m->pos + 3 * m->tri[3 * t + 1],
+                 *d = m->pos + 3 * m->tri[3 * t + 2];
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    cross(e1, e2, c); /* |c| = twice the area */
+}
+
+int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
+{
+    sh_mesh_report r0;
+    if (!rep) rep = &r0;
+    const int keep_sub = rep->submeshes, keep_skip = rep->skipped_primitives;
+    memset(rep, 0, sizeof *rep);
+    rep->submeshes = keep_sub;
+    rep->skipped_primitives = keep_skip;
+    if (!m || m->nvert < 0 || m->ntri < 0 || (m->nvert > 0 && !m->pos) || (m->ntri > 0 && !m->tri))
+        return sh_error(SH_EINVAL, "mesh: bad arguments");
+    if (m->nvert > SH_MESH_MAX_ELEMS || m->ntri > SH_MESH_MAX_ELEMS)
+        return sh_error(SH_EFORMAT, "mesh: %d vertices and %d triangles exceed the limit %d", m->nvert,
+                        m->ntri, SH_MESH_MAX_ELEMS);
+    if (m->ntri == 0 || m->nvert == 0) return sh_error(SH_EFORMAT, "mesh: no triangles");
+    /* Embree drops primitives with NaN/Inf corners silently: refuse them here */
+    for (int v = 0; v < m->nvert; v++)
+        for (int k = 0; k < 3; k++) {
+            if (!isfinite(m->pos[3 * v + k]))
+                return sh_error(SH_EFORMAT, "mesh: vertex %d has a non-finite coordinate", v);
+            if (m->normal && !(flags & SH_MESH_COMPUTE_NORMALS) && !isfinite(m->normal[3 * v + k]))
+                return sh_error(SH_EFORMAT, "mesh: vertex %d has a non-finite normal", v);
+        }
+    for (long long i = 0; i < 3LL * m->ntri; i++)
+        if (m->tri[i] < 0 || m->tri[i] >= m->nvert)
+            return sh_error(SH_EFORMAT, "mesh: triangle %lld refers to vertex %d of %d", i / 3, m->tri[i],
+                            m->nvert);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int v = 0; v < m->nvert; v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], m->pos[3 * v + k]);
+            hi[k] = fmax(hi[k], m->pos[3 * v + k]);
+        }
+    const double diag2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                         (hi[2] - lo[2]) * (hi[2] - lo[2]);
+    /* degenerate triangles: a repeated corner or area ≤ 1e-14·diag² */
+    int nt = 0;
+    for (int t = 0; t < m->ntri; t++) {
+        const int *c = m->tri + 3 * t;
+        double nrm[3];
+        tri_normal(m, t, nrm);
+        const double area = 0.5 * sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2] || !(area > 1e-14 * diag2)) {
+            rep->degenerate_removed++;
+            continue;
+        }
+        memmove(m->tri + 3 * nt, c, 3 * sizeof(int));
+        nt++;
+    }
+    m->ntri = nt;
+    if (nt == 0) return sh_error(SH_EFORMAT, "mesh: every triangle is degenerate (%d removed)", rep->degenerate_removed);
+    /* unused vertices */
+    int *map = malloc(sizeof(int) * (size_t)m->nvert);
+    if (!map) return sh_error(SH_ENOMEM, "out of memory");
+    for (int v = 0; v < m->nvert; v++) map[v] = -1;
+    for (int i = 0; i < 3 * nt; i++) map[m->tri[i]] = 0;
+    int nv = 0;
+    for (int v = 0; v < m->nvert; v++) {
+        if (map[v] < 0) { rep->unused_removed++; continue; }
+        map[v] = nv;
+        memmove(m->pos + 3 * nv, m->pos + 3 * v, 3 * sizeof(double));
+        if (m->normal) memmove(m->normal + 3 * nv, m->normal + 3 * v, 3 * sizeof(double));
+        nv++;
+    }
+    for (int i = 0; i < 3 * nt; i++) m->tri[i] = map[m->tri[i]];
+    m->nvert = nv;
+    free(map);
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (int v = 0; v < nv; v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], m->pos[3 * v + k]);
+            hi[k] = fmax(hi[k], m->pos[3 * v + k]);
+        }
+    int *weld = malloc(sizeof(int) * (size_t)nv);
+    long long *edges = malloc(sizeof(long long) * 3 * (size_t)nt);
+    if (!weld || !edges) { free(weld); free(edges); return sh_error(SH_ENOMEM, "out of memory"); }
+    int st = weld_positions(m, weld);
+    if (st) { free(weld); free(edges); return st; }
+    /* normals: area-weighted face normals summed over welded positions */
+    if (!m->normal || (flags & SH_MESH_COMPUTE_NORMALS)) {
+        double *nrm = calloc(3 * (size_t)nv, sizeof(double));
+        if (!nrm) { free(weld); free(edges); return sh_error(SH_ENOMEM, "out of memory"); }
+        for (int t = 0; t < nt; t++) {
+            double c[3];
+            tri_normal(m, t, c);
+            for (int j = 0; j < 3; j++) {
+                const int w = weld[m->tri[3 * t + j]];
+                for (int k = 0; k < 3; k++) nrm[3 * w + k] += c[k];
+            }
+        }
+        for (int v = 0; v < nv; v++)
+            if (weld[v] != v) memcpy(nrm + 3 * v, nrm + 3 * weld[v], 3 * sizeof(double));
+        free(m->normal);
+        m->normal = nrm;
+        rep->normals_computed = 1;
+    }
+    for (int v = 0; v < nv; v++) {
+        double *n = m->normal + 3 * v;
+        const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(len > 0) || !isfinite(len)) {
+            free(weld);
+            free(edges);
+            return sh_error(SH_EFORMAT, "mesh: vertex %d has a zero normal%s", v,
+                            rep->normals_computed ? " (its triangles cancel)" : "");
+        }
+        for (int k = 0; k < 3; k++) n[k] /= len;
+    }
+    /* edges of the welded mesh: key (min, max) of welded indices */
+    for (int t = 0; t < nt; t++)
+        for (int j = 0; j < 3; j++) {
+            long long a = weld[m->tri[3 * t + j]], b = weld[m->tri[3 * t + (j + 1) % 3]];
+            if (a > b) { const long long x = a; a = b; b = x; }
+            edges[3 * t + j] = a * (long long)nv + b;
+        }
+    qsort(edges, 3 * (size_t)nt, sizeof(long long), cmp_edge);
+    for (size_t k = 0; k < 3 * (size_t)nt;) {
+        size_t j = k;
+        while (j < 3 * (size_t)nt && edges[j] == edges[k]) j++;
+        if (j - k == 1) rep->boundary_edges++;
+        if (j - k > 2) {
+            if (rep->nonmanifold_edges == 0) {
+                rep->nonmanifold_a = (int)(edges[k] / nv);
+                rep->nonmanifold_b = (int)(edges[k] % nv);
+            }
+            rep->nonmanifold_edges++;
+        }
+        k = j;
+    }
+    free(weld);
+    free(edges);
+    memcpy(rep->bbox_min, lo, sizeof lo);
+    memcpy(rep->bbox_max, hi, sizeof hi);
+    if (rep->nonmanifold_edges > 0 && !(flags & SH_MESH_ALLOW_NONMANIFOLD))
+        return sh_error(SH_EFORMAT,
+                        "mesh: %d non-manifold edge%s (shared by more than two triangles), the first "
+                        "between vertices %d and %d",
+                        rep->nonmanifold_edges, rep->nonmanifold_edges == 1 ? "" : "s", rep->nonmanifold_a,
+                        rep->nonmanifold_b);
+    return SH_OK;
+}
+
+/* ------------------------------------------------------------- loading */
+
+int sh_mesh_load(const char *path, int flags, sh_mesh *out, sh_mesh_report *rep)
+{
+    sh_mesh_report r0;
+    if (!rep) rep = &r0;
+    memset(rep, 0, sizeof *rep);
+    if (!out) return sh_error(SH_EINVAL, "sh_mesh_load: no output");
+    memset(out, 0, sizeof *out);
+    if (!path) return sh_error(SH_EINVAL, "sh_mesh_load: no path");
+    /* our own message for a missing file (assimp's says "Unable to open") */
+    FILE *f = fopen(path, "rb");
+    if (!f) return sh_error(SH_EIO, "cannot open mesh '%s': %s", path, strerror(errno));
+    fclose(f);
+    const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                      aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                                                      aiProcess_ValidateDataStructure);
+    if (!sc) {
+        const char *why = aiGetErrorString();
+        return sh_error(SH_EFORMAT, "cannot read mesh '%s': %s", path, (why && *why) ? why : "assimp failed");
+    }
+    long long nv = 0, nt = 0;
+    int have_normals = 1;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        int tris = 0;
+        for (unsigned k = 0; k < am->mNumFaces; k++) {
+            if (am->mFaces[k].mNumIndices == 3) tris++;
+            else rep->skipped_primitives++;
+        }
+        if (tris == 0) continue;
+        rep->submeshes++;
+        nv += am->mNumVertices;
+        nt += tris;
+        if (!am->mNormals) have_normals = 0;
+    }
+    if (nv > SH_MESH_MAX_ELEMS || nt > SH_MESH_MAX_ELEMS) {
+        aiReleaseImport(sc);
+        return sh_error(SH_EFORMAT, "mesh '%s': %lld vertices and %lld triangles exceed the limit %d", path, nv,
+                        nt, SH_MESH_MAX_ELEMS);
+    }
+    if (nt == 0) {
+        aiReleaseImport(sc);
+        return sh_error(SH_EFORMAT, "mesh '%s': no triangles", path);
+    }
+    out->pos = malloc(sizeof(double) * 3 * (size_t)nv);
+    out->normal = have_normals && !(flags & SH_MESH_COMPUTE_NORMALS) ? malloc(sizeof(double) * 3 * (size_t)nv) : NULL;
+    out->tri = malloc(sizeof(int) * 3 * (size_t)nt);
+    if (!out->pos || !out->tri || (have_normals && !(flags & SH_MESH_COMPUTE_NORMALS) && !out->normal)) {
+        aiReleaseImport(sc);
+        sh_mesh_free(out);
+        return sh_error(SH_ENOMEM, "out of memory reading '%s'", path);
+    }
+    int vbase = 0, t = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        int tris = 0;
+        for (unsigned k = 0; k < am->mNumFaces; k++) tris += am->mFaces[k].mNumIndices == 3;
+        if (tris == 0) continue;
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            double *p = out->pos + 3 * (size_t)(vbase + (int)v);
+            p[0] = am->mVertices[v].x;
+            p[1] = am->mVertices[v].y;
+            p[2] = am->mVertices[v].z;
+            if (out->normal) {
+                double *n = out->normal + 3 * (size_t)(vbase + (int)v);
+                n[0] = am->mNormals[v].x;
+                n[1] = am->mNormals[v].y;
+                n[2] = am->mNormals[v].z;
+            }
+        }
+        for (unsigned k = 0; k < am->mNumFaces; k++) {
+            const struct aiFace *fc = &am->mFaces[k];
+            if (fc->mNumIndices != 3) continue;
+            for (int j = 0; j < 3; j++) out->tri[3 * t + j] = vbase + (int)fc->mIndices[j];
+            t++;
+        }
+        vbase += (int)am->mNumVertices;
+    }
+    aiReleaseImport(sc);
+    if (flags & SH_MESH_Y_UP)
+        for (long long v = 0; v < nv; v++) {
+            /* Rx(+90°): (x, y, z) → (x, −z, y), positions and normals */
+            double *p = out->pos + 3 * v, y = p[1];
+            p[1] = -p[2];
+            p[2] = y;
+            if (out->normal) {
+                double *n = out->normal + 3 * v, ny = n[1];
+                n[1] = -n[2];
+                n[2] = ny;
+            }
+        }
+    out->nvert = (int)nv;
+    out->ntri = (int)nt;
+    int st = sh_mesh_check(out, flags, rep);
+    if (st) {
+        char why[400];
+        snprintf(why, sizeof why, "%s", sh_last_error());
+        sh_mesh_free(out);
+        /* name the file: "mesh 'F': ..." */
+        return sh_error(st, "mesh '%s'%s", path, why + (strncmp(why, "mesh", 4) ? 0 : 4));
+    }
+    return SH_OK;
+}
