@@ -78,7 +78,7 @@ FAST_FLAGS_avx512  := -DSHK_VARIANT=avx512 -mavx512f -mavx512vl -mfma -ffp-contr
 # the native width, only in static functions, so no ABI is exposed.)
 FAST_FLAGS_sse2v   := -DSHK_VARIANT=sse2v -DSHK_VBYTES=16 -Wno-psabi
 FAST_FLAGS_avx2v   := -DSHK_VARIANT=avx2v -DSHK_VBYTES=32 -mavx2 -mfma -ffp-contract=fast -Wno-psabi
-FAST_FLAGS_avx512v := -DSHK_VARIANT=avx512v -DSHK_VBYTES=64 -mavx512f -mfma -ffp-contract=fast
+FAST_FLAGS_avx512v := -DSHK_VARIANT=avx512v -DSHK_VBYTES=64 -mavx512f -mfma -ffp-contract=fast -Wno-psabi
 # rot_halfpi.c passes its 32-byte vector type between static functions only,
 # so GCC's note on that ABI (-Wpsabi) concerns no interface: silenced.
 $(BUILD)/obj/rotate/rot_halfpi.o $(BUILD)/obj/rotate/rot_halfpi_f.o: CFLAGS += -Wno-psabi
