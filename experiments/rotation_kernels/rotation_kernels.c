@@ -161,14 +161,6 @@ static int count_instructions(void)
 }
 
 /* ---- verdicts ------------------------------------------------------------ */
-/* several orders of one goal: differs if one is outside, inconclusive if
- * one straddles, reproduced if all are inside */
-static const char *verdict_of(const exp_side *s, int n)
-{
-    int out = 0, str = 0;
-    for (int k = 0; k < n; k++) out |= s[k] == EXP_OUTSIDE, str |= s[k] == EXP_STRADDLES;
-    return out ? "differs" : str ? "inconclusive" : "reproduced";
-}
 /* the noise criterion on the entries a claim uses (as rotation_speed) */
 static int claim_noisy(int p, int q, const int *vs, int nvs, const sh_bench_ratio *r, const sh_bench_cfg *cfg,
                        char *why, size_t wn)
@@ -305,11 +297,11 @@ int main(int argc, char **argv)
         exp_claim("kernels-float-matrix-4x-instructions", "shlab speed goal (kernels)",
                   "float, from a 3x3 matrix, one rotation at a time: the fastest exact method executes >= 4x fewer "
                   "instructions than the old scalar zxzxz float path (angles, loop kernels), n = 3..6",
-                  ">= 4", buf, ">= 4 at every n (exact counts)", verdict_of(s1, 4),
+                  ">= 4", buf, ">= 4 at every n (exact counts)", exp_sides_verdict(s1, 4),
                   "rotation_kernels/instructions/instructions.dat (callgrind; AVX2 is the widest counted)");
         exp_claim("kernels-float-taylor-half-instructions", "shlab speed goal (kernels)",
                   "float taylor1.5 from a matrix executes <= 0.5x the instructions of the fastest exact method, n = 3..6",
-                  "<= 0.5", m2, "<= 0.5 at every n (exact counts)", verdict_of(s2, 4),
+                  "<= 0.5", m2, "<= 0.5 at every n (exact counts)", exp_sides_verdict(s2, 4),
                   "rotation_kernels/instructions/instructions.dat; the unrolled taylor1.5 has 292 products at n=6 "
                   "against zxzxz's 344 (the z rotations, 8l of its 10l+5 per band, are the same in both), so no "
                   "kernel can reach 0.5x");
@@ -347,7 +339,7 @@ int main(int argc, char **argv)
             exp_claim("kernels-double-2x-instructions", "shlab speed goal (kernels)",
                       "double, n = 6 and 10: zxzxz, ivanic and blanco from a matrix each execute >= 2x fewer "
                       "instructions than their old path (angles, loop kernels)",
-                      ">= 2", buf, ">= 2 for every method and n (exact counts)", verdict_of(s, k),
+                      ">= 2", buf, ">= 2 for every method and n (exact counts)", exp_sides_verdict(s, k),
                       "rotation_kernels/instructions/instructions.dat. The old path runs today's loop kernels, and those of "
                       "ivanic and blanco were themselves reworked with the fast kernels (blanco: the real block straight "
                       "from d; ivanic: rows written once), so for them this ratio is smaller than the gain over earlier "
@@ -465,13 +457,13 @@ int main(int argc, char **argv)
                   "float, from a 3x3 matrix, one rotation at a time: the fastest exact method >= 4x faster than the "
                   "old scalar zxzxz float path (angles, loop kernels) in the same run, n = 3..6",
                   ">= 4", noisy1 ? meas : buf, ">= 4 at every n (paired ratio's quartiles widened by 5%)",
-                  noisy1 ? notm : verdict_of(s1, 4),
+                  noisy1 ? notm : exp_sides_verdict(s1, 4),
                   "rotation_kernels/timing/kernels.dat: paired t(old)/t(fastest exact) of one interleaved run per order");
         snprintf(meas, sizeof meas, "not measured (noisy run: %s); medians: %s", why2, m2);
         exp_claim("kernels-float-taylor-half", "shlab speed goal (kernels)",
                   "float taylor1.5 from a matrix (fastest kernel) takes <= 0.5x the time of the fastest exact method, "
                   "n = 3..6", "<= 0.5", noisy2 ? meas : m2, "<= 0.5 at every n (paired ratio's quartiles widened by 5%)",
-                  noisy2 ? notm : verdict_of(s2, 4),
+                  noisy2 ? notm : exp_sides_verdict(s2, 4),
                   "rotation_kernels/timing/kernels.dat; by counted products (292 for taylor1.5 against 344 for zxzxz at "
                   "n=6, the z rotations the same in both) no kernel reaches 0.5x");
     }
@@ -489,7 +481,7 @@ int main(int argc, char **argv)
         exp_claim("kernels-krot-quarter", "shlab speed goal (kernels)",
                   "float, n = 6: K = 256 rotations of 256 vectors take <= 0.25x the time per rotation of the fastest "
                   "exact method one rotation at a time", "<= 0.25", noisy ? meas : buf,
-                  "<= 0.25 (paired ratio's quartiles widened by 5%)", noisy ? notm : verdict_of(&s, 1),
+                  "<= 0.25 (paired ratio's quartiles widened by 5%)", noisy ? notm : exp_sides_verdict(&s, 1),
                   "rotation_kernels/timing/kernels.dat");
     }
     {   /* G4 */
@@ -520,7 +512,7 @@ int main(int argc, char **argv)
         exp_claim("kernels-double-2x", "shlab speed goal (kernels)",
                   "double, n = 6 and 10: zxzxz, ivanic and blanco from a matrix each >= 2x faster than their old path "
                   "(angles, loop kernels) in the same run", ">= 2", noisy ? meas : buf,
-                  ">= 2 for every method and n (paired ratio's quartiles widened by 5%)", noisy ? notm : verdict_of(s, k),
+                  ">= 2 for every method and n (paired ratio's quartiles widened by 5%)", noisy ? notm : exp_sides_verdict(s, k),
                   "rotation_kernels/timing/kernels.dat. The old path runs today's loop kernels, and those of ivanic and "
                   "blanco were themselves reworked with the fast kernels, so for them this ratio is smaller than the "
                   "gain over earlier versions, which one binary cannot measure (choi and wigner were not reworked)");
