@@ -190,6 +190,12 @@ static int fastest(int p, int q, int (*ok)(int), int by_ins)
 static int exact_one(int v) { return one_matrix(v) && is_exact(V[v].m); }
 static int taylor_one(int v) { return one_matrix(v) && V[v].m == T15; }
 static int exact_krot(int v) { return V[v].md == KR && is_exact(V[v].m); }
+/* ns with 3 significant digits, without an exponent */
+static const char *fmt_ns(char *b, double x)
+{
+    snprintf(b, 32, x >= 100 ? "%.0f" : x >= 10 ? "%.1f" : "%.2f", x);
+    return b;
+}
 static double *smp(int p, int q, int v) { return SMP[p][q][v]; }
 static int qof(int n)
 {
@@ -536,8 +542,9 @@ int main(int argc, char **argv)
                                    sh_rot_kernel_name(RES[p][qof(6)][v].used));
             for (int q = 0; q < NO; q++) {
                 const result *r = &RES[p][q][v];
-                tl += (size_t)snprintf(tab + tl, sizeof tab - tl, " %.3g (%.3g, %.0f%%)", r->st.ns_median,
-                                       r->st.ns_min, 100 * r->st.spread);
+                char a[32], b[32];
+                tl += (size_t)snprintf(tab + tl, sizeof tab - tl, " %s (%s, %.0f%%)", fmt_ns(a, r->st.ns_median),
+                                       fmt_ns(b, r->st.ns_min), 100 * r->st.spread);
                 tl += (size_t)snprintf(tab + tl, sizeof tab - tl, v ? " %.2f× |" : " |", r->sp.median);
             }
             tl += (size_t)snprintf(tab + tl, sizeof tab - tl, "\n");
