@@ -19,7 +19,7 @@ set xtics ("3" 3, "4" 4, "5" 5, "6" 6, "10" 10)
 set xrange [2.6:10.4]
 set logscale y
 set ylabel "ns per rotated vector"
-set yrange [0.5:5000]
+set yrange [0.5:20000]
 set format y "10^{%T}"
 if (strlen(noisy) > 0) {
     set label 99 "NOISY (".noisy."): compare only\nthe paired speed-ups" at graph 0.03, graph 0.94 left tc rgb "#C00000" font ",10" front
@@ -42,7 +42,7 @@ set lmargin at screen 0.665
 set rmargin at screen 0.83
 set title "float: paired speed-up over the old path (dashed: 4×)"
 set ylabel "t(old zxzxz) / t(variant), median of the rounds"
-set yrange [0.2:300]
+set yrange [0.1:300]
 set format y "%g"
 set key at screen 0.84, screen 0.88 left top Left reverse samplen 2.5 spacing 1.1 font ",10"
 set arrow 1 from 2.6, 4 to 10.4, 4 nohead dt 2 lw 1.5 lc rgb "#444444"
