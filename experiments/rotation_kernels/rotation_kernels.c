@@ -56,8 +56,8 @@ static const int ORDERS[NO] = {3, 4, 5, 6, 10};
 #define KR SH_BENCH_KROT
 
 /* The variants, in the order of the data files' rows.  id: a token for the
- * data files and the plots; old: the earlier path of its method (index of
- * that method's old variant in own). */
+ * data files and the plots; the first is the old zxzxz path, the baseline
+ * of every speed-up, and each method's euler variant is its old path. */
 typedef struct {
     const char *id;
     sh_rot_method m;
@@ -175,13 +175,14 @@ static int claim_noisy(int p, int q, const int *vs, int nvs, const sh_bench_rati
                  *why ? "; " : "", prec_name(p), ORDERS[q], 100 * nz->offcpu, nz->load, 100 * spread, 100 * r->spread);
     return noisy;
 }
-/* the fastest (by median time, or by instructions) of the variants accepted */
-static int fastest(int p, int q, int (*ok)(int), int by_ins)
+/* the fastest (by median time, or by instructions) of the variants accepted
+ * (and of method m, unless m < 0) */
+static int fastest(int p, int q, int (*ok)(int), int m, int by_ins)
 {
     int best = -1;
     for (int v = 0; v < NV; v++) {
         const result *r = &RES[p][q][v];
-        if (!ok(v) || !(by_ins ? r->ins > 0 : r->have)) continue;
+        if (!ok(v) || (m >= 0 && (int)V[v].m != m) || !(by_ins ? r->ins > 0 : r->have)) continue;
         const double x = by_ins ? r->ins : r->st.ns_median;
         if (best < 0 || x < (by_ins ? RES[p][q][best].ins : RES[p][q][best].st.ns_median)) best = v;
     }
@@ -291,7 +292,7 @@ int main(int argc, char **argv)
         size_t bl = 0, b2 = 0;
         char m2[1024] = "";
         for (int n = 3; n <= 6; n++) {
-            const int q = qof(n), fe = fastest(0, q, exact_one, 1), ft = fastest(0, q, taylor_one, 1);
+            const int q = qof(n), fe = fastest(0, q, exact_one, -1, 1), ft = fastest(0, q, taylor_one, -1, 1);
             const double r1 = RES[0][q][0].ins / RES[0][q][fe].ins, r2 = RES[0][q][ft].ins / RES[0][q][fe].ins;
             s1[n - 3] = r1 >= 4 ? EXP_INSIDE : EXP_OUTSIDE;
             s2[n - 3] = r2 <= 0.5 ? EXP_INSIDE : EXP_OUTSIDE;
@@ -312,7 +313,7 @@ int main(int argc, char **argv)
                   "against zxzxz's 344 (the z rotations, 8l of its 10l+5 per band, are the same in both), so no "
                   "kernel can reach 0.5x");
         {
-            const int q = qof(6), fe = fastest(0, q, exact_one, 1), fk = fastest(0, q, exact_krot, 1);
+            const int q = qof(6), fe = fastest(0, q, exact_one, -1, 1), fk = fastest(0, q, exact_krot, -1, 1);
             const double r = RES[0][q][fk].ins / RES[0][q][fe].ins;
             snprintf(buf, sizeof buf, "n=6: %.0f / %.0f = %.3f (%s / %s)", RES[0][q][fk].ins, RES[0][q][fe].ins, r,
                      V[fk].id, V[fe].id);
@@ -330,11 +331,7 @@ int main(int argc, char **argv)
                 if (V[v].in != EU || !is_exact(V[v].m)) continue;
                 for (int n = 6; n <= 10; n += 4) {
                     const int q = qof(n);
-                    int best = -1;
-                    for (int w = 0; w < NV; w++)
-                        if (one_matrix(w) && V[w].m == V[v].m && RES[1][q][w].ins > 0 &&
-                            (best < 0 || RES[1][q][w].ins < RES[1][q][best].ins))
-                            best = w;
+                    const int best = fastest(1, q, one_matrix, (int)V[v].m, 1);
                     const double r = RES[1][q][v].ins / RES[1][q][best].ins;
                     s[k++] = r >= 2 ? EXP_INSIDE : EXP_OUTSIDE;
                     bl += (size_t)snprintf(buf + bl, sizeof buf - bl, "%s%s n=%d: %.0f / %.0f = %.2f (%s)",
@@ -442,7 +439,7 @@ int main(int argc, char **argv)
         char why2[2048] = "", m2[2048] = "";
         size_t bl = 0, b2 = 0;
         for (int n = 3; n <= 6; n++) {
-            const int q = qof(n), fe = fastest(0, q, exact_one, 0), ft = fastest(0, q, taylor_one, 0);
+            const int q = qof(n), fe = fastest(0, q, exact_one, -1, 0), ft = fastest(0, q, taylor_one, -1, 0);
             sh_bench_ratio r1 = RES[0][q][fe].sp, r2;
             exp_check(sh_bench_paired_ratio(smp(0, q, ft), smp(0, q, fe), S, cfg.noise_spread, &r2), "ratio");
             const int u1[2] = {0, fe}, u2[2] = {ft, fe};
@@ -474,7 +471,7 @@ int main(int argc, char **argv)
                   "n=6, the z rotations the same in both) no kernel reaches 0.5x");
     }
     {   /* G3 */
-        const int q = qof(6), fe = fastest(0, q, exact_one, 0), fk = fastest(0, q, exact_krot, 0);
+        const int q = qof(6), fe = fastest(0, q, exact_one, -1, 0), fk = fastest(0, q, exact_krot, -1, 0);
         sh_bench_ratio r;
         exp_check(sh_bench_paired_ratio(smp(0, q, fk), smp(0, q, fe), S, cfg.noise_spread, &r), "ratio");
         const int u[2] = {fk, fe};
@@ -499,11 +496,7 @@ int main(int argc, char **argv)
             if (V[v].in != EU || !is_exact(V[v].m)) continue;
             for (int n = 6; n <= 10; n += 4) {
                 const int q = qof(n);
-                int best = -1;
-                for (int x = 0; x < NV; x++)
-                    if (one_matrix(x) && V[x].m == V[v].m && RES[1][q][x].have &&
-                        (best < 0 || RES[1][q][x].st.ns_median < RES[1][q][best].st.ns_median))
-                        best = x;
+                const int best = fastest(1, q, one_matrix, (int)V[v].m, 0);
                 const sh_bench_ratio *r = &RES[1][q][best].own;
                 const int u[2] = {v, best};
                 noisy |= claim_noisy(1, q, u, 2, r, &cfg, w, sizeof w);
