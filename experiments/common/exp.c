@@ -148,6 +148,13 @@ exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi)
     return EXP_STRADDLES;
 }
 
+const char *exp_sides_verdict(const exp_side *s, int n)
+{
+    int out = 0, str = 0;
+    for (int k = 0; k < n; k++) out |= s[k] == EXP_OUTSIDE, str |= s[k] == EXP_STRADDLES;
+    return out ? "differs" : str ? "inconclusive" : "reproduced";
+}
+
 void exp_progress(const char *fmt, ...)
 {
     va_list ap;

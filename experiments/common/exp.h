@@ -60,6 +60,10 @@ void exp_claim(const char *id, const char *source, const char *statement, const 
 #define EXP_RUN_TO_RUN 0.05
 typedef enum { EXP_INSIDE, EXP_OUTSIDE, EXP_STRADDLES } exp_side;
 exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi);
+/* The verdict of a claim judged at several points (orders, ratios): "differs"
+ * if one side is EXP_OUTSIDE, else "inconclusive" if one straddles, else
+ * "reproduced". */
+const char *exp_sides_verdict(const exp_side *s, int n);
 /* Progress line on stderr. */
 void exp_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Abort the experiment with a message if st != SH_OK. */

@@ -195,15 +195,6 @@ static exp_side judge(const sh_bench_ratio *r, double printed, double factor)
 {
     return exp_ratio_side(r, printed / factor, printed * factor);
 }
-static const char *verdict_of(const exp_side *s, int n)
-{
-    int out = 0, str = 0;
-    for (int k = 0; k < n; k++) {
-        out |= s[k] == EXP_OUTSIDE;
-        str |= s[k] == EXP_STRADDLES;
-    }
-    return out ? "differs" : str ? "inconclusive" : "reproduced";
-}
 
 /* ---- instructions (kept part) ------------------------------------------- */
 static double INS[NM][NMAX + 1][2];
@@ -382,7 +373,7 @@ int main(int argc, char **argv)
             exp_claim("krivanek-table1-ratios-instructions", "Krivanek et al. 2005, Table 1",
                       "ZXZXZ/Taylor-1.5 = 4.35 (n=6), 6.38 (n=10); Ivanic/Taylor-1.5 = 14.9, 31.9 (flamingo TPR), "
                       "judged by instructions executed (a load-independent proxy for time)",
-                      "4.35, 6.38; 14.9, 31.9", buf, "factor 1.5", verdict_of(s, 4),
+                      "4.35, 6.38; 14.9, 31.9", buf, "factor 1.5", exp_sides_verdict(s, 4),
                       "rotation_speed/instructions/instructions.dat (callgrind; the time ratios are in claims_timing.tsv)");
         }
     } else {
@@ -544,7 +535,7 @@ int main(int argc, char **argv)
         exp_claim("krivanek-ivanic-zxzxz", "Krivanek et al. 2005, Table 1",
                   "Ivanic is 3.4x (n=6) and 5.0x (n=10) slower than ZXZXZ per rotation (flamingo TPR 10.1/2.96, 49.1/9.83)",
                   "3.41, 4.99", claim_noisy ? buf2 : buf, "factor 1.5 (measured ratio's quartiles widened by 5%)",
-                  claim_noisy ? notm : verdict_of(s, 2),
+                  claim_noisy ? notm : exp_sides_verdict(s, 2),
                   "rotation_speed/timing/table1.dat: paired ratios of one interleaved run per order (both exact methods as fast as made here; ivanic builds the matrix then applies it)");
     }
     if (have[TT]) {
@@ -560,7 +551,7 @@ int main(int argc, char **argv)
         exp_claim("krivanek-table1-ratios", "Krivanek et al. 2005, Table 1",
                   "ZXZXZ/Taylor-1.5 = 4.35 (n=6), 6.38 (n=10); Ivanic/Taylor-1.5 = 14.9, 31.9 (flamingo TPR)",
                   "4.35, 6.38; 14.9, 31.9", claim_noisy ? buf2 : buf, "factor 1.5 (measured ratio's quartiles widened by 5%)",
-                  claim_noisy ? notm : verdict_of(s, 4), ev);
+                  claim_noisy ? notm : exp_sides_verdict(s, 4), ev);
     }
 
     /* ---- timing index ------------------------------------------------------ */
