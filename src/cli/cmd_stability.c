@@ -8,6 +8,12 @@
 #include <stdlib.h>
 
 extern const cli_command cmd_stability;
+extern const cli_sweep_kind sweep_stability;
+
+/* Largest band: memory is 20 blocks of (2L+1)² doubles (2.6 GB at 2000,
+ * 10 GB at 4000), time depends on the method (and no method may go
+ * beyond its own largest order). */
+#define STABILITY_MAX_BAND 4000
 
 static const char help[] =
     "Usage: shlab stability --method M --lmax L [OPTIONS]\n"
@@ -24,8 +30,8 @@ static const char help[] =
     "\n"
     "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
     "                       | taylor1 | taylor1.5 | taylor2\n"
-    "  --lmax L             every band 0..L (L <= 1000)\n"
-    "  --bands L1,L2,...    only these bands (increasing, <= 1000); single-band\n"
+    "  --lmax L             every band 0..L (L <= 4000 and below the method's limit)\n"
+    "  --bands L1,L2,...    only these bands (increasing, <= 4000); single-band\n"
     "                       methods then compute nothing else\n"
     "  --stop-above X       stop after the first band whose orth exceeds X\n"
     "  --precision P        double (default) | float\n"
@@ -33,18 +39,58 @@ static const char help[] =
     "  --exact-max E        exact orthogonality up to band E (default 128)\n"
     "  --convention cs|nocs\n"
     "  --quiet              no progress on stderr\n"
+    CLI_SHARD_HELP
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
     "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"rotations\":[{name,euler}],\n"
     "       \"rows\":[{\"band\",\"orth\",\"orth_exact\",\"hom\",\"ref\",\"broken\"}]}\n";
 
-typedef struct {
-    json_t *rows;
-    int lmax, quiet, fail, sparse;
-} acc;
+/* ---- the sweep: item j is band j (--lmax) or the j-th of --bands ---- */
+
+static int stops(const json_t *params, const json_t *row)
+{
+    const json_t *x = json_object_get(params, "stop_above"), *orth = json_object_get(row, "orth");
+    return json_is_true(json_object_get(row, "broken")) ||
+           (json_is_number(x) && json_is_number(orth) && json_number_value(orth) > json_number_value(x));
+}
+
+static json_t *finish(const json_t *params, json_t *rows)
+{
+    sh_rot_method method;
+    sh_rotation set[SH_ROT_STABILITY_NSET];
+    const char *names[SH_ROT_STABILITY_NSET];
+    if (sh_rot_method_parse(json_string_value(json_object_get(params, "method")), &method) ||
+        sh_rot_stability_set(set, names)) {
+        json_decref(rows);
+        return NULL;
+    }
+    json_t *rots = json_array();
+    for (int k = 0; k < SH_ROT_STABILITY_NSET; k++) {
+        if (method == SH_ROT_Z && set[k].beta != 0) continue;
+        double e[3] = {set[k].alpha, set[k].beta, set[k].gamma};
+        json_t *r = json_object();
+        r = cli_put(r, "name", json_string(names[k]));
+        r = cli_put(r, "euler", cli_json_array(e, 3));
+        if (!r || json_array_append_new(rots, r)) { json_decref(rots); rots = NULL; break; }
+    }
+    json_t *root = json_object();
+    static const char *const keys[] = {"method", "precision", "convention", "lmax"};
+    for (int k = 0; k < 4; k++) root = cli_put(root, keys[k], json_incref(json_object_get(params, keys[k])));
+    root = cli_put(root, "rotations", rots);
+    return cli_put(root, "rows", rows);
+}
+
+const cli_sweep_kind sweep_stability = {"stability", finish, stops};
 
 static json_t *num_or_null(double x, int ok) { return ok ? json_real(x) : json_null(); }
+
+typedef struct {
+    cli_sweep *sw;
+    const long *item; /* the sweep item of each band computed */
+    long next;
+    int fail;
+} acc;
 
 static int on_row(const sh_rot_stability_row *r, void *vctx)
 {
@@ -56,9 +102,8 @@ static int on_row(const sh_rot_stability_row *r, void *vctx)
     o = cli_put(o, "hom", num_or_null(r->hom, !r->broken));
     o = cli_put(o, "ref", num_or_null(r->ref, r->have_ref && !r->broken));
     o = cli_put(o, "broken", json_boolean(r->broken));
-    if (!o || json_array_append_new(a->rows, o)) { a->fail = 1; return SH_ENOMEM; }
-    if (!a->quiet && a->lmax >= 100 && (r->band % 50 == 0 || r->band == a->lmax || a->sparse))
-        fprintf(stderr, "stability: band %d of %d\n", r->band, a->lmax);
+    /* a row that stops the sweep also stops sh_rot_stability (the same rule) */
+    if (cli_sweep_add(a->sw, a->item[a->next++], o) == CLI_EXIT_USAGE) { a->fail = 1; return SH_ENOMEM; }
     return SH_OK;
 }
 
@@ -68,6 +113,7 @@ static int run(int argc, char **argv)
                                          CLI_LONGOPT_CONVENTION,
                                          CLI_LONGOPT_METHOD,
                                          CLI_LONGOPT_PRECISION,
+                                         CLI_LONGOPT_SHARD,
                                          {"lmax", required_argument, 0, 'L'},
                                          {"ref-max", required_argument, 0, 'r'},
                                          {"exact-max", required_argument, 0, 'e'},
@@ -81,27 +127,32 @@ static int run(int argc, char **argv)
     int lmax = -1, ref_max = 40, exact_max = 128, have_method = 0, quiet = 0, nb = 0;
     int *bands = NULL;
     double stop_above = 0;
+    sh_shard shard = SH_SHARD_ALL;
     opterr = 0;
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         switch (o) {
         case 'L':
-            if (cli_int("--lmax", optarg, &lmax)) return CLI_EXIT_USAGE;
-            if (lmax < 0 || lmax > 1000) return cli_fail("--lmax: %d out of range 0..1000", lmax);
+            if (cli_int("--lmax", optarg, &lmax)) return free(bands), CLI_EXIT_USAGE;
+            if (lmax < 0 || lmax > STABILITY_MAX_BAND)
+                return free(bands), cli_fail("--lmax: %d out of range 0..%d", lmax, STABILITY_MAX_BAND);
             break;
         case 'r':
-            if (cli_int("--ref-max", optarg, &ref_max)) return CLI_EXIT_USAGE;
-            if (ref_max < -1 || ref_max > 300) return cli_fail("--ref-max: %d out of range -1..300", ref_max);
+            if (cli_int("--ref-max", optarg, &ref_max)) return free(bands), CLI_EXIT_USAGE;
+            if (ref_max < -1 || ref_max > 300) return free(bands), cli_fail("--ref-max: %d out of range -1..300", ref_max);
             break;
         case 'e':
-            if (cli_int("--exact-max", optarg, &exact_max)) return CLI_EXIT_USAGE;
-            if (exact_max < -1) return cli_fail("--exact-max: %d must be >= -1", exact_max);
+            if (cli_int("--exact-max", optarg, &exact_max)) return free(bands), CLI_EXIT_USAGE;
+            if (exact_max < -1) return free(bands), cli_fail("--exact-max: %d must be >= -1", exact_max);
             break;
         case 'q': quiet = 1; break;
         case 's':
-            if (cli_double("--stop-above", optarg, &stop_above)) return CLI_EXIT_USAGE;
-            if (!(stop_above > 0)) return cli_fail("--stop-above: must be > 0");
+            if (cli_double("--stop-above", optarg, &stop_above)) return free(bands), CLI_EXIT_USAGE;
+            if (!(stop_above > 0)) return free(bands), cli_fail("--stop-above: must be > 0");
+            break;
+        case CLI_OPT_SHARD:
+            if (cli_shard("--shard", optarg, &shard)) return free(bands), CLI_EXIT_USAGE;
             break;
         case 'B': {
             double *v = NULL;
@@ -109,9 +160,9 @@ static int run(int argc, char **argv)
             if (cli_doubles("--bands", optarg, &v, &nb)) return CLI_EXIT_USAGE;
             bands = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *bands);
             for (int q = 0; bands && q < nb; q++) {
-                if (v[q] != floor(v[q]) || v[q] < 0 || v[q] > 1000 || (q && v[q] <= v[q - 1])) {
+                if (v[q] != floor(v[q]) || v[q] < 0 || v[q] > STABILITY_MAX_BAND || (q && v[q] <= v[q - 1])) {
                     free(v); free(bands);
-                    return cli_fail("--bands: need increasing integers in 0..1000");
+                    return cli_fail("--bands: need increasing integers in 0..%d", STABILITY_MAX_BAND);
                 }
                 bands[q] = (int)v[q];
             }
@@ -121,7 +172,7 @@ static int run(int argc, char **argv)
         }
         default: {
             const int e = cli_common_opt(&cmd_stability, o, argv, &com);
-            if (e >= 0) return e;
+            if (e >= 0) return free(bands), e;
         }
         }
     }
@@ -138,31 +189,38 @@ static int run(int argc, char **argv)
         return free(bands), cli_fail("stability: method %s is limited to order %d (lmax %d)",
                         sh_rot_method_name(method), sh_rot_method_max_order(method),
                         sh_rot_method_max_order(method) - 1);
-    acc a = {json_array(), lmax, quiet, 0, bands != NULL};
-    int st = sh_rot_stability(method, prec, com.conv, lmax, bands, bands ? nb : 0, ref_max,
-                              exact_max, stop_above, on_row, &a);
+    /* everything the rows depend on: the whole sweep, whichever shard runs */
+    json_t *params = json_object(), *bl = bands ? json_array() : json_null();
+    for (int q = 0; bl && bands && q < nb; q++)
+        if (json_array_append_new(bl, json_integer(bands[q]))) { json_decref(bl); bl = NULL; }
+    params = cli_put(params, "method", json_string(sh_rot_method_name(method)));
+    params = cli_put(params, "precision", json_string(sh_precision_name(prec)));
+    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
+    params = cli_put(params, "lmax", json_integer(lmax));
+    params = cli_put(params, "bands", bl);
+    params = cli_put(params, "ref_max", json_integer(ref_max));
+    params = cli_put(params, "exact_max", json_integer(exact_max));
+    params = cli_put(params, "stop_above", stop_above > 0 ? json_real(stop_above) : json_null());
+    const long nitems = bands ? nb : lmax + 1;
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_stability, params, nitems, &shard, com.fmt, quiet, "bands");
+    /* this shard's bands (every band unsharded), increasing */
+    int *mine = malloc((size_t)nitems * sizeof *mine);
+    long *item = malloc((size_t)nitems * sizeof *item);
+    int nm = 0;
+    for (long j = 0; mine && item && j < nitems; j++)
+        if (cli_sweep_owns(&sw, j)) { item[nm] = j; mine[nm++] = bands ? bands[j] : (int)j; }
     free(bands);
-    if (st) { json_decref(a.rows); return cli_fail_status(st); }
-    sh_rotation set[SH_ROT_STABILITY_NSET];
-    const char *names[SH_ROT_STABILITY_NSET];
-    sh_rot_stability_set(set, names);
-    json_t *rots = json_array();
-    for (int k = 0; k < SH_ROT_STABILITY_NSET; k++) {
-        if (method == SH_ROT_Z && set[k].beta != 0) continue;
-        double e[3] = {set[k].alpha, set[k].beta, set[k].gamma};
-        json_t *r = json_object();
-        r = cli_put(r, "name", json_string(names[k]));
-        r = cli_put(r, "euler", cli_json_array(e, 3));
-        if (!r || json_array_append_new(rots, r)) { json_decref(rots); rots = NULL; break; }
-    }
-    json_t *root = json_object();
-    root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
-    root = cli_put(root, "precision", json_string(sh_precision_name(prec)));
-    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    root = cli_put(root, "lmax", json_integer(lmax));
-    root = cli_put(root, "rotations", rots);
-    root = cli_put(root, "rows", a.rows);
-    return cli_emit(root, com.fmt);
+    acc a = {&sw, item, 0, 0};
+    int st = !mine || !item ? sh_error(SH_ENOMEM, "stability: out of memory") : SH_OK;
+    if (!st && nm > 0)
+        st = sh_rot_stability(method, prec, com.conv, mine[nm - 1], mine, nm, ref_max, exact_max,
+                              stop_above, on_row, &a);
+    free(mine);
+    free(item);
+    if (a.fail) { cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
+    if (st) { cli_sweep_free(&sw); return cli_fail_status(st); }
+    return cli_sweep_end(&sw);
 }
 
 const cli_command cmd_stability = {"stability", run,

@@ -9,6 +9,7 @@ extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability, cmd_f
 extern const cli_command cmd_scale, cmd_scale_interp, cmd_scale_scene;
 extern const cli_command cmd_deriv, cmd_taylor_error;
 extern const cli_command cmd_bench, cmd_plan;
+extern const cli_command cmd_merge;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
@@ -16,6 +17,7 @@ static const cli_command *const table[] = {
     &cmd_verify, &cmd_scale, &cmd_scale_interp, &cmd_scale_scene,
     &cmd_deriv, &cmd_taylor_error,
     &cmd_bench, &cmd_plan,
+    &cmd_merge,
 };
 
 const cli_command *cli_find(const char *name)

@@ -108,7 +108,6 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         st = sh_error(SH_ENOMEM, "stability: out of memory (lmax %d)", lmax);
         goto done;
     }
-    gsl_rng_set(rng, 7);
     for (int k = 0; k < 2 * n && !st; k++)
         st = sh_rot_bands_create(method, prec, conv, lmax, k < n ? &set[k] : &ab[k - n], &it[k]);
     for (int q = 0; q < nbands && !st; q++) {
@@ -118,6 +117,9 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         if (st) break;
         sh_rot_stability_row row = {.band = l, .orth_exact = l <= exact_max, .have_ref = l <= ref_max};
         double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
+        /* the probes are seeded by the band, so a band's row is the same
+         * whichever other bands are computed (--bands, shards) */
+        gsl_rng_set(rng, 7 + (unsigned long)l);
         for (int k = 0; k < n; k++) {
             const double *A = blk + (size_t)k * W * W;
             const double *B = blk + (size_t)((k + 3) % n) * W * W, *C = blk + (size_t)(n + k) * W * W;
