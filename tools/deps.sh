@@ -4,6 +4,7 @@
 # the exact command to run and fails.  --quiet: say nothing when all is there.
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
+PKGS="$PKGS parallel" # GNU parallel: sweeps run as shards on one machine (README, make check)
 missing=""
 for p in $PKGS; do
     if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -205,14 +205,15 @@ typedef struct {
     json_t *params, *rows;
     long nitems, owned, done, last;
     sh_shard shard;
-    int stopped;
+    int sharded, stopped; /* sharded: --shard was given (even 0/1) */
     cli_format fmt;
     cli_progress prog;
     const char *what;
     char label[64]; /* "command" or "command (shard I/N)" for progress lines */
 } cli_sweep;
 /* Start a sweep of nitems items; params (stolen) must hold everything the
- * result depends on.  shard NULL or count 1: the whole sweep.  what names
+ * result depends on.  shard NULL (no --shard): the whole sweep, printed as
+ * the command's result; else a shard file, also for 0/1.  what names
  * the items in progress lines ("bands"). */
 void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, long nitems,
                      const sh_shard *shard, cli_format fmt, int quiet, const char *what);

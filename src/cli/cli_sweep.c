@@ -32,11 +32,12 @@ void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, l
     s->rows = json_array();
     s->nitems = nitems;
     s->shard = shard ? *shard : (sh_shard)SH_SHARD_ALL;
+    s->sharded = shard != NULL;
     s->fmt = fmt;
     s->last = -1;
     s->what = what;
     for (long j = 0; j < nitems; j++) s->owned += sh_shard_owns(&s->shard, j);
-    if (s->shard.count > 1)
+    if (s->sharded)
         snprintf(s->label, sizeof s->label, "%s (shard %d/%d)", kind->command, s->shard.index, s->shard.count);
     else
         snprintf(s->label, sizeof s->label, "%s", kind->command);
@@ -60,7 +61,7 @@ int cli_sweep_add(cli_sweep *s, long j, json_t *row)
     }
     const int stop = s->kind->stops && s->kind->stops(s->params, row);
     json_t *rec = row;
-    if (s->shard.count > 1) {
+    if (s->sharded) {
         rec = json_object();
         rec = cli_put(rec, "item", json_integer(j));
         rec = cli_put(rec, "row", row);
@@ -130,7 +131,7 @@ int cli_sweep_end(cli_sweep *s)
 {
     int rc;
     if (!s->rows || !s->params) rc = cli_fail("out of memory");
-    else if (s->shard.count > 1) rc = write_shard(s);
+    else if (s->sharded) rc = write_shard(s);
     else {
         json_t *rows = s->rows;
         s->rows = NULL;

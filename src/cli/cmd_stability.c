@@ -128,6 +128,7 @@ static int run(int argc, char **argv)
     int *bands = NULL;
     double stop_above = 0;
     sh_shard shard = SH_SHARD_ALL;
+    int have_shard = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -153,6 +154,7 @@ static int run(int argc, char **argv)
             break;
         case CLI_OPT_SHARD:
             if (cli_shard("--shard", optarg, &shard)) return free(bands), CLI_EXIT_USAGE;
+            have_shard = 1;
             break;
         case 'B': {
             double *v = NULL;
@@ -203,7 +205,7 @@ static int run(int argc, char **argv)
     params = cli_put(params, "stop_above", stop_above > 0 ? json_real(stop_above) : json_null());
     const long nitems = bands ? nb : lmax + 1;
     cli_sweep sw;
-    cli_sweep_begin(&sw, &sweep_stability, params, nitems, &shard, com.fmt, quiet, "bands");
+    cli_sweep_begin(&sw, &sweep_stability, params, nitems, have_shard ? &shard : NULL, com.fmt, quiet, "bands");
     /* this shard's bands (every band unsharded), increasing */
     int *mine = malloc((size_t)nitems * sizeof *mine);
     long *item = malloc((size_t)nitems * sizeof *item);

@@ -72,6 +72,7 @@ static int run(int argc, char **argv)
     double beta = -1, beta_max = -1, lobe_exp = 7;
     int steps = -1, have_beta = 0, have_max = 0, quiet = 0;
     sh_shard shard = SH_SHARD_ALL;
+    int have_shard = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -103,6 +104,7 @@ static int run(int argc, char **argv)
         case 'q': quiet = 1; break;
         case CLI_OPT_SHARD:
             if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
+            have_shard = 1;
             break;
         default: {
             const int e = cli_common_opt(&cmd_taylor_error, o, argv, &com);
@@ -134,7 +136,7 @@ static int run(int argc, char **argv)
     params = cli_put(params, have_beta ? "beta" : "beta_max", json_real(top));
     if (!have_beta) params = cli_put(params, "steps", json_integer(steps));
     cli_sweep sw;
-    cli_sweep_begin(&sw, &sweep_taylor_error, params, nrow, &shard, com.fmt, quiet, "angles");
+    cli_sweep_begin(&sw, &sweep_taylor_error, params, nrow, have_shard ? &shard : NULL, com.fmt, quiet, "angles");
     for (int i = 0; i < nrow; i++) {
         if (!cli_sweep_owns(&sw, i)) continue;
         const double b = have_beta ? beta : beta_max * i / steps;
