@@ -8,9 +8,9 @@
 #include <string.h>
 
 extern const cli_command cmd_merge;
-extern const cli_sweep_kind sweep_stability, sweep_taylor_error;
+extern const cli_sweep_kind sweep_stability, sweep_taylor_error, sweep_scale_interp;
 
-static const cli_sweep_kind *const kinds[] = {&sweep_stability, &sweep_taylor_error};
+static const cli_sweep_kind *const kinds[] = {&sweep_stability, &sweep_taylor_error, &sweep_scale_interp};
 
 static const char help[] =
     "Usage: shlab merge [--format F] FILE...\n"
@@ -27,7 +27,7 @@ static const char help[] =
     "stops at a row (stability --stop-above, a broken band), the rows after the first\n"
     "such row are dropped, as the unsharded run never computes them.\n"
     "\n"
-    "Sweeps that take --shard: stability, taylor-error.\n"
+    "Sweeps that take --shard: stability, taylor-error, scale-interp.\n"
     "\n"
     "  FILE...              the N shard files, in any order\n"
     "  --format table|csv|json  output format (default: the sweep's --format)\n"

@@ -75,6 +75,14 @@ for i in 0 1 2 3 4 5 6 7 8 9 10 11; do "$SHLAB" $TE --shard $i/12 > "$TMP/u$i" 2
 "$SHLAB" merge "$TMP"/u* > "$TMP/merged" 2>/dev/null
 cmp -s "$TMP/whole" "$TMP/merged" && ok "12 shards of 10 items (two empty) merge" || notok "12 shards merge differs"
 
+# scale-interp over its dense k grid (the sampled table in every shard)
+SI="scale-interp --order 5 --family midrange --samples 10 --spacing uniform --kmin -0.5 --kmax 0.6 --dense 33 --interp cubic --format json"
+"$SHLAB" $SI > "$TMP/whole" 2>/dev/null
+for i in 0 1; do "$SHLAB" $SI --shard $i/2 > "$TMP/k$i" 2>/dev/null; done
+"$SHLAB" merge "$TMP/k1" "$TMP/k0" > "$TMP/merged" 2>/dev/null
+[ -s "$TMP/whole" ] && cmp -s "$TMP/whole" "$TMP/merged" && ok "scale-interp: 2 shards merge byte for byte" \
+    || notok "scale-interp merge differs"
+
 # --- the Slurm array script, its environment simulated ------------------------
 for i in 0 1; do
     SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 \
