@@ -77,10 +77,10 @@ cmp -s "$TMP/whole" "$TMP/merged" && ok "12 shards of 10 items (two empty) merge
 
 # scale-interp over its dense k grid (the sampled table in every shard)
 SI="scale-interp --order 5 --family midrange --samples 10 --spacing uniform --kmin -0.5 --kmax 0.6 --dense 33 --interp cubic --format json"
-"$SHLAB" $SI > "$TMP/whole" 2>/dev/null
+"$SHLAB" $SI > "$TMP/si" 2>/dev/null
 for i in 0 1; do "$SHLAB" $SI --shard $i/2 > "$TMP/k$i" 2>/dev/null; done
 "$SHLAB" merge "$TMP/k1" "$TMP/k0" > "$TMP/merged" 2>/dev/null
-[ -s "$TMP/whole" ] && cmp -s "$TMP/whole" "$TMP/merged" && ok "scale-interp: 2 shards merge byte for byte" \
+[ -s "$TMP/si" ] && cmp -s "$TMP/si" "$TMP/merged" && ok "scale-interp: 2 shards merge byte for byte" \
     || notok "scale-interp merge differs"
 
 # --- the Slurm array script, its environment simulated ------------------------
