@@ -189,6 +189,9 @@ typedef struct {
     json_t *(*finish)(const json_t *params, json_t *rows);
     /* Non-zero if this row ends the sweep (NULL: no row does). */
     int (*stops)(const json_t *params, const json_t *row);
+    /* The exit status of a result (NULL: 0), e.g. CLI_EXIT_CHECK when plan
+     * finds no method. */
+    int (*exit_code)(const json_t *result);
 } cli_sweep_kind;
 
 enum { CLI_OPT_SHARD = 0x1c1 };
@@ -225,6 +228,8 @@ int cli_sweep_owns(const cli_sweep *s, long j);
 int cli_sweep_add(cli_sweep *s, long j, json_t *row);
 /* Print the result (or the shard file) and release s; returns the exit code. */
 int cli_sweep_end(cli_sweep *s);
+/* Render a kind's result (from finish) in fmt; the exit code of the result. */
+int cli_sweep_emit(const cli_sweep_kind *kind, json_t *result, cli_format fmt);
 void cli_sweep_free(cli_sweep *s);
 
 #endif

@@ -127,6 +127,13 @@ static int write_shard(cli_sweep *s)
     return CLI_EXIT_OK;
 }
 
+int cli_sweep_emit(const cli_sweep_kind *kind, json_t *result, cli_format fmt)
+{
+    const int code = result && kind->exit_code ? kind->exit_code(result) : CLI_EXIT_OK;
+    const int rc = cli_emit(result, fmt);
+    return rc == CLI_EXIT_OK ? code : rc;
+}
+
 int cli_sweep_end(cli_sweep *s)
 {
     int rc;
@@ -135,7 +142,7 @@ int cli_sweep_end(cli_sweep *s)
     else {
         json_t *rows = s->rows;
         s->rows = NULL;
-        rc = cli_emit(s->kind->finish(s->params, rows), s->fmt);
+        rc = cli_sweep_emit(s->kind, s->kind->finish(s->params, rows), s->fmt);
     }
     cli_sweep_free(s);
     return rc;

@@ -8,9 +8,10 @@
 #include <string.h>
 
 extern const cli_command cmd_merge;
-extern const cli_sweep_kind sweep_stability, sweep_taylor_error, sweep_scale_interp;
+extern const cli_sweep_kind sweep_stability, sweep_taylor_error, sweep_scale_interp, sweep_plan;
 
-static const cli_sweep_kind *const kinds[] = {&sweep_stability, &sweep_taylor_error, &sweep_scale_interp};
+static const cli_sweep_kind *const kinds[] = {&sweep_stability, &sweep_taylor_error, &sweep_scale_interp,
+                                              &sweep_plan};
 
 static const char help[] =
     "Usage: shlab merge [--format F] FILE...\n"
@@ -27,7 +28,9 @@ static const char help[] =
     "stops at a row (stability --stop-above, a broken band), the rows after the first\n"
     "such row are dropped, as the unsharded run never computes them.\n"
     "\n"
-    "Sweeps that take --shard: stability, taylor-error, scale-interp.\n"
+    "Sweeps that take --shard: stability (bands), taylor-error (angles), scale-interp\n"
+    "(points of the dense k grid), plan (steps of the β grid; the methods are timed\n"
+    "by the merge, so its timings are those of the merging machine).\n"
     "\n"
     "  FILE...              the N shard files, in any order\n"
     "  --format table|csv|json  output format (default: the sweep's --format)\n"
@@ -192,7 +195,7 @@ static int run(int argc, char **argv)
         rc = CLI_EXIT_USAGE;
         goto done;
     }
-    rc = cli_emit(kind->finish(f[0].params, rows), fmt);
+    rc = cli_sweep_emit(kind, kind->finish(f[0].params, rows), fmt);
     rows = NULL;
 done:
     json_decref(rows);

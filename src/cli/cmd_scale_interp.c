@@ -63,7 +63,7 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "worst_k", json_real(r.worst_k));
 }
 
-const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL};
+const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL, NULL};
 
 static int run(int argc, char **argv)
 {

@@ -81,7 +81,7 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "rows", rows);
 }
 
-const cli_sweep_kind sweep_stability = {"stability", finish, stops};
+const cli_sweep_kind sweep_stability = {"stability", finish, stops, NULL};
 
 static json_t *num_or_null(double x, int ok) { return ok ? json_real(x) : json_null(); }
 

@@ -50,7 +50,7 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "rows", rows);
 }
 
-const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL};
+const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL};
 
 static int run(int argc, char **argv)
 {

@@ -83,6 +83,22 @@ for i in 0 1; do "$SHLAB" $SI --shard $i/2 > "$TMP/k$i" 2>/dev/null; done
 [ -s "$TMP/si" ] && cmp -s "$TMP/si" "$TMP/merged" && ok "scale-interp: 2 shards merge byte for byte" \
     || notok "scale-interp merge differs"
 
+# plan over its β grid: the errors merge exactly; the methods are timed by
+# whoever prints the result, so the timing columns (and the ranking by time) differ
+PL="plan --order 5 --max-beta 12 --degrees --tolerance 1e-3 --format csv --quiet"
+"$SHLAB" $PL > "$TMP/pl" 2>/dev/null
+for i in 0 1 2; do "$SHLAB" $PL --shard $i/3 > "$TMP/p$i" 2>/dev/null; done
+"$SHLAB" merge "$TMP/p0" "$TMP/p1" "$TMP/p2" > "$TMP/merged" 2>/dev/null
+# candidate columns method, exact, ok, max_error, worst_beta, mults (14-16, 18-20)
+cut -d, -f14-16,18-20 "$TMP/pl" | sort > "$TMP/a"; cut -d, -f14-16,18-20 "$TMP/merged" | sort > "$TMP/b"
+[ "$(wc -l < "$TMP/a")" -gt 5 ] && cmp -s "$TMP/a" "$TMP/b" && ok "plan: 3 shards merge to the same errors per method" \
+    || notok "plan: merged errors differ"
+for i in 0 1; do "$SHLAB" $PL --tolerance 1e-30 --shard $i/2 > "$TMP/p$i" 2>/dev/null; done
+"$SHLAB" merge "$TMP/p0" "$TMP/p1" > "$TMP/merged" 2>/dev/null; rc=$?
+"$SHLAB" $PL --tolerance 1e-30 > "$TMP/a" 2>/dev/null; rc0=$?
+[ "$rc" = 1 ] && [ "$rc0" = 1 ] && [ -s "$TMP/merged" ] && ok "plan: no method qualifies -> exit 1, unsharded and merged" \
+    || notok "plan no method: exit $rc0 unsharded, $rc merged"
+
 # --- the Slurm array script, its environment simulated ------------------------
 for i in 0 1; do
     SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 \
