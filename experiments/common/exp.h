@@ -37,4 +37,23 @@ void exp_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Abort the experiment with a message if st != SH_OK. */
 void exp_check(int st, const char *what);
 
+/* Shards.  An experiment whose work is a list of items (bands, angles, ...)
+ * can run as N processes (GNU parallel, a Slurm array), then be joined:
+ *   NAME DIR_I --shard I/N   computes only the items shard I owns
+ *       (sh_shard_owns) and writes them to DIR_I/shard-I-of-N.items (on
+ *       success only); its other files in DIR_I are partial;
+ *   NAME OUTDIR --merge FILE...   computes no item, takes every item from
+ *       the N files (checked to be the shards of one run: same experiment,
+ *       revision, arguments, N; each shard once; each item once) and writes
+ *       exactly the output of the unsharded run.
+ * The experiment numbers its items (an index fixed by its parameters) and
+ * for item j with n result values v:
+ *   if (exp_computes(j)) { compute v; }
+ *   if (!exp_item(j, n, v)) continue;   (another shard's item)
+ *   ...use v...
+ * exp_item records v (--shard) or fills it from the files (--merge; an item
+ * missing there ends the run with an error).  Values are kept exactly. */
+int exp_computes(long item);
+int exp_item(long item, int n, double *v);
+
 #endif

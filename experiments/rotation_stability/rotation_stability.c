@@ -53,6 +53,19 @@ static int on_row(const sh_rot_stability_row *r, void *vctx)
     return 0;
 }
 
+/* the rows a (possibly sharded) run computes, by position in the ladder */
+typedef struct {
+    int pos[128], band[128], n, got;
+    sh_rot_stability_row rows[128];
+} got;
+
+static int keep_row(const sh_rot_stability_row *r, void *vctx)
+{
+    got *g = vctx;
+    g->rows[g->got++] = *r;
+    return 0;
+}
+
 /* bands 0..20, then a roughly geometric ladder to lmax */
 static int ladder(int lmax, int dense_to, int *b)
 {
@@ -116,9 +129,30 @@ int main(int argc, char **argv)
             acc a = {exp_data(name, title, "band orth hom ref(-1: not computed) orth_exact"), -1, 0,
                      1e3 * eps, 1e6 * eps, -1, -1, -1, {-1, -1, -1, -1}};
             exp_progress("%s %s to l = %d", sh_rot_method_name(M[k].m), pr ? "float" : "double", lmax);
-            exp_check(sh_rot_stability(M[k].m, pr ? SH_PREC_FLOAT : SH_PREC_DOUBLE, SH_CS, lmax, bands, nb,
-                                       40, 128, 1.0, on_row, &a),
-                      "stability");
+            /* items: band q of sweep (pr, k); this run computes its own (exp.h) */
+            const long base = 1000L * (pr * nm + k);
+            got g;
+            memset(&g, 0, sizeof g);
+            for (int q = 0; q < nb; q++)
+                if (exp_computes(base + q)) g.pos[g.n++] = q, g.band[g.n - 1] = bands[q];
+            if (g.n)
+                exp_check(sh_rot_stability(M[k].m, pr ? SH_PREC_FLOAT : SH_PREC_DOUBLE, SH_CS, g.band[g.n - 1],
+                                           g.band, g.n, 40, 128, 1.0, keep_row, &g),
+                          "stability");
+            for (int q = 0, i = 0; q < nb; q++) {
+                double v[6] = {0};
+                if (i < g.got && g.pos[i] == q) {
+                    const sh_rot_stability_row *r = &g.rows[i++];
+                    v[0] = r->orth, v[1] = r->hom, v[2] = r->ref;
+                    v[3] = r->orth_exact, v[4] = r->have_ref, v[5] = r->broken;
+                } else if (exp_computes(base + q)) {
+                    break; /* after this shard's stop (orth > 1) */
+                }
+                if (!exp_item(base + q, 6, v)) continue;
+                const sh_rot_stability_row r = {bands[q], v[0], v[1], v[2], (int)v[3], (int)v[4], (int)v[5]};
+                on_row(&r, &a);
+                if (r.broken || r.orth > 1.0) break; /* the sweep stops after orth > 1 */
+            }
             fclose(a.f);
             char b1[32], b2[32], b3[32], o[4][32];
             fmt_band(b1, sizeof b1, a.first_t1, a.last_band, lmax);

@@ -99,10 +99,13 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         if (bands[q] < 0 || bands[q] > lmax || (q && bands[q] <= bands[q - 1]))
             return sh_error(SH_EINVAL, "stability: bands must increase within 0..%d", lmax);
 
+    /* the n blocks of the set and one block of a product (n + 1 blocks of
+     * W² doubles: 5.6 GB at band 4000) */
     const size_t W = 2 * (size_t)lmax + 1;
     sh_rot_bands **it = calloc(2 * (size_t)n, sizeof *it);
-    double *blk = malloc(2 * (size_t)n * W * W * sizeof *blk);
-    double *ref = malloc(W * W * sizeof *ref), *v = malloc(6 * W * sizeof *v);
+    double *blk = malloc(((size_t)n + 1) * W * W * sizeof *blk);
+    const size_t WR = 2 * (size_t)(ref_max < 0 ? 0 : ref_max < lmax ? ref_max : lmax) + 1; /* bands with ref */
+    double *ref = malloc(WR * WR * sizeof *ref), *v = malloc(6 * W * sizeof *v);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!it || !blk || !ref || !v || !rng) {
         st = sh_error(SH_ENOMEM, "stability: out of memory (lmax %d)", lmax);
@@ -113,7 +116,7 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
     for (int q = 0; q < nbands && !st; q++) {
         const int l = bands ? bands[q] : q;
         const int w = 2 * l + 1;
-        for (int k = 0; k < 2 * n && !st; k++) st = sh_rot_bands_get(it[k], l, blk + (size_t)k * W * W);
+        for (int k = 0; k < n && !st; k++) st = sh_rot_bands_get(it[k], l, blk + (size_t)k * W * W);
         if (st) break;
         sh_rot_stability_row row = {.band = l, .orth_exact = l <= exact_max, .have_ref = l <= ref_max};
         double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
@@ -122,7 +125,11 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         gsl_rng_set(rng, 7 + (unsigned long)l);
         for (int k = 0; k < n; k++) {
             const double *A = blk + (size_t)k * W * W;
-            const double *B = blk + (size_t)((k + 3) % n) * W * W, *C = blk + (size_t)(n + k) * W * W;
+            const double *B = blk + (size_t)((k + 3) % n) * W * W;
+            double *C = blk + (size_t)n * W * W;
+            if ((st = sh_rot_bands_get(it[n + k], l, C))) break;
+            for (int i = 0; i < w * w && !row.broken; i++)
+                if (!isfinite(C[i])) row.broken = 1;
             row.orth = fmax(row.orth, sh_rot_block_orthogonality(A, w, row.orth_exact));
             for (int probe = 0; probe < 2; probe++) {
                 double nn = 0;
@@ -141,7 +148,7 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         }
         if (st) break;
         /* fmax drops NaN, so look at the blocks themselves */
-        for (size_t i = 0; i < 2 * (size_t)n * W * W && !row.broken; i += 1)
+        for (size_t i = 0; i < (size_t)n * W * W && !row.broken; i += 1)
             if ((i % (W * W)) < (size_t)w * w && !isfinite(blk[i])) row.broken = 1;
         if (cb && (st = cb(&row, ctx))) break;
         if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
