@@ -130,4 +130,10 @@ extern const sh__rot_ops sh__rot_z_ops, sh__rot_ivanic_ops, sh__rot_zxzxz_ops, s
     sh__rot_blanco_ops, sh__rot_wigner_ops, sh__rot_reference_ops;
 extern const sh__rot_ops sh__rot_taylor1_ops, sh__rot_taylor15_ops, sh__rot_taylor2_ops;
 
+/* rotation_plan.c: non-zero if the band iterator computes each band alone
+ * (a single-band routine with a per-band workspace): dropping it and asking
+ * sh_rot_band for the next band costs nothing more and holds one workspace
+ * instead of one per iterator. */
+int sh__rot_bands_single(const sh_rot_bands *it);
+
 #endif

@@ -113,10 +113,22 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
     }
     for (int k = 0; k < 2 * n && !st; k++)
         st = sh_rot_bands_create(method, prec, conv, lmax, k < n ? &set[k] : &ab[k - n], &it[k]);
+    /* a method that computes each band alone gets each block from
+     * sh_rot_band (one workspace at a time: 2n of them, each sized for lmax,
+     * would be 20 GB at band 4000 for blanco); the others keep their
+     * iterators (streams, stored plans) */
+    const int single = !st && sh__rot_bands_single(it[0]);
+    for (int k = 0; single && k < 2 * n; k++) {
+        sh_rot_bands_free(it[k]);
+        it[k] = NULL;
+    }
+#define GET_BLOCK(k, l, out)                                                                   \
+    (single ? sh_rot_band((l), method, prec, conv, (k) < n ? &set[k] : &ab[(k) - n], (out))   \
+            : sh_rot_bands_get(it[k], (l), (out)))
     for (int q = 0; q < nbands && !st; q++) {
         const int l = bands ? bands[q] : q;
         const int w = 2 * l + 1;
-        for (int k = 0; k < n && !st; k++) st = sh_rot_bands_get(it[k], l, blk + (size_t)k * W * W);
+        for (int k = 0; k < n && !st; k++) st = GET_BLOCK(k, l, blk + (size_t)k * W * W);
         if (st) break;
         sh_rot_stability_row row = {.band = l, .orth_exact = l <= exact_max, .have_ref = l <= ref_max};
         double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
@@ -127,7 +139,7 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
             const double *A = blk + (size_t)k * W * W;
             const double *B = blk + (size_t)((k + 3) % n) * W * W;
             double *C = blk + (size_t)n * W * W;
-            if ((st = sh_rot_bands_get(it[n + k], l, C))) break;
+            if ((st = GET_BLOCK(n + k, l, C))) break;
             for (int i = 0; i < w * w && !row.broken; i++)
                 if (!isfinite(C[i])) row.broken = 1;
             row.orth = fmax(row.orth, sh_rot_block_orthogonality(A, w, row.orth_exact));
@@ -153,6 +165,7 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         if (cb && (st = cb(&row, ctx))) break;
         if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
     }
+#undef GET_BLOCK
 done:
     if (it)
         for (int k = 0; k < 2 * n; k++) sh_rot_bands_free(it[k]);
