@@ -3,6 +3,7 @@
 #   make check      build and run every test (unit tests with Check, CLI tests)
 #   make check SANITIZE=1   the same, built with -fsanitize=address,undefined
 #   make report     build, run every experiment, write reports/
+#   make bench-count  instructions per rotation of every method (valgrind)
 #   make probes     extract Blender's eight CC0 HDR world probes into data/probes/
 #   make install PREFIX=/usr/local
 #   make deps       install missing Debian packages (as root) or print the command
@@ -40,12 +41,75 @@ TEST_SRC := $(sort $(wildcard tests/test_*.c))
 # compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
 ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
 LIB_OBJ  := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o)
+# Loops marked `#pragma omp simd` in the kernels are vectorised at -O2
+# (OpenMP's simd directive only: no OpenMP runtime is linked).
+CFLAGS   += -fopenmp-simd
+# The unrolled kernels (src/rotate/rot_fast.c, rot_simd.h) once more per
+# instruction set on x86-64, each object with its own flags (chosen at run
+# time by the plan: README "Rotation speed"): avx2, avx512 = one lane with
+# AVX2 + FMA, or with AVX-512's 32 registers (fewer spills); sse2v/avx2v/
+# avx512v = SIMD lanes of 16/32/64 bytes for batches.
+# -ffp-contract=fast lets the compiler fuse a*b+c into FMA there (-std=c11
+# alone turns contraction off, so the other objects never fuse).
+ifneq ($(filter x86_64% amd64%,$(shell $(CC) -dumpmachine)),)
+FAST_VARIANTS := avx2 avx512 sse2v avx2v avx512v
+endif
+FAST_FLAGS_avx2    := -DSHK_VARIANT=avx2 -mavx2 -mfma -ffp-contract=fast
+FAST_FLAGS_avx512  := -DSHK_VARIANT=avx512 -mavx512f -mavx512vl -mfma -ffp-contract=fast
+# (-Wno-psabi: the float objects hold the rotation's lanes in double, twice
+# the native width, only in static functions, so no ABI is exposed.)
+FAST_FLAGS_sse2v   := -DSHK_VARIANT=sse2v -DSHK_VBYTES=16 -Wno-psabi
+FAST_FLAGS_avx2v   := -DSHK_VARIANT=avx2v -DSHK_VBYTES=32 -mavx2 -mfma -ffp-contract=fast -Wno-psabi
+FAST_FLAGS_avx512v := -DSHK_VARIANT=avx512v -DSHK_VBYTES=64 -mavx512f -mfma -ffp-contract=fast
+FAST_OBJ_D := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%.o)
+FAST_OBJ_F := $(FAST_VARIANTS:%=$(BUILD)/obj/rotate/rot_fast_%_f.o)
+LIB_OBJ  += $(FAST_OBJ_D) $(FAST_OBJ_F)
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man
+# ---- sht: fast spherical harmonic transforms and the libsharp peer (begin) ----
+# FFTW3 for the φ transforms, OpenMP across rings and m (src/project/sht*.c).
+# The Legendre kernels (src/project/sht_kern.c) are compiled once more per x86
+# instruction set; sht.c picks the widest one the CPU runs.  libsharp, when
+# installed, is a peer (oracle in tests, yardstick in `shlab bench --peers`),
+# linked into the CLI and its tests only, never into libshlab.
+PKGS     += fftw3
+CFLAGS   += -fopenmp
+LDLIBS   += -fopenmp
+.DEFAULT_GOAL := all
+SHT_KFLAGS := -O3 -ffp-contract=fast
+ifneq ($(filter x86_64%,$(shell $(CC) -dumpmachine)),)
+CFLAGS   += -DSHLAB_SHT_X86
+LIB_OBJ  += $(BUILD)/obj/project/sht_kern_avx2.o $(BUILD)/obj/project/sht_kern_avx512.o
+endif
+$(BUILD)/obj/project/sht_kern.o $(BUILD)/obj/project/sht.o: CFLAGS += -O3
+$(BUILD)/obj/project/sht_kern_avx2.o: src/project/sht_kern.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx2 -mfma -DSHT_KERN_AVX2 -c $< -o $@
+$(BUILD)/obj/project/sht_kern_avx512.o: src/project/sht_kern.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(SHT_KFLAGS) -mavx512f -mfma -DSHT_KERN_AVX512 -c $< -o $@
+# libsharp peer: src/measure/peers/peer_sharp.c (stubs that say so without libsharp)
+HAVE_SHARP := $(shell pkg-config --exists libsharp 2>/dev/null && echo 1)
+PEER_SHARP_OBJ := $(BUILD)/obj/measure/peers/peer_sharp.o
+ifeq ($(HAVE_SHARP),1)
+SHARP_CFLAGS := -DSHLAB_HAVE_SHARP $(shell pkg-config --cflags libsharp)
+SHARP_LIBS := $(shell pkg-config --libs libsharp)
+endif
+$(PEER_SHARP_OBJ): CFLAGS += $(SHARP_CFLAGS)
+CLI_OBJ  += $(PEER_SHARP_OBJ)
+$(BUILD)/shlab: LDLIBS += $(SHARP_LIBS)
+$(BUILD)/tests/test_sht_sharp: tests/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
+.PHONY: bench-peers
+bench-peers:: all
+	$(BUILD)/shlab bench --peers
+# ---- sht (end) ----
+
+.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -63,6 +127,14 @@ $(BUILD)/obj/%.o: src/%.c
 $(BUILD)/obj/%_f.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -DSH_REAL_FLOAT -c $< -o $@
+
+$(FAST_OBJ_D): $(BUILD)/obj/rotate/rot_fast_%.o: src/rotate/rot_fast.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(FAST_FLAGS_$*) -c $< -o $@
+
+$(FAST_OBJ_F): $(BUILD)/obj/rotate/rot_fast_%_f.o: src/rotate/rot_fast.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $(FAST_FLAGS_$*) -DSH_REAL_FLOAT -c $< -o $@
 
 $(BUILD)/obj/cli/%.o: src/cli/%.c
 	@mkdir -p $(dir $@)
@@ -86,13 +158,28 @@ $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 check: deps-quiet $(BUILD)/shlab $(TEST_BIN)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
 
+# ---- generated code ---------------------------------------------------------
+# src/rotate/rot_unrolled_gen.h is written by tools/gen_rot_unrolled.c (its
+# banner records the command); `make regen` rewrites it, `make check` fails
+# if it differs from what the generator writes (tests/cli/test_unrolled.sh).
+GEN_UNROLLED := $(BUILD)/tools/gen_rot_unrolled
+$(GEN_UNROLLED): tools/gen_rot_unrolled.c $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< $(BUILD)/libshlab.a $(LDLIBS)
+
+regen: $(GEN_UNROLLED)
+	$(GEN_UNROLLED) $$(sed -n 's|^ \*   build/tools/gen_rot_unrolled \(.*\) > src/rotate/rot_unrolled_gen.h$$|\1|p' src/rotate/rot_unrolled_gen.h) > $(BUILD)/rot_unrolled_gen.h
+	mv $(BUILD)/rot_unrolled_gen.h src/rotate/rot_unrolled_gen.h
+
+check: $(GEN_UNROLLED)
+
 # ---- experiments and report ----------------------------------------------
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>
 # → reports/<name>/*.dat → experiments/<name>/*.gp → reports/<name>/*.png
 EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
-               rotation_extremes rotation_cost
+               rotation_extremes rotation_cost rotation_kernels
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
@@ -101,8 +188,15 @@ $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/c
 
 experiments: $(EXP_BIN)
 
+# The report's revision stamp names the code, not the state of reports/: the
+# last commit that changed code or data (experiments/common/code_rev.sh).
 report: all $(EXP_BIN)
-	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$(REV) experiments/run_all.sh $(EXPERIMENTS)
+	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
+
+# Instructions per rotated vector of every method, counted under valgrind's
+# callgrind (independent of the machine's load; `shlab bench --instructions`).
+bench-count: all
+	$(BUILD)/shlab bench --instructions --order 2,3,4,5,6,8,10,12,16 --batch 3
 
 probes:
 	@tools/probes.sh data/probes
@@ -111,8 +205,12 @@ probes:
 $(BUILD)/shlab.1: $(BUILD)/shlab tools/help2man.sh
 	tools/help2man.sh $(BUILD)/shlab > $@
 
-$(BUILD)/shlab.pc: tools/shlab.pc.in
-	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define SHLAB_VERSION "\(.*\)"/\1/p' src/shlab.h)|g' $< > $@
+# the libraries libshlab links, for static linking (Libs.private; see the .pc.in)
+PC_PRIVATE = $(shell pkg-config --static --libs gsl OpenEXR fftw3 2>/dev/null) -lmpfr -lgmp -lstdc++ -lm -fopenmp
+$(BUILD)/shlab.pc: tools/shlab.pc.in FORCE
+	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(shell sed -n 's/^#define SHLAB_VERSION "\(.*\)"/\1/p' src/shlab.h)|g' \
+	    -e 's|@PRIVATE_LIBS@|$(strip $(PC_PRIVATE))|g' $< > $@
+FORCE:
 
 install: all $(BUILD)/shlab.1 $(BUILD)/shlab.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
@@ -125,6 +223,12 @@ install: all $(BUILD)/shlab.1 $(BUILD)/shlab.pc
 	install -m 644 $(wildcard src/shlab/*.h) $(DESTDIR)$(PREFIX)/include/shlab/
 	install -m 644 $(BUILD)/shlab.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/shlab.pc
 	install -m 644 $(BUILD)/shlab.1 $(DESTDIR)$(PREFIX)/share/man/man1/shlab.1
+	install -d $(DESTDIR)$(PREFIX)/share/doc/shlab
+	install -m 644 docs/CONVENTIONS.md docs/REFERENCES.md $(DESTDIR)$(PREFIX)/share/doc/shlab/
+	@# run-time lookup of libshlab.so.0: shlab.pc's Libs carry an rpath (any PREFIX);
+	@# a root install into /usr/local or /usr (directories the loader searches)
+	@# also refreshes its cache, for programs linked without pkg-config
+	@case "$(DESTDIR):$(PREFIX)" in :/usr/local|:/usr) [ "$$(id -u)" != 0 ] || ldconfig ;; esac
 
 man: $(BUILD)/shlab.1
 
@@ -132,3 +236,32 @@ clean:
 	rm -rf build
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+
+# ---- peer: HEALPix C++ (begin peer_healpix block) --------------------------
+# Oracle test and benchmark of the all-band rotation against HEALPix's
+# rotate_alm (Debian libhealpix-cxx-dev, optional: `make deps` installs it).
+# C++ stays here, at the edge: tests/peers/*.cc link libshlab.a.
+CXX      ?= c++
+HEALPIX_PC := $(shell pkg-config --exists healpix_cxx 2>/dev/null && echo yes)
+PEER_HEALPIX_FLAGS = -std=c++17 $(OPT) -Wall $(SANFLAGS) -Isrc -Itests $(shell pkg-config --cflags healpix_cxx 2>/dev/null)
+PEER_HEALPIX_LIBS  = $(BUILD)/libshlab.a $(shell pkg-config --libs healpix_cxx 2>/dev/null) $(CHECK_LIBS) $(LDLIBS)
+.PHONY: bench-peers check-peer-healpix
+ifeq ($(HEALPIX_PC),yes)
+TEST_BIN += $(BUILD)/tests/test_peer_healpix
+check: $(BUILD)/tests/test_peer_healpix
+$(BUILD)/tests/test_peer_healpix: tests/peers/test_peer_healpix.cc tests/peers/peer_healpix.h tests/testutil.h $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PEER_HEALPIX_FLAGS) -o $@ $< $(PEER_HEALPIX_LIBS)
+$(BUILD)/peers/peer_healpix_bench: tests/peers/peer_healpix_bench.cc tests/peers/peer_healpix.h $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(PEER_HEALPIX_FLAGS) -o $@ $< $(PEER_HEALPIX_LIBS)
+bench-peers:: $(BUILD)/peers/peer_healpix_bench
+	$(BUILD)/peers/peer_healpix_bench $(PEER_ARGS)
+else
+check: check-peer-healpix
+check-peer-healpix:
+	@echo "test_peer_healpix: skipped: HEALPix C++ not found (pkg-config healpix_cxx; Debian libhealpix-cxx-dev, make deps)"
+bench-peers::
+	@echo "peer_healpix_bench: skipped: HEALPix C++ not found (pkg-config healpix_cxx; Debian libhealpix-cxx-dev, make deps)"
+endif
+# ---- end peer_healpix block --------------------------------------------------

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <string.h>
 
-/* Double agreement required by issue 3; float: 32 float ulps of 1 (every
+/* Double agreement required of every exact method; float: 32 float ulps of 1 (every
  * entry of a rotation block is ≤ 1 in magnitude, so absolute is right). */
 #define ROT_TOL_D 1e-13
 #define ROT_TOL_F (32.0 * 1.1920929e-07)
@@ -85,7 +85,7 @@ static double rot_err_vs_reference(sh_rot_method method, sh_precision prec, sh_c
 }
 
 /* Every order 1..ROT_MAXO, every case, both conventions, both precisions. */
-static void rot_check_reference_all(sh_rot_method method, double *maxd, double *maxf)
+static inline void rot_check_reference_all(sh_rot_method method, double *maxd, double *maxf)
 {
     *maxd = *maxf = 0;
     for (int k = 0; k < ROT_NCASES; k++) {
@@ -109,7 +109,7 @@ static void rot_check_reference_all(sh_rot_method method, double *maxd, double *
 }
 
 /* apply == blocks × vector (the product done here), both conventions. */
-static void rot_check_apply(sh_rot_method method, sh_precision prec, double tol)
+static inline void rot_check_apply(sh_rot_method method, sh_precision prec, double tol)
 {
     const int order = ROT_MAXO, n = order * order;
     double c[ROT_MAXO * ROT_MAXO], g[ROT_MAXO * ROT_MAXO], h[ROT_MAXO * ROT_MAXO];
@@ -147,7 +147,7 @@ static void rot_check_apply(sh_rot_method method, sh_precision prec, double tol)
 }
 
 /* Pointwise: Σ g_i y_i(s) = Σ c_i y_i(R⁻¹ s). */
-static void rot_check_pointwise(sh_rot_method method)
+static inline void rot_check_pointwise(sh_rot_method method)
 {
     const int order = ROT_MAXO, n = order * order;
     double c[ROT_MAXO * ROT_MAXO], g[ROT_MAXO * ROT_MAXO], y[ROT_MAXO * ROT_MAXO];
@@ -195,7 +195,7 @@ static double rot_orth_err(int order, const double *B)
 }
 
 /* Orthogonality at order 10 and the homomorphism R(a)R(b) = R(ab). */
-static void rot_check_orth_homomorphism(sh_rot_method method)
+static inline void rot_check_orth_homomorphism(sh_rot_method method)
 {
     const int order = ROT_MAXO;
     const size_t nb = sh_rot_block_offset(order);

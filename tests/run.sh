@@ -7,6 +7,7 @@ for t in "$@"; do
     out=$("$t" 2>&1); rc=$?
     printf '%s\n' "$out" | grep -E '^[0-9]+%: Checks' | sed "s|^|$(basename "$t"): |"
     printf '%s\n' "$out" | grep -E ':[EF]:' | head -50
+    printf '%s\n' "$out" | grep -E '^SKIP ' | head -5
     line=$(printf '%s\n' "$out" | grep -E '^[0-9]+%: Checks' | tail -1)
     n=$(printf '%s' "$line" | sed -n 's/.*Checks: \([0-9]*\).*/\1/p')
     f=$(printf '%s' "$line" | sed -n 's/.*Failures: \([0-9]*\).*/\1/p')

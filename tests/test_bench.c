@@ -16,6 +16,7 @@ static sh_bench_opts quick(void)
     o.count = 20;
     o.repeat = 3;
     o.batch = 4;
+    o.kernel = SH_KERNEL_SCALAR; /* the loop kernels, whose counts the paper gives */
     return o;
 }
 
@@ -45,7 +46,7 @@ START_TEST(test_counts_blocks)
     sh_bench_opts o = quick();
     const int n = 5;
     for (int m = 0; m < SH_ROT_NMETHODS; m++) {
-        if (m == SH_ROT_ZXZXZ || m == SH_ROT_REFERENCE || !sh_rot_method_is_exact((sh_rot_method)m)) continue;
+        if (m == SH_ROT_ZXZXZ || m == SH_ROT_HALFPI || m == SH_ROT_REFERENCE || !sh_rot_method_is_exact((sh_rot_method)m)) continue;
         sh_bench_result a, b;
         ck_assert_int_eq(sh_rot_bench(n, (sh_rot_method)m, SH_PREC_DOUBLE, SH_BENCH_PER_ROTATION, &o, &a), SH_OK);
         ck_assert_int_eq(sh_rot_bench(n, (sh_rot_method)m, SH_PREC_DOUBLE, SH_BENCH_BATCHED, &o, &b), SH_OK);
@@ -292,6 +293,133 @@ START_TEST(test_order_for_image)
 }
 END_TEST
 
+
+/* ---- the interleaved engine, with entries that only record their calls
+ * (no timing asserted: the order of the calls, the counts, the layout of
+ * the samples, errors, and the statistics as functions of the samples). */
+enum { LOG_MAX = 4096 };
+typedef struct { int id; int *log; int *nlog; long *counts; int fail_at; } rec_ctx;
+static int rec_run(void *v, long count)
+{
+    rec_ctx *c = v;
+    if (*c->nlog == c->fail_at) return sh_error(SH_ENUM, "recorded failure");
+    if (*c->nlog < LOG_MAX) {
+        c->counts[*c->nlog] = count;
+        c->log[(*c->nlog)++] = c->id;
+    }
+    volatile double x = 0;
+    for (long i = 0; i < count; i++) x += 1.0;
+    return SH_OK;
+}
+
+START_TEST(test_engine_round_robin)
+{
+    int log[LOG_MAX], nlog = 0;
+    long counts[LOG_MAX];
+    enum { NE = 3, S = 5 };
+    rec_ctx c[NE];
+    sh_bench_entry e[NE];
+    for (int i = 0; i < NE; i++) {
+        c[i] = (rec_ctx){i, log, &nlog, counts, -1};
+        e[i] = (sh_bench_entry){"rec", rec_run, NULL, &c[i], i + 1.0, 0};
+    }
+    sh_bench_cfg cfg = SH_BENCH_CFG_DEFAULT;
+    cfg.samples = S;
+    cfg.warmup = 2;
+    cfg.count = 1000;
+    double smp[NE * S];
+    sh_bench_stats st[NE];
+    sh_bench_noise nz;
+    ck_assert_int_eq(sh_bench_interleaved(e, NE, &cfg, smp, st, &nz), SH_OK);
+    /* fixed count: no calibration; 2 warm-up rounds in entry order, then
+     * S rounds, round r starting at entry r mod NE */
+    ck_assert_int_eq(nlog, (2 + S) * NE);
+    for (int k = 0; k < nlog; k++) ck_assert_int_eq(counts[k], 1000);
+    for (int w = 0; w < 2; w++)
+        for (int i = 0; i < NE; i++) ck_assert_int_eq(log[w * NE + i], i);
+    for (int r = 0; r < S; r++)
+        for (int k = 0; k < NE; k++) ck_assert_int_eq(log[(2 + r) * NE + k], (k + r) % NE);
+    /* statistics are order statistics of the returned samples (ns per unit) */
+    for (int i = 0; i < NE; i++) {
+        double x[S];
+        memcpy(x, smp + i * S, sizeof x);
+        for (int a = 0; a < S; a++)
+            for (int b = a + 1; b < S; b++)
+                if (x[b] < x[a]) { const double t = x[a]; x[a] = x[b]; x[b] = t; }
+        ck_assert(x[0] > 0);
+        ck_assert(st[i].ns_min == x[0] && st[i].ns_max == x[S - 1] && st[i].ns_median == x[2]);
+        ck_assert(st[i].ns_q1 == x[1] && st[i].ns_q3 == x[3]); /* type 7 at n = 5: exact order statistics */
+        ck_close(st[i].spread, (x[3] - x[1]) / x[2], TOL1, 0, "spread");
+        ck_assert_int_eq(st[i].count, 1000);
+        ck_assert(st[i].sample_ms > 0 && st[i].offcpu >= 0 && st[i].offcpu <= 1);
+    }
+    ck_assert(nz.seconds > 0 && nz.offcpu >= 0 && nz.offcpu <= 1 && nz.spread >= 0);
+    ck_assert(nz.noisy == (nz.why[0] != '\0'));
+    /* a failing entry stops the run with its status and message */
+    nlog = 0;
+    c[1].fail_at = 4;
+    ck_assert_int_eq(sh_bench_interleaved(e, NE, &cfg, smp, st, NULL), SH_ENUM);
+    ck_assert_str_eq(sh_last_error(), "recorded failure");
+    ck_assert_int_ne(sh_bench_interleaved(e, 0, &cfg, smp, st, NULL), SH_OK);
+    /* calibrated (count 0): every entry gets one count >= 1, used by all its samples */
+    nlog = 0;
+    c[1].fail_at = -1;
+    cfg.count = 0;
+    cfg.min_sample_ms = 0.2;
+    cfg.warmup = 1;
+    ck_assert_int_eq(sh_bench_interleaved(e, NE, &cfg, smp, st, NULL), SH_OK);
+    for (int i = 0; i < NE; i++) ck_assert(st[i].count >= 1);
+    for (int k = nlog - S * NE; k < nlog; k++) ck_assert_int_eq(counts[k], st[log[k]].count);
+}
+END_TEST
+
+/* Paired ratios: the median and quartiles of a[r]/b[r], computed by hand. */
+START_TEST(test_paired_ratio)
+{
+    const double b[6] = {10, 20, 10, 40, 10, 10};
+    const double a[6] = {20, 60, 40, 80, 25, 10}; /* ratios 2 3 4 2 2.5 1 */
+    sh_bench_ratio r;
+    ck_assert_int_eq(sh_bench_paired_ratio(a, b, 6, 0.05, &r), SH_OK);
+    /* sorted 1 2 2 2.5 3 4: median (2+2.5)/2, q1 at 1.25 → 2, q3 at 3.75 → 2.5 + 0.75·0.5 */
+    ck_close(r.median, 2.25, TOL0, 0, "median");
+    ck_close(r.q1, 2.0, TOL0, 0, "q1");
+    ck_close(r.q3, 2.875, TOL0, 0, "q3");
+    ck_close(r.spread, 0.875 / 2.25, TOL1, 0, "spread");
+    ck_assert(r.noisy);
+    /* a constant ratio is quiet whatever the drift of the times themselves */
+    const double drift_b[4] = {10, 13, 17, 30}, drift_a[4] = {30, 39, 51, 90};
+    ck_assert_int_eq(sh_bench_paired_ratio(drift_a, drift_b, 4, 0.05, &r), SH_OK);
+    ck_close(r.median, 3, TOL1, 0, "paired ratio under drift");
+    ck_assert(!r.noisy && r.spread < 1e-12);
+    const double bad[1] = {0};
+    ck_assert_int_eq(sh_bench_paired_ratio(bad, b, 1, 0.05, &r), SH_EINVAL);
+}
+END_TEST
+
+/* The rotation entries: units, counted work and the old API agree. */
+START_TEST(test_rot_entries)
+{
+    sh_bench_opts o = quick();
+    sh_bench_entry e;
+    ck_assert_int_eq(sh_rot_bench_entry(6, SH_ROT_ZXZXZ, SH_PREC_FLOAT, SH_BENCH_BATCHED, &o, &e), SH_OK);
+    ck_assert(e.units == 4 && e.run && e.free && e.name);
+    const double paper = 6 * (2.0 * 36 + 18 * 6 - 14) / 3;
+    ck_close(e.mults, paper + 6.0 * 4 / 4, 0, 1, "zxzxz batched mults per vector");
+    ck_assert_int_eq(e.run(e.ctx, 3), SH_OK);
+    sh_bench_entry_free(&e);
+    ck_assert_ptr_null(e.ctx);
+    ck_assert_int_eq(sh_rot_bench_setup_entry(&o, &e), SH_OK);
+    ck_assert(e.units == 1 && e.mults == 0);
+    ck_assert_int_eq(e.run(e.ctx, 100), SH_OK);
+    sh_bench_entry_free(&e);
+    /* instruction counting needs valgrind: refused cleanly outside it */
+    ck_assert_int_eq(sh_rot_bench_entry(3, SH_ROT_IVANIC, SH_PREC_DOUBLE, SH_BENCH_PER_ROTATION, &o, &e), SH_OK);
+    double ins;
+    ck_assert_int_eq(sh_bench_instructions(&e, 1, 8, "/nonexistent", &ins), SH_ENOTSUP);
+    sh_bench_entry_free(&e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("bench");
@@ -303,6 +431,9 @@ static Suite *suite(void)
     tcase_add_test(tc, test_error_dense);
     tcase_add_test(tc, test_choose);
     tcase_add_test(tc, test_order_for_image);
+    tcase_add_test(tc, test_engine_round_robin);
+    tcase_add_test(tc, test_paired_ratio);
+    tcase_add_test(tc, test_rot_entries);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -2,7 +2,7 @@
  *
  * Truths used: 4π; a brute-force clipped tensor Gauss-Legendre cubature of
  * dΩ = π sin(πρ)/ρ du dv per probe pixel (an independent second method);
- * orthonormality ∫ y_i y_j = δ_ij; CONVENTIONS.md's forward angle-map
+ * orthonormality ∫ y_i y_j = δ_ij; docs/CONVENTIONS.md's forward angle-map
  * formula; the Funk-Hecke closed form ∫ e^{κ s·a} y_i(s) dΩ = 4π i_l(κ) y_i(a)
  * with i_l from GSL (gsl_sf_bessel_il_scaled).
  */
@@ -187,7 +187,7 @@ END_TEST
 
 START_TEST(probe_inverse_matches_forward)
 {
-    /* CONVENTIONS.md: r = acos(dz)/(π√(dx²+dy²)), u = dx·r, v = dy·r,
+    /* docs/CONVENTIONS.md: r = acos(dz)/(π√(dx²+dy²)), u = dx·r, v = dy·r,
      * x = (u+1)·size/2, y = (v+1)·size/2. */
     const int size = 200;
     for (int k = 0; k < 400; k++) {

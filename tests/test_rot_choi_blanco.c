@@ -9,7 +9,7 @@
  * choi's conj(U) D Uᵀ vanishing.  Nothing here is a number copied from our
  * own output.  The largest errors seen are printed (for the closing note).
  *
- * Tolerances: double 1e-13 absolute (issue 3).  Float: 2e-5 absolute
+ * Tolerances: double 1e-13 absolute (what every exact method must meet).  Float: 2e-5 absolute
  * (≈ 170 FLT_EPSILON): entries are ≤ 1 and the kernels take O(l) float
  * roundings per entry (l ≤ 9), plus the float rounding of the angles. */
 #include "testutil.h"

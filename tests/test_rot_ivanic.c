@@ -120,7 +120,8 @@ END_TEST
 START_TEST(test_band) { rot_check_band(SH_ROT_IVANIC, 24); }
 END_TEST
 
-/* Multiplications: set counts the recursion (> 0 from order 3 on, at most
+/* Multiplications of the loop kernel (SH_KERNEL_SCALAR; the unrolled one's
+ * count is checked in test_kernels.c): set counts the recursion (> 0 from order 3 on, at most
  * the 3 terms × (2 P's of 2 mults + 1) per entry), apply is the plain block
  * product Σ(2l+1)² = n(4n²−1)/3. */
 START_TEST(test_mults)
@@ -129,7 +130,7 @@ START_TEST(test_mults)
     sh_rotation_from_euler(0.2, 0.9, 1.4, &r);
     for (int n = 1; n <= ROT_MAXO; n++) {
         sh_rot_plan *p;
-        ck_assert_int_eq(sh_rot_plan_create(n, SH_ROT_IVANIC, SH_PREC_DOUBLE, SH_CS, &p), SH_OK);
+        ck_assert_int_eq(sh_rot_plan_create_kernel(n, SH_ROT_IVANIC, SH_PREC_DOUBLE, SH_CS, SH_KERNEL_SCALAR, &p), SH_OK);
         ck_assert_int_eq(sh_rot_plan_set(p, &r), SH_OK);
         double c[ROT_MAXO * ROT_MAXO] = {0}, g[ROT_MAXO * ROT_MAXO];
         ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);

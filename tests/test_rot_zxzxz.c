@@ -80,7 +80,7 @@ END_TEST
 START_TEST(test_band) { rot_check_band(SH_ROT_ZXZXZ, 60); }
 END_TEST
 
-/* The sparse apply executes, per band l, three z rotations (4l) and two
+/* The loop kernel's sparse apply executes, per band l, three z rotations (4l) and two
  * X products over the l²+l+1 non-zeros: Σ_{l<n} = n(2n²+18n−14)/3, the
  * paper's count; the set computes the Chebyshev multiple angles of α, β, γ
  * (2 per m = 2..n−1 each), which the paper leaves out, once per rotation. */
@@ -90,7 +90,7 @@ START_TEST(test_mults)
     sh_rotation_from_euler(0.2, 0.9, 1.4, &r);
     for (uint64_t n = 1; n <= ROT_MAXO; n++) {
         sh_rot_plan *p;
-        ck_assert_int_eq(sh_rot_plan_create((int)n, SH_ROT_ZXZXZ, SH_PREC_DOUBLE, SH_CS, &p), SH_OK);
+        ck_assert_int_eq(sh_rot_plan_create_kernel((int)n, SH_ROT_ZXZXZ, SH_PREC_DOUBLE, SH_CS, SH_KERNEL_SCALAR, &p), SH_OK);
         ck_assert_int_eq(sh_rot_plan_set(p, &r), SH_OK);
         double c[ROT_MAXO * ROT_MAXO] = {0}, g[ROT_MAXO * ROT_MAXO];
         ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);

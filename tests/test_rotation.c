@@ -3,7 +3,7 @@
  *
  * Truths (none from our own output):
  *  - pointwise: g = R_sh c satisfies Σ g_i y_i(s) = Σ c_i y_i(R⁻¹s) (sh_eval_dir,
- *    the basis of the foundation issue, tested against GSL), in both conventions;
+ *    the basis evaluation, tested against GSL), in both conventions;
  *  - the MPFR reference, itself checked by recomputation with 100 more bits;
  *  - identities: R Rᵀ = I, R(A)R(B) = R(AB), R(R⁻¹) = R(R)ᵀ;
  *  - matrices built from angles by hand (Rz, Ry written out), quaternion and
@@ -22,7 +22,7 @@ static double urand(void)
     return (double)(rng_state >> 11) / 9007199254740992.0;
 }
 
-/* The rotation set of the issue: seeded random ones plus the extremes. */
+/* The rotation set: seeded random ones plus the extremes. */
 #define NROT 14
 static void rotation_set(sh_rotation *r)
 {
@@ -52,7 +52,7 @@ static void mat3_mul(const double *A, const double *B, double *C)
 /* ---------------------------------------------------------------- input */
 START_TEST(test_euler_matrix_by_hand)
 {
-    /* R = Rz(α) Ry(β) Rz(γ) multiplied out here from CONVENTIONS.md */
+    /* R = Rz(α) Ry(β) Rz(γ) multiplied out here from docs/CONVENTIONS.md */
     const double a = 0.3, b = 1.2, g = -2.1;
     const double Rza[9] = {cos(a), -sin(a), 0, sin(a), cos(a), 0, 0, 0, 1};
     const double Ryb[9] = {cos(b), 0, sin(b), 0, 1, 0, -sin(b), 0, cos(b)};
@@ -236,7 +236,7 @@ END_TEST
 
 START_TEST(test_methods_vs_reference)
 {
-    /* issue 3 "done": every method within 1e-13 of the reference at orders
+    /* the accuracy shlab requires: every method within 1e-13 of the reference at orders
      * ≤ 10 over the rotation set, both conventions; float within 2e-6 */
     const int order = 10;
     sh_rotation set[NROT];

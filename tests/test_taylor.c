@@ -62,7 +62,7 @@ START_TEST(test_deriv_two_ways)
 END_TEST
 
 /* 5-point central differences of blanco's R_Y: first and second derivative */
-/* Large k and large β (issue 5: any k ≥ 0, any β).  Truth for k = 40 at
+/* Large k and large β (deriv takes any k ≥ 0 and any β).  Truth for k = 40 at
  * order 3: J of bands 1, 2 has eigenvalues 0, ±i (, ±2i), so it satisfies
  * J⁵ = −5J³ − 4J (minimal polynomial x(x²+1)(x²+4)); J^40 is built here from
  * the closed-form J and its powers 2..4 (dense products) by that recurrence,
@@ -394,7 +394,7 @@ START_TEST(test_taylor_accuracy)
 }
 END_TEST
 
-/* multiplications counted by the loops: the set (once per rotation) 2 (β²/2)
+/* multiplications counted by the loop kernels (SH_KERNEL_SCALAR): the set (once per rotation) 2 (β²/2)
  * + multiple angles 4(n−2); one apply, per band l ≥ 1: 8l + c(2l+1),
  * c = 3, 5, 8 (rot_taylor.c). */
 START_TEST(test_taylor_mults)
@@ -405,7 +405,7 @@ START_TEST(test_taylor_mults)
     for (int t = 0; t < 3; t++)
         for (uint64_t n = 1; n <= ROT_MAXO; n++) {
             sh_rot_plan *p;
-            ck_assert_int_eq(sh_rot_plan_create((int)n, TAYLORS[t], SH_PREC_DOUBLE, SH_CS, &p), SH_OK);
+            ck_assert_int_eq(sh_rot_plan_create_kernel((int)n, TAYLORS[t], SH_PREC_DOUBLE, SH_CS, SH_KERNEL_SCALAR, &p), SH_OK);
             ck_assert_int_eq(sh_rot_plan_set(p, &r), SH_OK);
             double v[ROT_MAXO * ROT_MAXO] = {0}, g[ROT_MAXO * ROT_MAXO];
             ck_assert_int_eq(sh_rot_plan_apply(p, v, g), SH_OK);

@@ -2,26 +2,46 @@
 # deps.sh — make sure the Debian packages shlab needs are installed.
 # As root: installs what is missing (apt-get update first).  Otherwise: prints
 # the exact command to run and fails.  --quiet: say nothing when all is there.
+# OPT_PKGS are peers for optional tests and benchmarks (tests/peers): `make
+# deps` (this script without --quiet) installs them as root; otherwise their
+# absence only skips those tests, with a message.
 set -eu
 PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpfr-dev check gnuplot-nox"
+PKGS="$PKGS libfftw3-dev"  # fast transforms (FFTW3 in φ)
 PKGS="$PKGS parallel" # GNU parallel: sweeps run as shards on one machine (README, make check)
-missing=""
-for p in $PKGS; do
-    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-        missing="$missing $p"
+# peers: HEALPix C++ (rotation oracle), libsharp (transform oracle)
+OPT_PKGS="libhealpix-cxx-dev libsharp-dev"
+missing_of() {
+    m=""
+    for p in $1; do
+        if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+            m="$m $p"
+        fi
+    done
+    echo "$m"
+}
+quiet=0
+[ "${1:-}" = "--quiet" ] && quiet=1
+missing=$(missing_of "$PKGS")
+optional=""
+[ "$quiet" = 1 ] || optional=$(missing_of "$OPT_PKGS")
+if [ -z "$missing" ] && { [ -z "$optional" ] || [ "$(id -u)" != 0 ]; }; then
+    if [ "$quiet" = 0 ]; then
+        echo "deps: all present ($PKGS)"
+        [ -z "$optional" ] || echo "deps: optional peers missing:$optional (their tests are skipped; run as root to install)"
     fi
-done
-if [ -z "$missing" ]; then
-    [ "${1:-}" = "--quiet" ] || echo "deps: all present ($PKGS)"
     exit 0
 fi
 cmd="apt-get update && apt-get install -y --no-install-recommends$missing"
 if [ "$(id -u)" = 0 ]; then
-    echo "deps: installing$missing"
+    echo "deps: installing$missing$optional"
     export DEBIAN_FRONTEND=noninteractive
     apt-get update -qq
     # shellcheck disable=SC2086
-    apt-get install -y -qq --no-install-recommends $missing
+    [ -z "$missing" ] || apt-get install -y -qq --no-install-recommends $missing
+    # shellcheck disable=SC2086
+    [ -z "$optional" ] || apt-get install -y -qq --no-install-recommends $optional ||
+        echo "deps: optional peers not installed:$optional (their tests are skipped)"
 else
     echo "deps: missing packages:$missing" >&2
     echo "deps: run as root:  $cmd" >&2

@@ -3,24 +3,43 @@
 #include "exp.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 static const char *outdir = ".";
+static char partdir[4096] = ".";
 static char command[2048];
 static const char *revision = "unknown";
 static void exp_shard_setup(int argc, char **argv);
 
 void exp_init(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
+    /* --help answers without running (and without touching OUTDIR); any
+     * other option, a missing or an extra argument is a usage error */
+    const char *name = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("Usage: %s OUTDIR\n\n"
+                   "Run the experiment %s (experiments/%s/%s.c: the comment at its top says\n"
+                   "what it measures) and write its data files and its fragments of the report\n"
+                   "(index.md, claims.tsv; timings under OUTDIR/timing/) into OUTDIR.  The plots\n"
+                   "come from experiments/%s/*.gp.  `make report` runs every experiment into\n"
+                   "reports/NAME and assembles the report.  Environment: REV (the revision\n"
+                   "stamped into the files), SHLAB (the shlab binary, for experiments that call\n"
+                   "it), PROBES_DIR (default data/probes).\n",
+                   name, name, name, name, name);
+            exit(fflush(stdout) == 0 && !ferror(stdout) ? 0 : 2);
+        }
+    if (argc != 2 || argv[1][0] == '-' || !argv[1][0]) {
+        fprintf(stderr, "%s: error: usage: %s OUTDIR (or --help)\n", name, name);
         exit(2);
     }
     outdir = argv[1];
     mkdir(outdir, 0777);
+    snprintf(partdir, sizeof partdir, "%s", outdir);
     const char *r = getenv("REV");
     if (r && *r) revision = r;
     size_t n = 0;
@@ -37,12 +56,34 @@ void exp_init(int argc, char **argv)
     exp_shard_setup(argc, argv); /* --shard I/N, --merge FILE... */
 }
 
-const char *exp_outdir(void) { return outdir; }
+const char *exp_outdir(void) { return partdir; }
+
+const char *exp_revision(void) { return revision; }
+
+void exp_part(const char *part)
+{
+    static char done[16][64];
+    static int ndone;
+    if (!part) {
+        snprintf(partdir, sizeof partdir, "%s", outdir);
+        return;
+    }
+    snprintf(partdir, sizeof partdir, "%s/%s", outdir, part);
+    mkdir(partdir, 0777);
+    for (int i = 0; i < ndone; i++)
+        if (!strcmp(done[i], part)) return;
+    if (ndone < 16) snprintf(done[ndone++], sizeof done[0], "%s", part);
+    char p[4200];
+    snprintf(p, sizeof p, "%s/index.md", partdir);
+    remove(p);
+    snprintf(p, sizeof p, "%s/claims.tsv", partdir);
+    remove(p);
+}
 
 FILE *exp_data(const char *name, const char *title, const char *columns)
 {
-    char p[4096];
-    snprintf(p, sizeof p, "%s/%s", outdir, name);
+    char p[4200];
+    snprintf(p, sizeof p, "%s/%s", partdir, name);
     FILE *f = fopen(p, "w");
     if (!f) {
         fprintf(stderr, "experiment: cannot write %s: %s\n", p, strerror(errno));
@@ -55,8 +96,8 @@ FILE *exp_data(const char *name, const char *title, const char *columns)
 
 static void append(const char *file, const char *text)
 {
-    char p[4096];
-    snprintf(p, sizeof p, "%s/%s", outdir, file);
+    char p[4200];
+    snprintf(p, sizeof p, "%s/%s", partdir, file);
     FILE *f = fopen(p, "a");
     if (!f) {
         fprintf(stderr, "experiment: cannot write %s\n", p);
@@ -98,6 +139,15 @@ void exp_claim(const char *id, const char *source, const char *statement, const 
         strncat(line, i < 7 ? "\t" : "\n", sizeof line - strlen(line) - 1);
     }
     append("claims.tsv", line);
+}
+
+exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi)
+{
+    const double a = fmin(r->q1, r->median * (1 - EXP_RUN_TO_RUN));
+    const double b = fmax(r->q3, r->median * (1 + EXP_RUN_TO_RUN));
+    if (a >= lo && b <= hi) return EXP_INSIDE;
+    if (b < lo || a > hi) return EXP_OUTSIDE;
+    return EXP_STRADDLES;
 }
 
 void exp_progress(const char *fmt, ...)

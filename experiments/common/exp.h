@@ -8,6 +8,18 @@
  * run_all.sh assembles into the report:
  *   OUTDIR/index.md    one paragraph per figure or table (what it shows)
  *   OUTDIR/claims.tsv  rows of the claims ledger (no header)
+ *
+ * Parts.  OUTDIR itself holds the deterministic results: the same code
+ * writes the same bytes, so `make report` leaves them unchanged.  Two other
+ * kinds of result live in subfolders of OUTDIR, selected by exp_part():
+ *   "timing"  machine-dependent results (timings), rewritten by every run;
+ *             run_all.sh gathers them into reports/timing.md and
+ *             reports/claims_timing.tsv, never into index.md / claims.tsv;
+ *   any other name (e.g. "probes", "instructions")  a kept part: results
+ *             of an optional input or tool, regenerated only when it is there
+ *             and otherwise left as they are (the experiment does not select
+ *             the part); its text names the revision that computed it.
+ * A gnuplot script experiments/NAME/NAME.PART.gp renders into OUTDIR/PART.
  */
 #ifndef SHLAB_EXP_H
 #define SHLAB_EXP_H
@@ -18,7 +30,13 @@
 
 /* Set up from argv: OUTDIR, the revision (env REV) and the command line. */
 void exp_init(int argc, char **argv);
+/* The folder the current part writes into (OUTDIR or OUTDIR/PART). */
 const char *exp_outdir(void);
+/* Select a part: NULL = OUTDIR; "timing" or a kept part's name = OUTDIR/PART
+ * (created; its index.md and claims.tsv are reset the first time). */
+void exp_part(const char *part);
+/* The code revision given by `make report` (env REV), or "unknown". */
+const char *exp_revision(void);
 /* Open OUTDIR/name for writing and print the header:
  *   # <title>
  *   # shlab revision: <rev>
@@ -28,10 +46,20 @@ const char *exp_outdir(void);
 FILE *exp_data(const char *name, const char *title, const char *columns);
 /* Append a paragraph (printf-style) to OUTDIR/index.md. */
 void exp_index(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-/* Append one claims-ledger row.  verdict: reproduced | differs | not-applicable. */
+/* Append one claims-ledger row.  verdict: reproduced | differs | not-applicable,
+ * and for speed claims (timing part) also not-measured (noisy run) and
+ * inconclusive (the ratio's uncertainty straddles the tolerance). */
 void exp_claim(const char *id, const char *source, const char *statement, const char *printed,
                const char *measured, const char *tolerance, const char *verdict,
                const char *evidence);
+/* Speed claims (timing part).  The uncertainty of a paired ratio is its
+ * quartiles over the rounds widened by ±EXP_RUN_TO_RUN, the spread of
+ * paired ratios between repeated runs on a quiet machine (README, "Rotation
+ * speed").  EXP_INSIDE: that interval lies in [lo, hi]; EXP_OUTSIDE: wholly
+ * outside it; EXP_STRADDLES: neither (the verdict is then "inconclusive"). */
+#define EXP_RUN_TO_RUN 0.05
+typedef enum { EXP_INSIDE, EXP_OUTSIDE, EXP_STRADDLES } exp_side;
+exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi);
 /* Progress line on stderr. */
 void exp_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Abort the experiment with a message if st != SH_OK. */

@@ -57,7 +57,7 @@ int main(int argc, char **argv)
               lmax, worst_mine, worst_gsl, worst_diff);
     char meas[128];
     snprintf(meas, sizeof meas, "%.2e (GSL %.2e)", worst_mine, worst_gsl);
-    exp_claim("issue2-legendre-l2000", "shlab issue 2 (Holmes & Featherstone 2002)",
+    exp_claim("legendre-l2000", "shlab (Holmes & Featherstone 2002)",
               "normalised Legendre recurrence stable to at least l = 2000 (addition theorem)",
               "-", meas, "1e-11", worst_mine <= 1e-11 ? "reproduced" : "differs",
               "legendre_stability/legendre_stability.dat");

@@ -14,7 +14,11 @@
  * Â_l c_lm with Â_l = sqrt(4π/(2l+1)) z_l, z_l the zonal coefficients of
  * max(0, cosθ) (sh_lobe_zonal, e = 1).  Its relative L2 error after n bands
  * is sqrt(Σ_{l≥n} Â_l² e_l / Σ_l Â_l² e_l), e_l = Σ_m c_lm² (sum to l = 511,
- * where Â_l² e_l is negligible). */
+ * where Â_l² e_l is negligible).
+ *
+ * The results are a kept part (reports/probe_bands/probes/, exp.h): without
+ * the probes the experiment leaves them as they are, and their text names the
+ * revision that computed them. */
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -43,14 +47,10 @@ int main(int argc, char **argv)
         closedir(d);
     }
     if (np == 0) {
-        fprintf(stderr, "probe_bands: SKIPPED — no probes in %s (run `make probes`)\n", dir);
-        exp_index("**Skipped:** no HDR probes in `%s`. Run `make probes` (extracts the eight CC0 world "
-                  "probes from Debian's blender-data package) and `make report` again.",
-                  dir);
-        FILE *f = exp_data("probe_bands.dat", "probe bands (skipped: no probes)", "none");
-        fclose(f);
+        fprintf(stderr, "probe_bands: no probes in %s (run `make probes`): the last results are kept as they are\n", dir);
         return 0;
     }
+    exp_part("probes");
     qsort(names, np, sizeof *names, cmp);
     const int order = LMAX_ORDER, n = order * order;
     FILE *fb = exp_data("probe_band_energy.dat", "relative energy per band of each probe's luminance",
@@ -147,6 +147,8 @@ int main(int argc, char **argv)
     for (int p = 0; p < np; p++) fprintf(fn, "%s\n", names[p]);
     fclose(fn);
     exp_index("![energy per band](probe_bands.png)\n\n"
+              "Computed at code revision `%s` from the probes of `make probes` (kept as they are by a "
+              "`make report` without them). "
               "Real HDR scenes (%d CC0 world probes from Debian's blender-data, 1024×512 lat-long, DWAB): "
               "relative L2 error of the luminance after keeping bands 0..n−1, from the Parseval residual "
               "E − Σ c² (pixel centres × exact solid angles, order ≤ %d). Smallest order per probe:\n\n%s\n"
@@ -156,7 +158,7 @@ int main(int argc, char **argv)
               "Irradiance (what a diffuse surface sees: radiance convolved with the clamped cosine, "
               "Â_l = sqrt(4π/(2l+1)) z_l from the closed-form lobe) needs orders %d–%d for 1 %%, and the usual "
               "9-coefficient (order 3) irradiance leaves %.1f–%.1f %% relative L2 error on these scenes.",
-              np, order, table, order, irr_o1_min, irr_o1_max, 100 * irr3_min, 100 * irr3_max);
+              exp_revision(), np, order, table, order, irr_o1_min, irr_o1_max, 100 * irr3_min, 100 * irr3_max);
     for (int p = 0; p < np; p++) free(names[p]);
     free(coeffs);
     free(y);

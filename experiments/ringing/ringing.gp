@@ -1,31 +1,42 @@
 set terminal pngcairo size 1000,520 enhanced font ",11"
 set output outdir.'/ringing.png'
 f = outdir.'/ringing.dat'
-set multiplot layout 1,2
+set multiplot layout 1,2 title "Ringing: most negative value of the order-n reconstruction of a non-negative light"
 set xlabel "order n"
-set ylabel "most negative value"
+set ylabel "most negative value (0 = no ringing)"
 set key bottom right
-set grid
+set grid lc rgb "#dddddd"
+set xrange [1.5:16.5]
+set xtics 2,2,16
+cols = "#E15759 #4E79A7 #59A14F #F28E2B"
+wt(k) = k == 0 ? "no window" : k == 1 ? "Gauss window" : k == 2 ? "Hann window" : "Lanczos window"
 do for [s=0:1] {
-  set title (s==0 ? "Green's light" : "cap 30°")
-  plot for [k=0:3] f index s using 1:($3==k?$4:1/0) with linespoints pt 7 ps 0.6 title word("none gauss hann lanczos", k+1)
+  set title (s==0 ? "Green's light" : "cap, half-angle 30°")
+  # rows: per order the four windows in turn
+  plot for [k=0:3] f index s every 4::k using 1:4 with linespoints pt 7 ps 0.6 lw 1.5 lc rgb word(cols, k+1) \
+       title wt(k)
 }
 unset multiplot
 
 set output outdir.'/ringing_images.png'
-set terminal pngcairo size 1200,330 enhanced font ",10"
-set multiplot layout 1,3
+set terminal pngcairo size 1300,330 enhanced font ",10"
+set multiplot layout 1,3 margins 0.05,0.92,0.15,0.85 spacing 0.05
+set size ratio 0.5
+set colorbox user origin screen 0.935, screen 0.2 size screen 0.012, screen 0.6
 unset grid
 unset key
 set xlabel "φ"
 set ylabel "θ"
-set yrange [*:*] reverse
+set xrange [-0.5:255.5]
+
+set yrange [127.5:-0.5]
 set palette defined (-1 "#2166ac", 0 "white", 1 "#b2182b")
 set cbrange [-1.2:1.2]
 set xtics ("0" 0, "π" 128, "2π" 255)
 set ytics ("0" 0, "π/2" 64, "π" 127)
 set title "Green's light"
 plot outdir.'/green_original.dat' matrix with image
+unset colorbox
 set title "order 4"
 plot outdir.'/green_order4.dat' matrix with image
 set title "order 4, Hann window"

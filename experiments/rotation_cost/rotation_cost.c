@@ -1,4 +1,4 @@
-/* rotation_cost — issue 3's cost table: the multiplications each method
+/* rotation_cost — the cost table: the multiplications each method
  * actually executes per rotation (counted by the kernels' loops, from their
  * trip counts; `sh_rot_plan_mults`), set-up and apply separately, against the
  * papers' counts:
@@ -76,7 +76,7 @@ int main(int argc, char **argv)
         tl += (size_t)snprintf(tab + tl, sizeof tab - tl, "\n");
     }
     fclose(f);
-    exp_index("Issue 3's cost table: multiplications per rotation as executed (each kernel adds "
+    exp_index("The cost table: multiplications per rotation as executed (each kernel adds "
               "the trip count × multiplications of every loop it runs; a division counts as one), "
               "set-up (building the matrix, or nothing for the sparse methods) and apply (one "
               "vector), against the papers' formulas. A dense rotation matrix costs n(4n²−1)/3 "

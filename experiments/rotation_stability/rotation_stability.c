@@ -1,4 +1,4 @@
-/* rotation_stability — issue 3's stability map: how each exact rotation
+/* rotation_stability — the stability map: how each exact rotation
  * method's error grows with the band, in double up to l = 1000 and in float
  * up to l = 64, over the fixed rotation set of `shlab stability` (β = 0,
  * 1e-12, π/2, π−1e-9, π, gimbal lock, random), and where each one breaks.
@@ -166,7 +166,7 @@ int main(int argc, char **argv)
                 snprintf(summary_ivanic, sizeof summary_ivanic, "orth %s at l = 50, %s at l = 100, first > 2.2e-10 at l = %s, fails (> 1) after l = %d",
                          o[0], o[1], b2, a.last_band);
         }
-    exp_index("Issue 3's stability map: the error of each exact rotation method against the band, "
+    exp_index("The stability map: the error of each exact rotation method against the band, "
               "as the maximum over the 10 rotations of `shlab stability` (β = 0, 1e-12, π/2, "
               "π−1e-9, π, the gimbal-lock cases, two random). *orth* = max|RRᵀ − I| (exact to l = "
               "128, two-probe estimate above), *hom* = |R(a)R(b)v − R(ab)v| on unit probes, *ref* = "
@@ -182,7 +182,7 @@ int main(int argc, char **argv)
               "(zxzxz with generated X±90 blocks, blanco's m-recurrence for d^l(β)) stay near l·ε to "
               "l = 1000; the direct Wigner sum cancels catastrophically (its terms grow like 4^l).\n",
               table);
-    exp_claim("reading-high-degree-recursions", "READING.md (high degree)",
+    exp_claim("high-degree-recursions", "Gumerov & Duraiswami 2015; Lessig, de Witt & Fiume 2012 (large degree)",
               "recursions exact to 1e-15 at l <= 50 can lose all accuracy by l ~ 100-200",
               "qualitative", summary_ivanic, "orth > 2.2e-10 by l = 200", "reproduced",
               "rotation_stability/ivanic_double.dat (Ivanic-Ruedenberg); Choi's complex recursion behaves the same (choi_double.dat)");

@@ -9,7 +9,10 @@
  *            φ = 135°): rotate the capture so that d becomes +z (zxzxz plan),
  *            scale, rotate back; the exact radiance by the ray-sphere hit
  *            about d, the untruncated reference about d without SH rotations.
- * Every scene with plain and energy-preserving scaling; orders 2, 4, 6, 8. */
+ * Every scene with plain and energy-preserving scaling; orders 2, 4, 6, 8.
+ * The probe scene is a kept part (reports/scale_scenes/probes/, exp.h):
+ * without a probe it is left as it is, and its text names the revision that
+ * computed it. */
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -166,15 +169,28 @@ int main(int argc, char **argv)
         sh_image_free(&img);
         have_probe = 0;
     }
-    f = exp_data("probe.dat", have_probe ? probe : "probe SKIPPED: none in PROBES_DIR or data/probes",
-                 "k order family(0 midrange) energy err_scaled err_geom err_trunc; one block per order");
     if (have_probe) {
+        exp_part("probes");
+        f = exp_data("probe.dat", probe, "k order family(0 midrange) energy err_scaled err_geom err_trunc; one block per order");
         sh_scale_scene ps = {SH_SCENE_MIDRANGE, 0, 0, 0, NULL, NULL, &img, 256, {0, 0, 0}, 0};
         sweep(f, &ps, kp, nkp, mid_f, 1, 0, res_probe);
+        fclose(f);
+        /* kp[q] = -0.8 + 0.2 q → q = 7 is k = 0.6 */
+        char me[5200];
+        snprintf(me, sizeof me, "%s, order 4, k = 0.6: plain %.3f, energy-preserving %.3f (relative L2 of luminance coefficients)",
+                 probe, res_probe[1][0][0][7][0], res_probe[1][0][1][7][0]);
+        exp_claim("scale-probe-midrange", "Wang et al. 2006, Sec. 3.2", "mid-range lighting from a captured environment",
+                  "qualitative (Fig. 11)", me, "measured", "reproduced", "scale_scenes/probes/probe.dat");
+        exp_index("![probe](scale_scenes_probe.png)\n\n"
+                  "Mid-range lighting from a captured environment: the same sweep with the first HDR probe found, "
+                  "`%s` (luminance, bilinear lookup, 256-node product rule; computed at code revision `%s`, kept "
+                  "as it is by a `make report` without the probes of `make probes`). Order 4, k = 0.6: plain %.3f, "
+                  "energy-preserving %.3f.",
+                  probe, exp_revision(), res_probe[1][0][0][7][0], res_probe[1][0][1][7][0]);
+        exp_part(NULL);
     } else {
-        fprintf(stderr, "scale_scenes: no probe found; the probe scene is SKIPPED (run `make probes`)\n");
+        fprintf(stderr, "scale_scenes: no probe found (run `make probes`): the probe scene is kept as it is\n");
     }
-    fclose(f);
 
     /* ---- images (Figs. 5-7 in spirit), order 8, 96×48 lat-long ---- */
     const int W = 96, NO = 8, n = NO * NO;
@@ -279,17 +295,9 @@ int main(int argc, char **argv)
              "(cone) geometry k = %.2f: %.2f; order 8: %.2f and %.2f",
              ks[k2], res_sph[1][1][0][k2][0], res_sph[1][1][0][k2][2], kc[k2], res_cone[1][1][0][k2][0],
              res_sph[3][1][0][k2][0], res_cone[3][1][0][k2][0]);
-    exp_claim("scale-truncation", "shlab (issue 4)",
+    exp_claim("scale-truncation", "shlab",
               "scaling a truncated projection: the error when shrinking (k > 1) is dominated by truncation, not by the family",
               "not stated in the paper", me, "measured", "reproduced", "scale_scenes/sphere.dat, cone.dat");
-    if (have_probe) {
-        /* kp[q] = -0.8 + 0.2 q → q = 7 is k = 0.6 */
-        snprintf(me, sizeof me, "%s, order 4, k = 0.6: plain %.3f, energy-preserving %.3f (relative L2 of luminance coefficients)",
-                 probe, res_probe[1][0][0][7][0], res_probe[1][0][1][7][0]);
-        exp_claim("scale-probe-midrange", "Wang et al. 2006, Sec. 3.2", "mid-range lighting from a captured environment",
-                  "qualitative (Fig. 11)", me, "measured", "reproduced", "scale_scenes/probe.dat");
-    }
-
     exp_index("![sphere occluder](scale_scenes_sphere.png)\n\n"
               "**Sphere occluder** (radius r/2, centre at θ = 0): the occlusion seen from distance d is exactly the "
               "cap arcsin(ρ/d) (closed form, sh_cap_zonal). It is projected at d = r, scaled to d = k r with the "
@@ -303,7 +311,7 @@ int main(int argc, char **argv)
               "**Cone occluder** (θ0 = 45°, rim at height r/2·(1 + 0.3 cos φ): not zonal). Its rim lies on the "
               "cone surface, so the cone family is exact geometry: the dashed plain cone curve sits at %.0e "
               "(quadrature level) for every k and order, and what remains is truncation only. This independently "
-              "confirms the cone τ of CONVENTIONS.md (also checked against a 3-D ray-cone intersection in the "
+              "confirms the cone τ of docs/CONVENTIONS.md (also checked against a 3-D ray-cone intersection in the "
               "unit tests).\n\n"
               "![mid-range lighting](scale_scenes_midrange.png)\n\n"
               "**Mid-range lighting** (two smooth non-zonal lobes on a sphere of radius R, captured at the centre, "
@@ -331,7 +339,6 @@ int main(int argc, char **argv)
               "order); along +z: %.3f, %.3f. The errors depend on the direction only through the environment's "
               "position relative to the axis.\n\n"
               "![tilted reconstructions](scale_scenes_tilted_images.png)\n\n"
-              "%s"
               "![reconstructions](scale_scenes_images.png)\n\n"
               "Reconstructions in the spirit of Figs. 5 and 7 (lat-long, θ down): top, the exact cone-occluder "
               "visibility at k = 0.75, 1.3, 2; middle, order-8 reconstruction of cone-family scaling of the capture "
@@ -342,9 +349,7 @@ int main(int argc, char **argv)
               ks[k2], res_sph[3][1][0][k2][1], res_sph[3][0][0][k2][1], fmax(worst_cone_geom, 1e-16),
               fmax(worst_mid_plain_geom, 1e-16), res_mid[1][0][0][q05][0], res_mid[1][0][1][q05][1],
               fmax(worst_tilt_plain_geom, 1e-16), res_tilt[1][0][0][q05][0], res_tilt[1][0][1][q05][0],
-              res_tilt[1][0][1][q05][1], res_mid[1][0][0][q05][0], res_mid[1][0][1][q05][0], have_probe ? "![probe](scale_scenes_probe.png)\n\nThe same with the first HDR probe found (luminance, "
-                           "bilinear lookup, 256-node product rule).\n\n"
-                         : "**Probe scene skipped:** no HDR probe in `$PROBES_DIR` or `data/probes` (run `make probes`).\n\n");
+              res_tilt[1][0][1][q05][1], res_mid[1][0][0][q05][0], res_mid[1][0][1][q05][0]);
     sh_image_free(&img);
     return 0;
 }

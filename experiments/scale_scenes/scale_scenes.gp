@@ -13,13 +13,17 @@ do for [sc in "sphere cone"] {
   set logscale x
   set autoscale xfix
   set xtics (0.5, 0.7, 1, 1.4, 2, 2.5)
-  set yrange [1e-17:10]
+  # the sphere's errors stay above 1e-6; the cone's plain geometry is exact (1e-16)
+  set yrange [(sc eq "sphere" ? 1e-6 : 1e-17):10]
   do for [o=0:3] {
+    if (o == 0) { set key bottom right font ",8" } else { unset key }
     set title sprintf("order %d", 2+2*o)
-    plot f index o using 1:(($3==0&&$4==0)?$5:1/0) with lines lw 2 lc 1 title "linear plain", \
-         f index o using 1:(($3==0&&$4==1)?$5:1/0) with lines lw 2 lc 2 title "linear energy", \
+    # energy-preserving curves of both families nearly coincide: the linear
+    # one is drawn wide and light under the cone one
+    plot f index o using 1:(($3==0&&$4==1)?$5:1/0) with lines lw 5 lc rgb "#a6d9a0" title "linear energy", \
+         f index o using 1:(($3==0&&$4==0)?$5:1/0) with lines lw 2 lc 1 title "linear plain", \
          f index o using 1:(($3==1&&$4==0)?$5:1/0) with lines lw 2 lc 3 title "cone plain", \
-         f index o using 1:(($3==1&&$4==1)?$5:1/0) with lines lw 2 lc 4 title "cone energy", \
+         f index o using 1:(($3==1&&$4==1)?$5:1/0) with lines lw 1.5 lc 4 title "cone energy", \
          f index o using 1:(($3==0&&$4==0)?($6>1e-17?$6:1e-17):1/0) with lines dt 2 lc 1 title "geometry: linear plain", \
          f index o using 1:(($3==1&&$4==0)?($6>1e-17?$6:1e-17):1/0) with lines dt 2 lc 3 title "geometry: cone plain", \
          f index o using 1:(($3==1&&$4==1)?$6:1/0) with lines dt 2 lc 4 title "geometry: cone energy"
@@ -29,67 +33,73 @@ do for [sc in "sphere cone"] {
   set xtics autofreq
 }
 
-probes = system("grep -qi skipped ".outdir."/probe.dat && echo midrange midrange_tilted || echo 'midrange midrange_tilted probe'")
-do for [sc in probes] {
-  set output outdir.'/scale_scenes_'.sc.'.png'
-  f = outdir.'/'.sc.'.dat'
-  set terminal pngcairo size 1000,420 enhanced font ",10"
-  set multiplot layout 1,2 title (sc eq "midrange" ? "Mid-range lighting (two lobes on a sphere of radius R), centre → d = kR along +z" : sc eq "midrange_tilted" ? "The same lobes, centre → d = kR along (θ,φ) = (60°,135°): rotate to the axis, scale, rotate back" : "Mid-range lighting from an HDR probe, centre → d = kR")
-  set yrange [1e-17:10]
-  set autoscale xfix
-  set title "plain (ψ = sin θ)"
-  plot for [o=0:3] f index o using 1:($4==0?$5:1/0) with linespoints pt 7 ps 0.4 title sprintf("order %d", 2+2*o), \
-       f index 3 using 1:($4==0?($6>1e-17?$6:1e-17):1/0) with lines dt 2 lc rgb "black" title "geometry (untruncated)"
-  set title "energy-preserving (ψ = sin τ·τ')"
-  plot for [o=0:3] f index o using 1:($4==1?$5:1/0) with linespoints pt 7 ps 0.4 title sprintf("order %d", 2+2*o), \
-       f index 3 using 1:($4==1?$6:1/0) with lines dt 2 lc rgb "black" title "geometry (untruncated)"
-  unset multiplot
-  set terminal pngcairo size 1200,760 enhanced font ",10"
+do for [sc in "midrange midrange_tilted"] {
+  load 'experiments/scale_scenes/midrange.gpi'
 }
 
-set output outdir.'/scale_scenes_images.png'
-set terminal pngcairo size 1200,700 enhanced font ",9"
+# Reconstructions as lat-long images (96×48 samples at pixel centres):
+# φ = 360°·(column + ½)/96 to the right, θ = 180°·(row + ½)/48 downwards.
 unset logscale
 unset grid
 unset key
-unset xlabel
-unset ylabel
 set format y "%g"
-set yrange [*:*] reverse
-set xrange [*:*]
-unset xtics
-unset ytics
-set multiplot layout 4,4
+set format x "%g"
+set xrange [0:360]
+set yrange [180:0]
+set xtics 0,90,360 font ",8" offset 0,0.3
+set ytics 0,45,180 font ",8" offset 0.5,0
+set mxtics 1
+set mytics 1
+set xlabel "φ (°)" font ",8" offset 0,1
+set ylabel "θ (°)" font ",8" offset 2.5,0
+set tics out scale 0.5
+set size ratio 0.5
+ll = "using (($1+0.5)*3.75):(($2+0.5)*3.75):3 with image"
+
+set output outdir.'/scale_scenes_images.png'
+set terminal pngcairo size 1300,860 enhanced font ",9"
+set multiplot layout 4,4 margins 0.04,0.93,0.05,0.93 spacing 0.05,0.08 \
+    title "Reconstructions (lat-long maps; cone rows: visibility, 1 = occluded; mid-range row: radiance)"
 set palette defined (-0.3 "#2166ac", 0 "white", 1 "#b2182b")
 set cbrange [-0.3:1.1]
+set cbtics 0.5 font ",8"
 ks = "0.75 1.3 2"
-do for [q=0:2] { set title "cone occluder, exact, k = ".word(ks,q+1); plot outdir.sprintf('/img_cone_exact_%d.dat', q) matrix with image }
-set multiplot next
-do for [q=0:2] { set title "cone-family scaling, order 8, k = ".word(ks,q+1); plot outdir.sprintf('/img_cone_scaled_%d.dat', q) matrix with image }
-set multiplot next
-do for [q=0:2] { set title "linear-family scaling, order 8, k = ".word(ks,q+1); plot outdir.sprintf('/img_cone_linear_%d.dat', q) matrix with image }
-set multiplot next
+do for [row=0:2] {
+  do for [q=0:2] {
+    if (row == 0 && q == 0) { set colorbox user origin screen 0.76, screen 0.32 size screen 0.012, screen 0.58; set cblabel "visibility" font ",9" } else { unset colorbox }
+    pre = word("cone_exact cone_scaled cone_linear", row+1)
+    set title (row == 0 ? "cone occluder, exact" : row == 1 ? "cone-family scaling, order 8" : "linear-family scaling, order 8").", k = ".word(ks,q+1)
+    plot outdir.sprintf('/img_%s_%d.dat', pre, q) matrix @ll
+  }
+  set multiplot next
+}
 set palette defined (0 "black", 0.5 "#d95f02", 1 "#ffff99")
 set cbrange [0:1.6]
+set cblabel "radiance" font ",9"
+set colorbox user origin screen 0.945, screen 0.06 size screen 0.012, screen 0.14
 set title "mid-range k = 0.7, exact"
-plot outdir.'/img_mid_exact.dat' matrix with image
+plot outdir.'/img_mid_exact.dat' matrix @ll
+unset colorbox
 set title "exact, order-8 projection"
-plot outdir.'/img_mid_exact_proj.dat' matrix with image
-set title "plain scaling of centre capture"
-plot outdir.'/img_mid_plain.dat' matrix with image
+plot outdir.'/img_mid_exact_proj.dat' matrix @ll
+set title "plain scaling of the centre capture"
+plot outdir.'/img_mid_plain.dat' matrix @ll
 set title "energy-preserving scaling"
-plot outdir.'/img_mid_energy.dat' matrix with image
+plot outdir.'/img_mid_energy.dat' matrix @ll
 unset multiplot
 
 set output outdir.'/scale_scenes_tilted_images.png'
-set terminal pngcairo size 1200,220 enhanced font ",9"
-set multiplot layout 1,4 title "mid-range k = 0.7 along (θ,φ) = (60°,135°), order 8 (lat-long, θ down)"
+set terminal pngcairo size 1300,260 enhanced font ",9"
+set multiplot layout 1,4 margins 0.04,0.93,0.17,0.82 spacing 0.05,0 \
+    title "mid-range k = 0.7 along (θ,φ) = (60°,135°), order 8 (lat-long maps of the radiance)"
+set colorbox user origin screen 0.945, screen 0.2 size screen 0.012, screen 0.6
 set title "exact"
-plot outdir.'/img_tilt_exact.dat' matrix with image
+plot outdir.'/img_tilt_exact.dat' matrix @ll
+unset colorbox
 set title "exact, order-8 projection"
-plot outdir.'/img_tilt_exact_proj.dat' matrix with image
+plot outdir.'/img_tilt_exact_proj.dat' matrix @ll
 set title "plain: rotate, scale, rotate back"
-plot outdir.'/img_tilt_plain.dat' matrix with image
+plot outdir.'/img_tilt_plain.dat' matrix @ll
 set title "energy-preserving"
-plot outdir.'/img_tilt_energy.dat' matrix with image
+plot outdir.'/img_tilt_energy.dat' matrix @ll
 unset multiplot

@@ -92,7 +92,7 @@ int main(int argc, char **argv)
     static const char *const claim_ids[3] = {"scale-interp-budget-cone", "scale-interp-budget-linear",
                                              "scale-interp-budget-midrange"};
     for (int st = 0; st < 3; st++) {
-        /* the interpolation table, one ledger row per setting (issue 4: "the
+        /* the interpolation table, one ledger row per setting ("the
          * interpolation table in the claims ledger") */
         char row[2048];
         int rl = snprintf(row, sizeof row, "order 4, 400 dense k, largest absolute entry error; S = samples: ");
@@ -125,7 +125,7 @@ int main(int argc, char **argv)
                  "interpolation error of M(k) per sample budget, %s: the paper's 40 geometric samples with linear "
                  "interpolation against fewer and more samples, uniform spacing and natural cubic splines (gsl_spline)",
                  sets[st].label);
-        exp_claim(claim_ids[st], "shlab (issue 4), extending Wang et al. 2006, Sec. 2.2", stmt,
+        exp_claim(claim_ids[st], "shlab, extending Wang et al. 2006, Sec. 2.2", stmt,
                   "not stated in the paper", row, "measured (table)", "not-applicable", "scale_smoothness/interp.dat");
         fprintf(fi, "\n\n");
     }

@@ -178,7 +178,7 @@ int main(int argc, char **argv)
               "Fig. 2 (pattern for N = 4)", me, "1e-13", worst_off <= 1e-13 ? "reproduced" : "differs",
               "scale_sparsity/sparsity.dat");
     snprintf(me, sizeof me, "max |M − independent 2-D product rule| = %.1e (N <= 8, 4 cases, both conventions)", worst_acc);
-    exp_claim("scale-matrix-accuracy", "shlab (issue 4)",
+    exp_claim("scale-matrix-accuracy", "shlab",
               "scaling matrices by analytic φ + composite Gauss-Legendre θ agree with an independent computation",
               "≤ 1e-10", me, "1e-10", worst_acc <= 1e-10 ? "reproduced" : "differs", "scale_sparsity/sparsity.dat");
     snprintf(me, sizeof me,

@@ -120,7 +120,7 @@ int main(int argc, char **argv)
     exp_claim("krivanek-sec32-lobe25", "Křivánek et al. 2005, Sec. 3.2 / Fig. 3",
               "the results for the Phong lobe cos^7 show good accuracy up to β = 25°", "good accuracy up to 25° (plot values not legible in our copy)",
               me, "relative error ≤ 1e-2", at25[0][1].lobe <= 1e-2 ? "reproduced" : "differs",
-              "taylor_error/figure3.dat; the errors are relative to the unit-length lobe vector (CONVENTIONS.md)");
+              "taylor_error/figure3.dat; the errors are relative to the unit-length lobe vector (docs/CONVENTIONS.md)");
     int order_ok = 1;
     for (int o = 0; o < 2; o++)
         if (!(at10[o][2].max < at10[o][1].max && at10[o][1].max < at10[o][0].max && at10[o][2].lobe < at10[o][1].lobe &&
@@ -181,7 +181,7 @@ int main(int argc, char **argv)
     exp_claim("krivanek-sec32-mean", "Křivánek et al. 2005, Sec. 3.2",
               "the average of E(β) over all unit-length Λ is the average singular value of D(β)", "stated", mc,
               "5% (Monte Carlo error ~0.5%)", mc_diff ? "differs" : "reproduced",
-              "E‖DΛ‖ over the unit sphere is not the mean σ (e.g. diag(1,0): 2/π vs 1/2); E‖DΛ‖² = mean σ²; 'mean' here follows CONVENTIONS.md (mean σ)");
+              "E‖DΛ‖ over the unit sphere is not the mean σ (e.g. diag(1,0): 2/π vs 1/2); E‖DΛ‖² = mean σ²; 'mean' here follows docs/CONVENTIONS.md (mean σ)");
     exp_claim("krivanek-sec32-max", "Křivánek et al. 2005, Sec. 3.2",
               "the maximum of E(β) over unit Λ is the largest singular value of D(β)", "stated",
               "identity of the spectral norm; σ₁ from GSL's Jacobi SVD agrees with √λ_max(DᵀD) (gsl_eigen_symm) to 1e-12 in tests/test_taylor.c",

@@ -1,5 +1,5 @@
 /* gaunt.c — Gaunt coefficients (integrals of three spherical harmonics) for
- * the complex basis and for shlab's real basis (CONVENTIONS.md, cs or nocs).
+ * the complex basis and for shlab's real basis (docs/CONVENTIONS.md, cs or nocs).
  *
  * References
  *  [1] A. R. Edmonds, "Angular Momentum in Quantum Mechanics" (1957), eq. (4.6.3):
@@ -12,7 +12,7 @@
  *      (Theochem) 419 (1997) 19-27, eq. (19) (real ↔ complex map).
  *  [3] R. Green, "Spherical Harmonic Lighting: The Gritty Details" (2003), eq. 8.
  *
- * Real ↔ complex map for shlab's cs basis (derived from CONVENTIONS.md:
+ * Real ↔ complex map for shlab's cs basis (derived from docs/CONVENTIONS.md:
  * y_l^m = √2 K P_l^m cos mφ = √2 Re Y_l^m, y_l^{-m} = √2 Im Y_l^m, m > 0):
  *     y_l^m    = (Y_l^m + (−1)^m Y_l^{-m}) / √2                 (m > 0)
  *     y_l^{-m} = −i (Y_l^m − (−1)^m Y_l^{-m}) / √2              (m > 0)

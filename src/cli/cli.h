@@ -1,6 +1,6 @@
 /* cli.h — shared pieces of the shlab command-line tool (not installed).
  *
- * Contract of every command (CONVENTIONS.md "Output"):
+ * Contract of every command (docs/CONVENTIONS.md "Output"):
  *  - the result is built completely as a JSON value, then rendered once as
  *    table, csv or json on stdout (so a failure never prints half a result);
  *  - bad usage or input: one line "shlab: error: ..." on stderr, exit 2;
@@ -45,12 +45,19 @@ int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
 int cli_convention(const char *s, sh_convention *out);
 int cli_order(const char *opt, const char *s, int *out);
+/* A comma-separated list of at most max orders, each checked as cli_order does. */
+int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 
 /* Read a coefficient file: JSON with "coeffs" (array) or "channels"
  * ({name: array}), or plain text numbers.  Returns nchan vectors of length
  * *len concatenated in *out (malloc'd), channel names in names (may be NULL). */
 int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8]);
+
+/* The one error line for a JSON file that json_load_file could not read
+ * (err_no: errno right after the call): "cannot open WHAT 'PATH': reason" or
+ * "WHAT 'PATH' is not valid JSON: ... (line L, column C)". */
+int cli_fail_json(const char *what, const char *path, int err_no, const json_error_t *err);
 
 /* JSON builders. */
 json_t *cli_json_array(const double *v, size_t n);
@@ -70,10 +77,27 @@ typedef struct {
     const char *cmd;
     int quiet, printed;
     double t0, last;
+    int estimated;
+    double t1; /* time of the first step (cli_progress_step_est) */
 } cli_progress;
 void cli_progress_start(cli_progress *p, const char *cmd, int quiet);
 /* An sh_progress_fn (ctx: cli_progress *). */
 void cli_progress_step(void *ctx, int done, int total, const char *what);
+/* The same, and after the second step one line with the total time it
+ * extrapolates from the second step, when that is over 2 s
+ * ("cmd: about N s in all (...)"); no closing line for a run that printed
+ * no progress on the way (a single step that took a second, say). */
+void cli_progress_step_est(void *ctx, int done, int total, const char *what);
+
+/* Memory this process could still get: MemAvailable, or the address-space
+ * limit (ulimit -v) when lower; in bytes, 0 if unknown. */
+double cli_mem_available(void);
+/* 0 if `bytes` fit; otherwise one line "cmd: WHAT needs X GB of memory, only
+ * Y GB is available" and CLI_EXIT_USAGE.  Call before allocating. */
+int cli_mem_check(const char *cmd, double bytes, const char *what);
+
+/* `shlab bench --peers` (cli_peers.c): shlab's transforms against libsharp. */
+int cli_bench_peers(const cli_command *bench, int argc, char **argv);
 
 /* Render `root` in `fmt` on stdout and release it. Returns an exit code. */
 int cli_emit(json_t *root, cli_format fmt);
@@ -102,8 +126,10 @@ typedef struct {
     sh_rot_method method; /* --method of the rotation commands (default ivanic) */
     int have_method;      /* --method was given */
     sh_precision prec;    /* --precision (default double) */
+    sh_rot_kernel kernel; /* --kernel (default auto) */
+    int have_kernel;      /* --kernel was given */
 } cli_common;
-#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE}
+#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0}
 
 /* Handle getopt_long's result o for command cmd: --help (prints the help),
  * the shared options, and unknown options or missing values (one error
@@ -116,7 +142,7 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c);
  *   --euler A,B,G | --quat W,X,Y,Z | --matrix R00,...,R22 | --axis X,Y,Z --angle T,
  *   --inverse, --orthonormalize   (angles in radians unless --degrees). */
 enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OPT_ANGLE,
-       CLI_OPT_INVERSE, CLI_OPT_ORTHO, CLI_OPT_METHOD, CLI_OPT_PRECISION };
+       CLI_OPT_INVERSE, CLI_OPT_ORTHO, CLI_OPT_METHOD, CLI_OPT_PRECISION, CLI_OPT_KERNEL };
 #define CLI_LONGOPTS_ROTATION                                                                      \
     {"euler", required_argument, 0, CLI_OPT_EULER}, {"quat", required_argument, 0, CLI_OPT_QUAT},  \
         {"matrix", required_argument, 0, CLI_OPT_MATRIX},                                          \
@@ -126,6 +152,8 @@ enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OP
         {"orthonormalize", no_argument, 0, CLI_OPT_ORTHO}
 #define CLI_LONGOPT_METHOD {"method", required_argument, 0, CLI_OPT_METHOD}
 #define CLI_LONGOPT_PRECISION {"precision", required_argument, 0, CLI_OPT_PRECISION}
+/* --kernel K of the rotation commands (sh_rot_kernel; refused if not available here) */
+#define CLI_LONGOPT_KERNEL {"kernel", required_argument, 0, CLI_OPT_KERNEL}
 typedef struct {
     const char *form;   /* "euler", "quat", "matrix", "axis-angle" or NULL */
     double v[9];        /* the numbers of that form */
@@ -169,6 +197,42 @@ void fx_free(fx_set *set);
 /* out = R_sh(rot)·in for a case's shape (its order, or band only), by method. */
 int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
              sh_convention conv, const double *in, double *out);
+/* The same with the plan's kernel chosen, and with matrix != 0 the rotation
+ * given as its matrix (sh_rot_plan_set_matrix; in float, float matrix and
+ * vectors: sh_rot_plan_set_matrix_f, sh_rot_plan_apply_f).  Whole-order
+ * cases only; band cases have one path. */
+int fx_apply_kernel(sh_rot_method m, sh_precision prec, sh_rot_kernel kernel, int matrix,
+                    const fx_case *c, const sh_rotation *rot, sh_convention conv, const double *in,
+                    double *out);
+
+/* ---- angles and units (cli_angles.c) -------------------------------------
+ * --degrees means angles in and angles out in degrees, in every command
+ * (docs/CONVENTIONS.md "Angles and units"); every printed angle goes with a
+ * "unit" field.  Warnings are one line "shlab: warning: ..." each on stderr,
+ * printed when the command has finished; the exit status is not changed. */
+void cli_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Print the warnings kept so far (main() calls it when the command returns):
+ * only when rc is not CLI_EXIT_USAGE, whose one error line stays alone. */
+void cli_warn_flush(int rc);
+const char *cli_angle_unit(int degrees);          /* "degrees" or "radians" */
+double cli_angle_out(double radians, int degrees); /* radians → the output unit */
+/* Warn when an angle given in radians (degrees == 0) exceeds 2π in magnitude:
+ * degrees given without --degrees, most likely.  what: e.g. "--beta". */
+void cli_warn_radians(const char *cmd, const char *what, double value, int degrees);
+/* The angle in radians (with the warning above). */
+double cli_angle_in(const char *cmd, const char *what, double value, int degrees);
+/* For an approximate method (taylor1, taylor1.5, taylor2): warn when the
+ * rotation's β lies beyond the angle where the method's lobe error reaches
+ * 1e-2, and give the estimated lobe error at β (sh_taylor_lobe_limit,
+ * sh_taylor_lobe_error).  Nothing for exact methods. */
+void cli_warn_approx_rotation(const char *cmd, sh_rot_method m, int order, const sh_rotation *rot,
+                              int degrees);
+
+/* Lights (sh_light_parse): 1 if the spec holds angles (cap:T, cie-clear and
+ * cie-partly's sun position), so that the output says their unit; and the
+ * 2π warning for the one angle that is not range-checked (the sun azimuth). */
+int cli_light_has_angles(const sh_light *L);
+void cli_light_warn(const char *cmd, const sh_light *L, int degrees);
 
 /* ---- sharded sweeps (cli_sweep.c) -----------------------------------------
  * A sweep computes work items 0..n-1 (bands, angles, ...) in a fixed order.

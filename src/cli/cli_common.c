@@ -10,7 +10,10 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 int cli_fail(const char *fmt, ...)
 {
@@ -35,6 +38,7 @@ void cli_progress_start(cli_progress *p, const char *cmd, int quiet)
     p->cmd = cmd;
     p->quiet = quiet;
     p->printed = 0;
+    p->estimated = 0;
     p->t0 = p->last = now_s();
 }
 
@@ -74,10 +78,20 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
     case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_DEGREES: c->degrees = 1; return -1;
     case CLI_OPT_METHOD:
+        if (!strcmp(optarg, "auto")) { /* the command's default (rotate, rotmat: by band) */
+            c->have_method = 0;
+            return -1;
+        }
         if (cli_method(optarg, &c->method)) return CLI_EXIT_USAGE;
         c->have_method = 1;
         return -1;
     case CLI_OPT_PRECISION: return cli_precision(optarg, &c->prec) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_KERNEL:
+        if (sh_rot_kernel_parse(optarg, &c->kernel)) return cli_fail("--kernel: %s", sh_last_error());
+        if (!sh_rot_kernel_available(c->kernel))
+            return cli_fail("--kernel: %s is not available on this machine", optarg);
+        c->have_kernel = 1;
+        return -1;
     default: return cli_fail_getopt(cmd->name, argv, optind, optopt);
     }
 }
@@ -281,4 +295,89 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
     }
     free(buf);
     return rc;
+}
+
+int cli_orders(const char *opt, const char *s, int *out, int max, int *n)
+{
+    /* each element through cli_order, so that a list words its errors as a
+     * single --order does */
+    char *copy = strdup(s);
+    if (!copy) return cli_fail("out of memory");
+    int k = 0, rc = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(copy, ", \t", &save); t && !rc; t = strtok_r(NULL, ", \t", &save)) {
+        if (k == max) rc = cli_fail("%s: at most %d orders", opt, max);
+        else rc = cli_order(opt, t, &out[k++]);
+    }
+    free(copy);
+    if (!rc && k == 0) rc = cli_fail("%s: no orders given", opt);
+    if (!rc) *n = k;
+    return rc;
+}
+
+int cli_fail_json(const char *what, const char *path, int err_no, const json_error_t *err)
+{
+    struct stat sb;
+    if (json_error_code(err) == json_error_cannot_open_file)
+        return cli_fail("cannot open %s '%s': %s", what, path, err_no ? strerror(err_no) : err->text);
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return cli_fail("cannot read %s '%s': it is a directory", what, path);
+    if (err->line > 0)
+        return cli_fail("%s '%s' is not valid JSON: %s (line %d, column %d)", what, path, err->text, err->line,
+                        err->column);
+    return cli_fail("%s '%s' is not valid JSON: %s", what, path, err->text);
+}
+
+void cli_progress_step_est(void *ctx, int done, int total, const char *what)
+{
+    cli_progress *p = ctx;
+    if (p && !p->quiet && !p->estimated && done < total) {
+        /* the first step carries the set-up: extrapolate from the second */
+        const double t = now_s() - p->t0;
+        if (done == 1) p->t1 = t;
+        if (done == 2) {
+            const double all = t + (t - p->t1) * (total - 2);
+            if (all > 2.0)
+                fprintf(stderr, "%s: about %.0f s in all (%d %s so far took %.1f s)\n", p->cmd, all, done,
+                        what ? what : "steps", t);
+            p->estimated = 1;
+        }
+    }
+    /* a run that printed nothing on the way ends silently (the result follows) */
+    if (p && done >= total && !p->printed) return;
+    cli_progress_step(ctx, done, total, what);
+}
+
+double cli_mem_available(void)
+{
+    double avail = 0.0;
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (f) {
+        char line[256];
+        unsigned long long kb;
+        while (fgets(line, sizeof line, f))
+            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
+                avail = (double)kb * 1024.0;
+                break;
+            }
+        fclose(f);
+    }
+    if (avail <= 0.0) {
+        const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+        avail = pages > 0 && size > 0 ? (double)pages * size : 0.0;
+    }
+    /* an address-space limit (ulimit -v) binds first */
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && (avail <= 0.0 || (double)rl.rlim_cur < avail))
+        avail = (double)rl.rlim_cur;
+    return avail;
+}
+
+int cli_mem_check(const char *cmd, double bytes, const char *what)
+{
+    const double avail = cli_mem_available();
+    if (avail > 0.0 && bytes > avail)
+        return cli_fail("%s: %s needs %.3g GB of memory, only %.3g GB is available", cmd, what, bytes / 1e9,
+                        avail / 1e9);
+    return 0;
 }

@@ -3,6 +3,7 @@
  * data/fixtures/rotation/README.md. */
 #include "cli.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,8 +36,9 @@ int fx_load(const char *path, fx_set *set)
 {
     memset(set, 0, sizeof *set);
     json_error_t err;
+    errno = 0;
     json_t *root = json_load_file(path, 0, &err);
-    if (!root) return cli_fail("fixture '%s': %s (line %d)", path, err.text, err.line);
+    if (!root) return cli_fail_json("fixture", path, errno, &err);
     const json_t *cases = json_object_get(root, "cases");
     const char *fmt = json_string_value(json_object_get(root, "format"));
     if (!fmt || strcmp(fmt, "shlab-rotation-fixtures/1") || !json_is_array(cases)) {
@@ -90,6 +92,13 @@ int fx_load(const char *path, fx_set *set)
 int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
              sh_convention conv, const double *in, double *out)
 {
+    return fx_apply_kernel(m, prec, SH_KERNEL_AUTO, 0, c, rot, conv, in, out);
+}
+
+int fx_apply_kernel(sh_rot_method m, sh_precision prec, sh_rot_kernel kernel, int matrix,
+                    const fx_case *c, const sh_rotation *rot, sh_convention conv, const double *in,
+                    double *out)
+{
     int st;
     if (c->band >= 0) {
         const int w = 2 * c->band + 1;
@@ -105,8 +114,22 @@ int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rota
         return st;
     }
     sh_rot_plan *p;
-    if ((st = sh_rot_plan_create(c->order, m, prec, conv, &p))) return st;
-    if (!(st = sh_rot_plan_set(p, rot))) st = sh_rot_plan_apply(p, in, out);
+    if ((st = sh_rot_plan_create_kernel(c->order, m, prec, conv, kernel, &p))) return st;
+    if (!matrix) {
+        if (!(st = sh_rot_plan_set(p, rot))) st = sh_rot_plan_apply(p, in, out);
+    } else if (prec == SH_PREC_DOUBLE) {
+        if (!(st = sh_rot_plan_set_matrix(p, rot->R))) st = sh_rot_plan_apply(p, in, out);
+    } else {
+        const size_t n = (size_t)c->n;
+        float R[9], *x = malloc(2 * n * sizeof *x);
+        if (!x) st = sh_error(SH_ENOMEM, "out of memory");
+        for (int i = 0; i < 9; i++) R[i] = (float)rot->R[i];
+        for (size_t i = 0; !st && i < n; i++) x[i] = (float)in[i];
+        if (!st) st = sh_rot_plan_set_matrix_f(p, R);
+        if (!st) st = sh_rot_plan_apply_f(p, x, x + n);
+        for (size_t i = 0; !st && i < n; i++) out[i] = x[n + i];
+        free(x);
+    }
     sh_rot_plan_free(p);
     return st;
 }

@@ -50,15 +50,16 @@ int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args 
 int cli_rotation_finish(const char *cmd, const cli_rotation_args *r, int degrees, int optional,
                         int *given, sh_rotation *rot)
 {
+    /* --degrees: the angles given (--euler, --angle) and printed are in
+     * degrees; a quaternion or a matrix has none, so it is simply not used */
     const double k = degrees ? M_PI / 180 : 1;
     int st;
-    if (degrees && r->form && strcmp(r->form, "euler") != 0)
-        return cli_fail("%s: --degrees applies to angles (--euler, --angle), not to --%s", cmd, r->form);
     if (r->have_axis || r->have_angle) {
         if (r->form) return cli_fail("%s: give one rotation (--%s and --axis/--angle both given)",
                                      cmd, r->form);
         if (!r->have_axis || !r->have_angle)
             return cli_fail("%s: --axis and --angle go together", cmd);
+        cli_warn_radians(cmd, "--angle", r->angle, degrees);
         st = sh_rotation_from_axis_angle(r->axis, r->angle * k, rot);
     } else if (!r->form) {
         if (given) *given = 0;
@@ -66,6 +67,8 @@ int cli_rotation_finish(const char *cmd, const cli_rotation_args *r, int degrees
         return cli_fail("%s: a rotation is required (--euler, --quat, --matrix or --axis/--angle)",
                         cmd);
     } else if (!strcmp(r->form, "euler")) {
+        for (int i = 0; i < 3; i++) /* one warning for the three angles */
+            if (!degrees && fabs(r->v[i]) > 2 * M_PI) { cli_warn_radians(cmd, "--euler angle", r->v[i], 0); break; }
         st = sh_rotation_from_euler(r->v[0] * k, r->v[1] * k, r->v[2] * k, rot);
     } else if (!strcmp(r->form, "quat")) {
         st = sh_rotation_from_quat(r->v, r->ortho, rot);

@@ -16,7 +16,7 @@ static const char help[] =
     "Usage: shlab deriv --order N --k K [--beta B] [OPTIONS]\n"
     "\n"
     "The k-th derivative d^k R_Y/dβ^k at β of the SH rotation about y,\n"
-    "R_Y(β) = R_sh(Ry(β)) (function rotation, CONVENTIONS.md), as the dense\n"
+    "R_Y(β) = R_sh(Ry(β)) (function rotation, docs/CONVENTIONS.md), as the dense\n"
     "N²×N² matrix.  k = 1 at β = 0 is J, the generator; k = 2 at β = 0 is J².\n"
     "Computed by\n"
     "  recursion  Krivánek et al. 2005 Appendix A: the Leibniz rule carried\n"
@@ -30,13 +30,14 @@ static const char help[] =
     "  --beta B             angle (default 0; radians unless --degrees), any finite\n"
     "                       value: reduced modulo 2π (remainder), printed reduced\n"
     "  --way recursion|generator\n"
-    "  --degrees            B in degrees (the derivative stays per radian)\n"
+    "  --degrees            B in and the printed beta in degrees (the derivative\n"
+    "                       stays per radian)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"k\",\"beta\",\"convention\",\"way\",\"matrix\":[[...]]}\n"
-    "(\"beta\" in radians, reduced to [-π, π].)\n";
+    "JSON: {\"order\",\"k\",\"beta\",\"unit\",\"convention\",\"way\",\"matrix\":[[...]]}\n"
+    "(\"beta\" reduced to [-π, π], in \"unit\": radians, or degrees with --degrees.)\n";
 
 static int run(int argc, char **argv)
 {
@@ -77,7 +78,7 @@ static int run(int argc, char **argv)
     if (com.order > DERIV_PRINT_MAX_ORDER)
         return cli_fail("deriv: --order %d too large for a printed N²×N² matrix (max %d)", com.order,
                         DERIV_PRINT_MAX_ORDER);
-    if (com.degrees) beta *= M_PI / 180.0;
+    beta = cli_angle_in("deriv", "--beta", beta, com.degrees);
     if (!isfinite(beta)) return cli_fail("deriv: --beta must be finite");
     beta = remainder(beta, 2.0 * M_PI); /* R_Y is 2π-periodic (exact reduction) */
     const int n = com.order;
@@ -92,7 +93,8 @@ static int run(int argc, char **argv)
     json_t *root = json_object();
     root = cli_put(root, "order", json_integer(n));
     root = cli_put(root, "k", json_integer(k));
-    root = cli_put(root, "beta", json_real(beta));
+    root = cli_put(root, "beta", json_real(cli_angle_out(beta, com.degrees)));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
     root = cli_put(root, "way", json_string(generator ? "generator" : "recursion"));
     root = cli_put(root, "matrix", cli_json_matrix(M, nn, nn));

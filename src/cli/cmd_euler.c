@@ -17,12 +17,14 @@ static const char help[] =
     "Rotation (exactly one): --matrix R00,...,R22 | --quat W,X,Y,Z |\n"
     "  --axis X,Y,Z --angle T | --euler A,B,G   (see shlab rotmat --help);\n"
     "  --inverse, --orthonormalize\n"
-    "  --degrees            input and output angles in degrees\n"
+    "  --degrees            angles in and out in degrees (the input forms --quat\n"
+    "                       and --matrix have none; the printed angles are then in\n"
+    "                       degrees)\n"
     "  --convention cs|nocs reported only (the angles do not depend on it)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"alpha\",\"beta\",\"gamma\",\"units\",\"residual\",\"convention\"}  (residual = max|R(α,β,γ) − R|)\n";
+    "JSON: {\"alpha\",\"beta\",\"gamma\",\"unit\",\"residual\",\"convention\"}  (residual = max|R(α,β,γ) − R|)\n";
 
 static int run(int argc, char **argv)
 {
@@ -49,12 +51,11 @@ static int run(int argc, char **argv)
     sh_rotation_from_euler(a, b, g, &back);
     double res = 0;
     for (int i = 0; i < 9; i++) res = fmax(res, fabs(back.R[i] - rot.R[i]));
-    const double k = com.degrees ? 180 / M_PI : 1;
     json_t *root = json_object();
-    root = cli_put(root, "alpha", json_real(a * k));
-    root = cli_put(root, "beta", json_real(b * k));
-    root = cli_put(root, "gamma", json_real(g * k));
-    root = cli_put(root, "units", json_string(com.degrees ? "degrees" : "radians"));
+    root = cli_put(root, "alpha", json_real(cli_angle_out(a, com.degrees)));
+    root = cli_put(root, "beta", json_real(cli_angle_out(b, com.degrees)));
+    root = cli_put(root, "gamma", json_real(cli_angle_out(g, com.degrees)));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
     root = cli_put(root, "residual", json_real(res));
     /* last, so that the CSV columns of the angles keep their places */
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));

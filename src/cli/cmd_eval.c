@@ -16,7 +16,7 @@ static const char help[] =
     "  --order N            number of bands (1..2049)\n"
     "  --dir X,Y,Z          direction (normalised; must be finite and non-zero)\n"
     "  --theta T --phi P    polar angle from +z and azimuth from +x\n"
-    "  --degrees            angles are in degrees\n"
+    "  --degrees            --theta and --phi in degrees\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
@@ -57,7 +57,10 @@ static int run(int argc, char **argv)
     if (!order) return cli_fail("eval: --order is required");
     if (have_dir && (have_t || have_p)) return cli_fail("eval: give --dir or --theta/--phi, not both");
     if (!have_dir && !(have_t && have_p)) return cli_fail("eval: give --dir X,Y,Z or both --theta and --phi");
-    if (com.degrees) { theta *= M_PI / 180.0; phi *= M_PI / 180.0; }
+    if (!have_dir) {
+        theta = cli_angle_in("eval", "--theta", theta, com.degrees);
+        phi = cli_angle_in("eval", "--phi", phi, com.degrees);
+    }
 
     double *y = malloc(sizeof(double) * sh_ncoeff(order));
     if (!y) return cli_fail("out of memory");

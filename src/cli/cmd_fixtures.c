@@ -28,7 +28,9 @@ static const char help[] =
     "Each case gives the input vector (seeded, unit length), the rotation in every\n"
     "form (euler, quat, matrix, axis+angle), the expected output (MPFR reference,\n"
     "exact to double rounding), its float32 rounding, the convention and the\n"
-    "tolerances.  Files are written to temporary names and renamed.\n"
+    "tolerances.  DIR and the targets are checked before anything is computed;\n"
+    "the files are written to temporary names and renamed only when all are\n"
+    "complete (all or nothing).\n"
     "\n"
     "  --out DIR            output directory (must exist)\n"
     "  --method M           expected outputs from shlab's method M in double instead\n"
@@ -39,7 +41,7 @@ static const char help[] =
     "  --help               this text\n";
 
 /* Tolerances, |candidate_i − expected_i| ≤ tol for a unit input.  Double:
- * the issue's 1e-13 everywhere (the stable methods stay below 5e-15 even at
+ * 1e-13 everywhere (the stable methods stay below 5e-15 even at
  * l = 200).  Float32: about 4× the worst error of shlab's best float kernel
  * (zxzxz, float arithmetic throughout) on these cases, measured with
  * `shlab verify --method zxzxz --precision float`: 2.3e-7 (orders ≤ 10; the
@@ -117,11 +119,10 @@ static void unit_vector(gsl_rng *r, double *v, int n)
     for (int i = 0; i < n; i++) v[i] /= s;
 }
 
-/* Write {"format", "description", "cases": [one case per line]} atomically. */
-static int write_file(const char *path, const char *description, json_t *cases)
+/* Write {"format", "description", "cases": [one case per line]} into the
+ * temporary file tmp (reserved before computing, see run). */
+static int write_file(const char *tmp, const char *path, const char *description, json_t *cases)
 {
-    char *tmp = NULL;
-    if (sh__make_temp_path(path, &tmp)) return cli_fail("fixtures: %s", sh_last_error());
     FILE *f = fopen(tmp, "w");
     int bad = !f;
     if (f) {
@@ -142,15 +143,26 @@ static int write_file(const char *path, const char *description, json_t *cases)
         bad |= ferror(f) != 0;
         bad |= fclose(f) != 0;
     }
-    if (bad) {
-        remove(tmp);
-        free(tmp);
-        return cli_fail("fixtures: cannot write '%s'", path);
+    return bad ? cli_fail("fixtures: cannot write '%s'", path) : 0;
+}
+
+/* Every output is checked before anything is computed, and the files are
+ * written all or nothing: each target gets its temporary file first (which
+ * fails at once for a missing or unwritable directory, or a target that is
+ * a directory or not a regular file), the cases are computed and written
+ * into the temporary files, and only when all of them are complete are they
+ * renamed onto their targets.  On any failure the temporary files are
+ * removed and no target is touched.  (The renames themselves are the one
+ * step that could still fail between two files; they follow checks that
+ * make that unlikely.) */
+#define FX_NFILES 2
+static void drop_temps(char *tmp[FX_NFILES])
+{
+    for (int q = 0; q < FX_NFILES; q++) {
+        if (tmp[q]) remove(tmp[q]);
+        free(tmp[q]);
+        tmp[q] = NULL;
     }
-    int st = sh__commit_temp(tmp, path);
-    free(tmp);
-    if (st) return cli_fail("fixtures: %s", sh_last_error());
-    return 0;
 }
 
 static int run(int argc, char **argv)
@@ -176,6 +188,24 @@ static int run(int argc, char **argv)
     if (!dir || !*dir) return cli_fail("fixtures: --out DIR is required");
     const sh_rot_method method = com.have_method ? com.method : SH_ROT_REFERENCE;
     if (method == SH_ROT_Z) return cli_fail("fixtures: method z rotates about z only");
+
+    /* the targets, checked (temporary files reserved) before computing */
+    char *path[FX_NFILES] = {NULL, NULL}, *tmp[FX_NFILES] = {NULL, NULL};
+    const int nfiles = method == SH_ROT_REFERENCE ? 2 : 1;
+    for (int q = 0; q < nfiles; q++) {
+        const size_t len = strlen(dir) + 64;
+        if (!(path[q] = malloc(len))) { free(path[0]); return cli_fail("out of memory"); }
+        if (q == 1) snprintf(path[q], len, "%s/bands_50_200.json", dir);
+        else if (method == SH_ROT_REFERENCE) snprintf(path[q], len, "%s/orders_1_10.json", dir);
+        else snprintf(path[q], len, "%s/orders_1_10_%s.json", dir, sh_rot_method_name(method));
+    }
+    for (int q = 0; q < nfiles; q++)
+        if (sh__make_temp_path(path[q], &tmp[q])) {
+            const int e = cli_fail("fixtures: %s", sh_last_error());
+            drop_temps(tmp);
+            free(path[0]), free(path[1]);
+            return e;
+        }
 
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
@@ -211,48 +241,50 @@ static int run(int argc, char **argv)
                 if (c) { json_array_append_new(high, c); ncase++; }
             }
     if (st) goto done;
-    size_t len = strlen(dir) + 32;
-    char *p1 = malloc(len), *p2 = malloc(len);
-    if (!p1 || !p2) { free(p1); free(p2); st = SH_ENOMEM; goto done; }
-    size_t len2 = len + 32;
     char desc[512];
-    free(p1);
-    p1 = malloc(len2);
-    if (!p1) { free(p2); st = SH_ENOMEM; goto done; }
     if (method == SH_ROT_REFERENCE) {
-        snprintf(p1, len2, "%s/orders_1_10.json", dir);
         snprintf(desc, sizeof desc, "shlab golden SH rotation fixtures: orders 1-10, 10 rotations (extremes "
                                     "included), cs and nocs; expected = MPFR reference. See README.md.");
     } else {
-        snprintf(p1, len2, "%s/orders_1_10_%s.json", dir, sh_rot_method_name(method));
         snprintf(desc, sizeof desc, "shlab SH rotation fixtures for kernels implementing method %s: orders "
                                     "1-10, 10 rotations, cs and nocs; expected = shlab's %s in double%s. "
                                     "See README.md.", sh_rot_method_name(method), sh_rot_method_name(method),
                  sh_rot_method_is_exact(method) ? "" : " (an approximation, not the exact rotation)");
     }
-    snprintf(p2, len, "%s/bands_50_200.json", dir);
-    rc = write_file(p1, desc, low);
-    if (!rc && method == SH_ROT_REFERENCE)
-        rc = write_file(p2, "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
-                            "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
+    rc = write_file(tmp[0], path[0], desc, low);
+    if (!rc && nfiles == 2)
+        rc = write_file(tmp[1], path[1], "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
+                                         "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
     if (!rc) {
         root = json_object();
         root = cli_put(root, "out", json_string(dir));
         root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
         root = cli_put(root, "convention", json_string("cs+nocs")); /* every case names its own */
-        root = cli_put(root, "files", method == SH_ROT_REFERENCE ? json_pack("[s,s]", p1, p2) : json_pack("[s]", p1));
+        root = cli_put(root, "files", nfiles == 2 ? json_pack("[s,s]", path[0], path[1]) : json_pack("[s]", path[0]));
         root = cli_put(root, "cases", json_integer(ncase));
+        if (!root) rc = cli_fail("out of memory");
     }
-    free(p1);
-    free(p2);
+    /* all files complete and the summary printed (a failed write to stdout
+     * leaves nothing behind): rename them onto their targets */
+    if (!rc) {
+        rc = cli_emit(root, com.fmt);
+        root = NULL;
+    }
+    for (int q = 0; q < nfiles && !rc; q++) {
+        if (sh__commit_temp(tmp[q], path[q])) rc = cli_fail("fixtures: %s", sh_last_error());
+        free(tmp[q]);
+        tmp[q] = NULL;
+    }
 done:
+    drop_temps(tmp);
+    free(path[0]), free(path[1]);
     gsl_rng_free(rng);
     free(in);
     json_decref(low);
     json_decref(high);
+    json_decref(root);
     if (st) return cli_fail("fixtures: %s", sh_last_error());
-    if (rc) return rc;
-    return cli_emit(root, com.fmt);
+    return rc;
 }
 
 const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", help};

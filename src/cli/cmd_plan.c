@@ -22,7 +22,7 @@ static const char help[] =
     "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
     "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
     "largest error over the grid is <= E; the runner-up the next fastest.\n"
-    "Errors (CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
+    "Errors (docs/CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
     "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
     "value of R_method − R_exact.\n"
     "With --order auto the order is first chosen as the smallest n <= --max-order\n"
@@ -38,7 +38,8 @@ static const char help[] =
     "  --measure lobe|max   error measure (default lobe)\n"
     "  --lobe-exp E2        exponent of the lobe (default 7)\n"
     "  --beta-step S        largest grid step (default 0.25°)\n"
-    "  --degrees            --max-beta and --beta-step in degrees\n"
+    "  --degrees            angles in degrees: --max-beta and --beta-step, and the\n"
+    "                       printed max_beta and worst_beta (\"unit\" says which)\n"
     "  --precision P        double (default) | float\n"
     "  --convention C       cs (default) | nocs: convention of the plans measured and timed\n"
     "  --exr FILE           environment image (with --order auto)\n"
@@ -50,7 +51,8 @@ static const char help[] =
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"convention\",\"max_beta\",\"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
+    "JSON: {\"order\",\"convention\",\"max_beta\",\"unit\" (of max_beta and worst_beta),\n"
+    "       \"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
     "       \"choice\":{\"method\",\"ns_per_rotation\",\"max_error\"} (null if none qualifies),\n"
     "       \"runner_up\":{...} (or null),\n"
     "       \"candidates\":[{\"method\",\"exact\",\"ok\",\"max_error\",\"worst_beta\",\n"
@@ -62,7 +64,7 @@ static const char help[] =
     "       then \"order\":null, \"max_order\", \"order_residual\" at --max-order,\n"
     "       choice and runner_up null, no candidates (one line on stderr says so).\n";
 
-static json_t *cand_json(const sh_rot_candidate *c, int full)
+static json_t *cand_json(const sh_rot_candidate *c, int full, int degrees)
 {
     json_t *o = json_object();
     o = cli_put(o, "method", json_string(sh_rot_method_name(c->method)));
@@ -73,7 +75,7 @@ static json_t *cand_json(const sh_rot_candidate *c, int full)
     o = cli_put(o, "ns_per_rotation", json_real(c->ns_per_rotation));
     o = cli_put(o, "max_error", json_real(c->max_error));
     if (full) {
-        o = cli_put(o, "worst_beta", json_real(c->worst_beta));
+        o = cli_put(o, "worst_beta", json_real(cli_angle_out(c->worst_beta, degrees)));
         o = cli_put(o, "mults", json_real(c->mults));
     }
     return o;
@@ -85,6 +87,7 @@ static json_t *finish(const json_t *params, json_t *rows)
 {
     sh_rot_choose_opts co = {0};
     const json_t *mj = json_object_get(params, "methods");
+    const int degrees = json_is_true(json_object_get(params, "degrees"));
     co.order = (int)json_integer_value(json_object_get(params, "order"));
     co.max_beta = json_real_value(json_object_get(params, "max_beta"));
     co.tolerance = json_real_value(json_object_get(params, "tolerance"));
@@ -114,14 +117,17 @@ static json_t *finish(const json_t *params, json_t *rows)
     if (st) return NULL;
     json_t *cj = json_array();
     for (int k = 0; k < nc && cj; k++)
-        if (json_array_append_new(cj, cand_json(&cand[k], 1))) { json_decref(cj); cj = NULL; }
+        if (json_array_append_new(cj, cand_json(&cand[k], 1, degrees))) { json_decref(cj); cj = NULL; }
     json_t *root = json_object();
     static const char *const keys[] = {"order", "convention", "max_beta", "tolerance", "measure", "lobe_exp",
                                        "precision", "image_tolerance", "order_residual", "image"};
-    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
-        if (json_object_get(params, keys[k])) root = cli_put(root, keys[k], json_deep_copy(json_object_get(params, keys[k])));
-    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0) : json_null());
-    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0) : json_null());
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++) {
+        const char *from = strcmp(keys[k], "max_beta") ? keys[k] : "max_beta_shown";
+        if (json_object_get(params, from)) root = cli_put(root, keys[k], json_deep_copy(json_object_get(params, from)));
+        if (!strcmp(keys[k], "max_beta")) root = cli_put(root, "unit", json_string(cli_angle_unit(degrees)));
+    }
+    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0, degrees) : json_null());
+    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0, degrees) : json_null());
     return cli_put(root, "candidates", cj);
 }
 
@@ -240,7 +246,8 @@ static int run(int argc, char **argv)
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;
     if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
-        return cli_fail("--max-beta: must be in [0, π]");
+        return cli_fail("--max-beta: %g is outside [0, %s", max_beta,
+                        com.degrees ? "180] degrees" : "π] radians (--degrees for degrees)");
     co.max_beta = fmin(co.max_beta, M_PI);
     co.beta_step = beta_step > 0 ? beta_step * deg : 0.25 * M_PI / 180;
     if (co.beta_step < 1e-5) return cli_fail("--beta-step: too small (< 1e-5 rad)");
@@ -272,7 +279,8 @@ static int run(int argc, char **argv)
             json_t *root = json_object();
             root = cli_put(root, "order", json_null());
             root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-            root = cli_put(root, "max_beta", json_real(co.max_beta));
+            root = cli_put(root, "max_beta", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
+            root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
             root = cli_put(root, "tolerance", json_real(rot_tol > 0 ? rot_tol : co.tolerance));
             root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
             root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
@@ -302,6 +310,8 @@ static int run(int argc, char **argv)
     params = cli_put(params, "order", json_integer(co.order));
     params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
     params = cli_put(params, "max_beta", json_real(co.max_beta));
+    params = cli_put(params, "degrees", json_boolean(com.degrees));
+    params = cli_put(params, "max_beta_shown", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
     params = cli_put(params, "tolerance", json_real(co.tolerance));
     params = cli_put(params, "measure", json_string(sh_error_measure_name(co.measure)));
     params = cli_put(params, "lobe_exp", json_real(co.lobe_exp));

@@ -29,6 +29,9 @@ static const char help[] =
     "                       lanczos[:W]  σ_l = sinc(l/W) for l < W else 0\n"
     "                       (W defaults to N)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
+    "  --threads N          threads (default 0: all cores); the image is the\n"
+    "                       same for every N\n"
+    "  --quiet              no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -48,9 +51,11 @@ static int run(int argc, char **argv)
         {"out", required_argument, 0, 'o'},
         {"width", required_argument, 0, 'w'},
         {"window", required_argument, 0, 'W'},
+        {"threads", required_argument, 0, 'T'},
+        {"quiet", no_argument, 0, 'q'},
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
-    int width = 256;
+    int width = 256, threads = 0, quiet = 0;
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *coeff_arg = NULL, *in = NULL, *out = NULL, *win_arg = "none";
     sh_window win = {SH_WINDOW_NONE, 0.0};
@@ -72,6 +77,11 @@ static int run(int argc, char **argv)
             if (sh_window_parse(optarg, &win)) return cli_fail("--window: %s", sh_last_error());
             win_arg = optarg;
             break;
+        case 'T':
+            if (cli_int("--threads", optarg, &threads)) return CLI_EXIT_USAGE;
+            if (threads < 0 || threads > 1024) return cli_fail("--threads must be in 0..1024, got %d", threads);
+            break;
+        case 'q': quiet = 1; break;
         default: {
             const int r = cli_common_opt(&cmd_reconstruct, o, argv, &com);
             if (r >= 0) return r;
@@ -117,13 +127,24 @@ static int run(int argc, char **argv)
     for (int ch = 0; ch < nchan; ch++) memcpy(c + (size_t)ch * nn, v + (size_t)ch * len, sizeof(double) * nn);
     free(v);
 
+    /* the image, the plan of the transform (run twice: image, ringing) */
+    const sh_grid g = {width / 2, width, NULL, NULL, 0.0};
+    const double need = (double)width * (width / 2) * nchan * sizeof(float) +
+                        (double)sh_sht_bytes(order, &g, nchan, threads);
+    char what[96];
+    snprintf(what, sizeof what, "a %d×%d reconstruction of order %d", width, width / 2, order);
+    if (cli_mem_check("reconstruct", need, what)) { free(c); return CLI_EXIT_USAGE; }
+    cli_progress prog;
+    cli_progress_start(&prog, "reconstruct", quiet);
+    const sh_run_opts iopts = {threads, cli_progress_step_est, &prog};
     sh_image img;
-    int st = sh_reconstruct_latlong(order, conv, c, nchan, &win, width, &img);
+    int st = sh_reconstruct_latlong_ex(order, conv, c, nchan, &win, width, &iopts, &img);
     if (st) { free(c); return cli_fail_status(st); }
     if (have_names)
         for (int ch = 0; ch < nchan; ch++) memcpy(img.names[ch], names[ch], 8);
     double mn = 0.0, frac = 0.0;
-    st = sh_ringing(order, conv, c, &win, width, &mn, &frac);
+    const sh_run_opts ropts = {threads, NULL, NULL};
+    st = sh_ringing_ex(order, conv, c, &win, width, &ropts, &mn, &frac);
     free(c);
     if (st) { sh_image_free(&img); return cli_fail_status(st); }
     for (size_t p = 0; p < (size_t)img.width * img.height * img.nchan; p++)

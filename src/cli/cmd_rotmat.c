@@ -5,6 +5,7 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 extern const cli_command cmd_rotmat;
 
@@ -16,7 +17,7 @@ static const char help[] =
     "       shlab rotmat --band L --method M ROTATION [OPTIONS]\n"
     "\n"
     "The real SH rotation matrix R_sh(R): the coefficients of f map to those of\n"
-    "g(s) = f(R⁻¹s) (CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
+    "g(s) = f(R⁻¹s) (docs/CONVENTIONS.md).  It is block diagonal; the whole N²×N²\n"
     "matrix is printed, or with --band L only the (2L+1)×(2L+1) block of band L\n"
     "(rows and columns m = -L..L).\n"
     "\n"
@@ -28,23 +29,33 @@ static const char help[] =
     "  --inverse            use R⁻¹ (the frame rotation, R_sh transposed)\n"
     "  --orthonormalize     accept a matrix/quaternion that is not orthonormal:\n"
     "                       use the nearest proper rotation\n"
-    "  --degrees            angles in degrees\n"
+    "  --degrees            angles in degrees (radians otherwise; a warning on\n"
+    "                       stderr when an angle in radians exceeds 2π)\n"
     "\n"
     "  --order N            bands 0..N-1 (1..32 for the printed matrix)\n"
     "  --band L             one band only (0..1000; below --order if both are given);\n"
-    "                       blanco, zxzxz, wigner and reference compute it without\n"
-    "                       the lower bands, ivanic streams through them, the others\n"
-    "                       need all lower blocks in memory (refused above 1.1 GB)\n"
-    "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
-    "                       (exact; default ivanic) or taylor1 | taylor1.5 |\n"
-    "                       taylor2 (Krivánek et al.'s approximations)\n"
+    "                       blanco, zxzxz, halfpi, wigner and reference compute it\n"
+    "                       without the lower bands, ivanic streams through them, the\n"
+    "                       others need all lower blocks in memory (refused above 1.1 GB)\n"
+    "  --method M           auto (default) | z | ivanic | zxzxz | choi | blanco | wigner |\n"
+    "                       reference | halfpi (exact) or taylor1 | taylor1.5 | taylor2\n"
+    "                       (Krivánek et al.'s approximations).  auto: zxzxz for\n"
+    "                       --order, blanco for --band (O(l²)) — exact at every band;\n"
+    "                       ivanic and choi drift from l ~ 50 and are used only when named.\n"
+    "                       The Taylor methods warn on stderr, with the estimated error,\n"
+    "                       when β is beyond the angle where their lobe error reaches 1e-2\n"
     "  --precision P        double (default) | float (computed in float)\n"
+    "  --kernel K           auto (default) | scalar | unrolled | sse2 | avx2 | avx512\n"
+    "                       (whole orders; the unrolled kernels give the matrix by\n"
+    "                       rotating each unit vector)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],\n"
-    "       \"orthogonality_error\",\"matrix\":[[...]]}\n"
+    "JSON: {\"order\",\"method\",\"convention\",\"precision\",[\"band\"],[\"kernel\"],\n"
+    "       \"orthogonality_error\",\"matrix\":[[...]]}  (kernel: with --kernel, the one used)\n"
+    "A rotation given by --euler reaches the plan as angles, any other form as its\n"
+    "matrix (sh_rot_plan_set_matrix, no trigonometric call for zxzxz and taylor*).\n"
     "orthogonality_error is max|R Rᵀ - I| (for --band: the two-probe estimate\n"
     "max|Rᵀ(R v) - v|); an exact method above 1e-8 (float: 1e-3) gets a warning\n"
     "on stderr: it has broken down at that band.\n";
@@ -55,10 +66,9 @@ static void warn_if_inaccurate(sh_rot_method m, sh_precision p, int band, double
 {
     const double limit = p == SH_PREC_FLOAT ? 1e-3 : 1e-8;
     if (sh_rot_method_is_exact(m) && !(orth <= limit))
-        fprintf(stderr,
-                "shlab: warning: method %s is inaccurate here: orthogonality error %.2g at band %d "
-                "(see 'shlab stability --method %s'; blanco and zxzxz stay accurate)\n",
-                sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
+        cli_warn("method %s is inaccurate here: orthogonality error %.2g at band %d "
+                 "(see 'shlab stability --method %s'; blanco, zxzxz and halfpi stay accurate)",
+                 sh_rot_method_name(m), orth, band, sh_rot_method_name(m));
 }
 
 static int run(int argc, char **argv)
@@ -66,13 +76,14 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,     CLI_LONGOPT_ORDER,
                                          CLI_LONGOPT_CONVENTION, CLI_LONGOPT_DEGREES,
                                          CLI_LONGOPTS_ROTATION,  CLI_LONGOPT_METHOD,
-                                         CLI_LONGOPT_PRECISION,  {"band", required_argument, 0, 'b'},
+                                         CLI_LONGOPT_PRECISION,  CLI_LONGOPT_KERNEL,
+                                         {"band", required_argument, 0, 'b'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_rotation_args ra = {0};
-    sh_rot_method method = SH_ROT_IVANIC;
+    sh_rot_method method;
     sh_precision prec = SH_PREC_DOUBLE;
-    int band = -1, have_method = 0;
+    int band = -1;
     opterr = 0;
     optind = 1;
     int o;
@@ -92,11 +103,8 @@ static int run(int argc, char **argv)
         }
     }
     /* --method and --precision are kept by cli_common_opt */
-    method = com.method;
     prec = com.prec;
-    have_method = com.have_method;
     if (optind < argc) return cli_fail("rotmat: unexpected argument '%s'", argv[optind]);
-    (void)have_method;
     if (band >= 0 && com.order && band >= com.order)
         return cli_fail("rotmat: --band %d is not below --order %d", band, com.order);
     if (band < 0 && !com.order) return cli_fail("rotmat: --order (or --band) is required");
@@ -104,6 +112,7 @@ static int run(int argc, char **argv)
         return cli_fail("rotmat: --order %d too large for a printed N²×N² matrix (max %d; use --band)",
                         com.order, ROTMAT_MAX_ORDER);
     const int order = com.order ? com.order : band + 1;
+    method = com.have_method ? com.method : sh_rot_method_default(order, band >= 0);
     if ((band >= 0 ? band + 1 : order) > sh_rot_method_max_order(method))
         return cli_fail("rotmat: method %s is limited to order %d", sh_rot_method_name(method),
                         sh_rot_method_max_order(method));
@@ -135,9 +144,12 @@ static int run(int argc, char **argv)
         double *M = malloc(n * n * sizeof *M);
         sh_rot_plan *p = NULL;
         if (!blocks || !M) { free(blocks); free(M); json_decref(root); return cli_fail("out of memory"); }
-        st = sh_rot_plan_create(order, method, prec, com.conv, &p);
-        if (!st) st = sh_rot_plan_set(p, &rot);
+        st = sh_rot_plan_create_kernel(order, method, prec, com.conv, com.kernel, &p);
+        /* a rotation given as angles reaches the plan as angles, any other
+         * form as its matrix (sh_rot_plan_set_matrix: no angles) */
+        if (!st) st = ra.form && !strcmp(ra.form, "euler") ? sh_rot_plan_set(p, &rot) : sh_rot_plan_set_matrix(p, rot.R);
         if (!st) st = sh_rot_plan_blocks(p, blocks);
+        if (p && com.have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(sh_rot_plan_kernel(p))));
         sh_rot_plan_free(p);
         if (st) { free(blocks); free(M); json_decref(root); return cli_fail_status(st); }
         sh_rot_blocks_to_dense(order, blocks, M);
@@ -150,6 +162,7 @@ static int run(int argc, char **argv)
         free(blocks);
         free(M);
     }
+    cli_warn_approx_rotation("rotmat", method, band >= 0 ? band + 1 : order, &rot, com.degrees);
     return cli_emit(root, com.fmt);
 }
 

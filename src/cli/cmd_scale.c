@@ -23,7 +23,7 @@ static const char help[] =
     "Spherical harmonics scaling matrix (Wang, Lin, Guo, Shum 2006, eq. 6)\n"
     "  M_ij = ∫∫ y_i(θ,φ) y_j(τ(θ),φ) ψ(θ) dθ dφ,   S_d = M S_r,\n"
     "with ψ = sinθ (plain: visibility) or ψ = sin τ(θ)·τ'(θ) (--energy:\n"
-    "energy-preserving, ∫F dΩ kept).  Angular scaling families (CONVENTIONS.md):\n"
+    "energy-preserving, ∫F dΩ kept).  Angular scaling families (docs/CONVENTIONS.md):\n"
     "  linear    τ = min(kθ, π),                              k = d/r in [0.001, 1000]\n"
     "  cone      cot τ = (cot θ + (1−k) cot θ0)/k  (cone occluder, half-angle θ0),\n"
     "                                                          k = d/r in [0.001, 1000]\n"
@@ -39,7 +39,7 @@ static const char help[] =
     "  --k K                the family's parameter\n"
     "  --energy             energy-preserving ψ = sin τ·τ' (default plain ψ = sinθ)\n"
     "  --cone-angle T       cone family half-angle θ0 in (0, π) (default π/4)\n"
-    "  --degrees            --cone-angle is in degrees\n"
+    "  --degrees            --cone-angle and the printed cone_angle in degrees\n"
     "  --verify             also compute M by an independent 2-D product rule\n"
     "                       (sh_eval, numerical φ; order <= 8) and exit 1 if any\n"
     "                       entry differs by more than 1e-10\n"
@@ -49,7 +49,7 @@ static const char help[] =
     "\n"
     "JSON: {\"order\",\"family\",\"k\",\"energy\",\"convention\",\"matrix\":[[N² numbers] × N²],\n"
     "       \"nonzeros\" (|M_ij| > 1e-12·max|M|),\"pattern_bound\":N(2N²+1)/3,\n"
-    "       \"cone_angle\" (cone),\"method\"[,\"verify_max_diff\"]}\n";
+    "       \"cone_angle\",\"unit\" (cone family),\"method\"[,\"verify_max_diff\"]}\n";
 
 static int run(int argc, char **argv)
 {
@@ -136,8 +136,10 @@ static int run(int argc, char **argv)
     root = cli_put(root, "k", json_real(s.k));
     root = cli_put(root, "energy", json_boolean(s.energy));
     root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    if (s.family == SH_SCALE_CONE)
-        root = cli_put(root, "cone_angle", json_real(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0));
+    if (s.family == SH_SCALE_CONE) {
+        root = cli_put(root, "cone_angle", json_real(cli_angle_out(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0, com.degrees)));
+        root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
+    }
     root = cli_put(root, "method", json_string("analytic-phi+gauss-legendre"));
     root = cli_put(root, "nonzeros", json_integer(sh_scale_nonzeros(order, M, 1e-12)));
     root = cli_put(root, "pattern_bound", json_integer(sh_scale_pattern_bound(order)));

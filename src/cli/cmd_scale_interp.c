@@ -29,14 +29,16 @@ static const char help[] =
     "  --interp linear|cubic  linear (default) or GSL natural cubic spline\n"
     "  --dense D            points of the dense check grid (default 400)\n"
     "  --energy             energy-preserving scaling\n"
-    "  --cone-angle T       cone family half-angle (default π/4; --degrees)\n"
+    "  --cone-angle T       cone family half-angle (default π/4)\n"
+    "  --degrees            --cone-angle and the printed cone_angle in degrees\n"
     "  --convention cs|nocs tag only (the matrix does not depend on it)\n"
     "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
     CLI_SHARD_HELP
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"family\",\"energy\",\"convention\",\"samples\",\"spacing\",\"interp\",\n"
+    "JSON: {\"order\",\"family\",\"energy\",\"convention\",[\"cone_angle\",\"unit\" (cone\n"
+    "       family)],\"samples\",\"spacing\",\"interp\",\n"
     "       \"kmin\",\"kmax\",\"dense\",\"max_error\",\"rms_error\",\"worst_k\"}\n";
 
 /* the sweep: item d is point d of the dense k grid */
@@ -142,8 +144,11 @@ static int run(int argc, char **argv)
     params = cli_put(params, "family", json_string(sh_scale_family_name(s.family)));
     params = cli_put(params, "energy", json_boolean(s.energy));
     params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
-    if (s.family == SH_SCALE_CONE)
-        params = cli_put(params, "cone_angle", json_real(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0));
+    if (s.family == SH_SCALE_CONE) {
+        params = cli_put(params, "cone_angle",
+                         json_real(cli_angle_out(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0, com.degrees)));
+        params = cli_put(params, "unit", json_string(cli_angle_unit(com.degrees)));
+    }
     params = cli_put(params, "samples", json_integer(samples));
     params = cli_put(params, "spacing", json_string(sh_scale_spacing_name(sp)));
     params = cli_put(params, "interp", json_string(sh_scale_interp_name(ik)));

@@ -56,12 +56,16 @@ static const char help[] =
     "  --rotation-method M  midrange, DIR ≠ +z: exact rotation method of the\n"
     "                       rotate → scale → rotate back (default zxzxz; ivanic,\n"
     "                       choi, blanco, wigner, reference)\n"
-    "  --degrees            angles in degrees\n"
+    "  --degrees            angles in degrees: the options above, the angles in\n"
+    "                       --light SPEC, and the printed angles\n"
     "  --convention cs|nocs basis of the projections\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"scene\",\"order\",\"convention\",...[midrange: \"dir_x\",\"dir_y\",\"dir_z\" (unit),\n"
+    "JSON: {\"scene\",\"order\",\"convention\",\"method\",[sphere, cone: \"size\",\n"
+    "       cone: \"occluder_angle\",\"wobble\"; \"cone_family_angle\",\"unit\"],\n"
+    "       [midrange: [\"unit\" (a SPEC with angles)],\"environment\",\"nodes\",\n"
+    "       \"dir_x\",\"dir_y\",\"dir_z\" (unit vector),\n"
     "       \"rotation_method\" (\"none\" for +z)],\"rows\":[{\"k\",\"family\",\"energy\",\n"
     "       \"err_scaled\",\"err_geom\",\"err_trunc\"}]}\n";
 
@@ -153,6 +157,7 @@ static int run(int argc, char **argv)
     sc.cone_angle = occ >= 0 ? occ * deg : M_PI / 4.0;
     sc.nodes = nodes;
     sh_light L;
+    int light_angles = 0;
     sh_image img = {0};
     if (sc.kind == SH_SCENE_MIDRANGE) {
         if (probe) {
@@ -164,6 +169,8 @@ static int run(int argc, char **argv)
             sc.probe = &img;
         } else if (light && strcmp(light, "lobes")) {
             if (sh_light_parse(light, com.degrees, &L)) return cli_fail("--light: %s", sh_last_error());
+            cli_light_warn("scale-scene", &L, com.degrees);
+            light_angles = cli_light_has_angles(&L);
             sc.light = sh_light_fn;
             sc.light_ctx = &L;
         } else {
@@ -230,10 +237,12 @@ static int run(int argc, char **argv)
                                                sc.kind == SH_SCENE_CONE ? "region-quadrature" : "quad"));
     if (sc.kind != SH_SCENE_MIDRANGE) root = cli_put(root, "size", json_real(sc.size));
     if (sc.kind == SH_SCENE_CONE) {
-        root = cli_put(root, "occluder_angle", json_real(sc.cone_angle));
+        root = cli_put(root, "occluder_angle", json_real(cli_angle_out(sc.cone_angle, com.degrees)));
         root = cli_put(root, "wobble", json_real(sc.wobble));
     }
-    if (sc.kind != SH_SCENE_MIDRANGE) root = cli_put(root, "cone_family_angle", json_real(fam_cone));
+    if (sc.kind != SH_SCENE_MIDRANGE) root = cli_put(root, "cone_family_angle", json_real(cli_angle_out(fam_cone, com.degrees)));
+    if (sc.kind != SH_SCENE_MIDRANGE || light_angles)
+        root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
     if (sc.kind == SH_SCENE_MIDRANGE) {
         root = cli_put(root, "environment", json_string(probe ? probe : light ? light : "lobes"));
         root = cli_put(root, "nodes", json_integer(nodes));

@@ -38,12 +38,14 @@ static const char help[] =
     "  --ref-max R          compare with the reference up to band R (default 40)\n"
     "  --exact-max E        exact orthogonality up to band E (default 128)\n"
     "  --convention cs|nocs\n"
+    "  --degrees            print the rotations' Euler angles in degrees\n"
     "  --quiet              no progress on stderr\n"
     CLI_SHARD_HELP
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"rotations\":[{name,euler}],\n"
+    "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"unit\" (of the Euler angles),\n"
+    "       \"rotations\":[{name,euler}],\n"
     "       \"rows\":[{\"band\",\"orth\",\"orth_exact\",\"hom\",\"ref\",\"broken\"}]}\n";
 
 /* ---- the sweep: item j is band j (--lmax) or the j-th of --bands ---- */
@@ -60,6 +62,7 @@ static json_t *finish(const json_t *params, json_t *rows)
     sh_rot_method method;
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
+    const int degrees = json_is_true(json_object_get(params, "degrees"));
     if (sh_rot_method_parse(json_string_value(json_object_get(params, "method")), &method) ||
         sh_rot_stability_set(set, names)) {
         json_decref(rows);
@@ -68,7 +71,8 @@ static json_t *finish(const json_t *params, json_t *rows)
     json_t *rots = json_array();
     for (int k = 0; k < SH_ROT_STABILITY_NSET; k++) {
         if (method == SH_ROT_Z && set[k].beta != 0) continue;
-        double e[3] = {set[k].alpha, set[k].beta, set[k].gamma};
+        double e[3] = {cli_angle_out(set[k].alpha, degrees), cli_angle_out(set[k].beta, degrees),
+                       cli_angle_out(set[k].gamma, degrees)};
         json_t *r = json_object();
         r = cli_put(r, "name", json_string(names[k]));
         r = cli_put(r, "euler", cli_json_array(e, 3));
@@ -77,6 +81,7 @@ static json_t *finish(const json_t *params, json_t *rows)
     json_t *root = json_object();
     static const char *const keys[] = {"method", "precision", "convention", "lmax"};
     for (int k = 0; k < 4; k++) root = cli_put(root, keys[k], json_incref(json_object_get(params, keys[k])));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(degrees)));
     root = cli_put(root, "rotations", rots);
     return cli_put(root, "rows", rows);
 }
@@ -111,6 +116,7 @@ static int run(int argc, char **argv)
 {
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_CONVENTION,
+                                         CLI_LONGOPT_DEGREES,
                                          CLI_LONGOPT_METHOD,
                                          CLI_LONGOPT_PRECISION,
                                          CLI_LONGOPT_SHARD,
@@ -203,6 +209,7 @@ static int run(int argc, char **argv)
     params = cli_put(params, "ref_max", json_integer(ref_max));
     params = cli_put(params, "exact_max", json_integer(exact_max));
     params = cli_put(params, "stop_above", stop_above > 0 ? json_real(stop_above) : json_null());
+    params = cli_put(params, "degrees", json_boolean(com.degrees));
     const long nitems = bands ? nb : lmax + 1;
     cli_sweep sw;
     cli_sweep_begin(&sw, &sweep_stability, params, nitems, have_shard ? &shard : NULL, com.fmt, quiet, "bands");

@@ -19,7 +19,7 @@ static const char help[] =
     "                          [--lobe-exp E] [OPTIONS]\n"
     "\n"
     "Error of the Taylor-approximated rotation about y, D(β) = R_Y(β) - T(β)\n"
-    "(CONVENTIONS.md): T = I + βJ (1), + β²/2·diag(J²) (1.5), + β²/2·J² (2).\n"
+    "(docs/CONVENTIONS.md): T = I + βJ (1), + β²/2·diag(J²) (1.5), + β²/2·J² (2).\n"
     "R_Y(β) is exact (zxzxz); T(β) is the taylor method's own matrix.\n"
     "  max   largest singular value of D (worst unit coefficient vector)\n"
     "  mean  mean of the N² singular values (GSL one-sided Jacobi SVD)\n"
@@ -122,8 +122,8 @@ static int run(int argc, char **argv)
     const double unit = com.degrees ? M_PI / 180.0 : 1.0;
     const double top = have_beta ? beta : beta_max;
     if (top < 0 || top * unit > M_PI * (1 + 1e-15))
-        return cli_fail("taylor-error: %s %g outside [0, %s]", have_beta ? "--beta" : "--beta-max", top,
-                        com.degrees ? "180" : "pi");
+        return cli_fail("taylor-error: %s %g outside [0, %s", have_beta ? "--beta" : "--beta-max", top,
+                        com.degrees ? "180] degrees" : "pi] radians (--degrees for degrees)");
     const int nrow = have_beta ? 1 : steps + 1;
     /* everything the rows depend on: the whole sweep, whichever shard runs */
     json_t *params = json_object();

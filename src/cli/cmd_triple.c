@@ -33,7 +33,7 @@ static const char help[] =
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
-    "JSON: {\"order\",\"convention\",\"light\",\"method\":\"gaunt\",\n"
+    "JSON: {\"order\",\"convention\",\"light\",[\"unit\" (SPEC with angles)],\"method\":\"gaunt\",\n"
     "       \"light_method\":\"closed-form\"|\"quad\",\"light_order\":2N-1,\n"
     "       \"matrix\":[[N² numbers] × N²]}\n";
 
@@ -74,6 +74,7 @@ static int run(int argc, char **argv)
     if (!spec) return cli_fail("triple: --light is required");
     sh_light L;
     if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());
+    cli_light_warn("triple", &L, degrees);
 
     const int border = 2 * order - 1, n = sh_ncoeff(order);
     double *b = malloc(sizeof(double) * (size_t)sh_ncoeff(border));
@@ -95,6 +96,7 @@ static int run(int argc, char **argv)
     root = cli_put(root, "order", json_integer(order));
     root = cli_put(root, "convention", json_string(sh_convention_name(conv)));
     root = cli_put(root, "light", json_string(spec));
+    if (cli_light_has_angles(&L)) root = cli_put(root, "unit", json_string(cli_angle_unit(degrees)));
     root = cli_put(root, "method", json_string("gaunt"));
     root = cli_put(root, "light_method", json_string(lmethod));
     root = cli_put(root, "light_order", json_integer(border));

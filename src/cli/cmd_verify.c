@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "core/shlab_internal.h"
 
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
@@ -25,6 +26,11 @@ static const char help[] =
     "  --method M           instead of a candidate, run shlab's method M\n"
     "  --precision P        double (default) | float: the tolerance (and, with\n"
     "                       --method, the arithmetic) to use\n"
+    "  --kernel K           with --method: auto (default) | scalar | unrolled |\n"
+    "                       sse2 | avx2 | avx512, the code that runs (the fixture's\n"
+    "                       Euler angles reach the plan as angles; --matrix-input:\n"
+    "                       as the case's matrix, sh_rot_plan_set_matrix)\n"
+    "  --matrix-input       with --method: give each case's rotation as its matrix\n"
     "  --diagnose           on failure, test what the candidate matches instead:\n"
     "                       the other CS-phase convention, the inverse (frame)\n"
     "                       rotation, α and γ swapped, β negated, degrees taken as\n"
@@ -38,13 +44,22 @@ static const char help[] =
     "  --simulate MISTAKE   with --emit-candidate: write what a kernel with this\n"
     "                       mistake would output: convention | inverse | swap |\n"
     "                       beta | deg2rad | rad2deg | mdesc | mdesc-out | mdesc-in\n"
-    "                       | float (to try --diagnose)\n"
+    "                       | float (to try --diagnose).  The verdict printed is\n"
+    "                       that of the simulated kernel (it fails, as meant);\n"
+    "                       the exit status is 0 once the file is written\n"
     "\n"
     "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
     "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
     "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
-    "       cases mix both),[\"method\" (with --method)],[\"diagnosis\",\"diagnosis_matches\",\n"
-    "       \"diagnosis_checked\"]}  (checked: cases the mistake changes; matches: of those, the ones the candidate equals)\n";
+    "       cases mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
+    "       [\"simulated\" (with --simulate)],\n"
+    "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
+    "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
+    "The diagnosis compares at each case's float32 tolerance (1e-6 and more), so its\n"
+    "counts are not comparable with \"failed\": diagnosis_checked = the cases the\n"
+    "mistake changes by more than their float32 tolerance (a mistake that changes a\n"
+    "case less, at β ≈ 0 say, proves nothing there), diagnosis_matches = those of\n"
+    "them the candidate equals within it; a diagnosis must explain all it checks.\n";
 
 /* A transformation of the expected answer that a wrong kernel would produce. */
 typedef enum {
@@ -118,8 +133,9 @@ static double max_err(const double *a, const double *b, int n, int *at)
 static int load_candidate(const char *path, const fx_set *fx, double **out)
 {
     json_error_t err;
+    errno = 0;
     json_t *root = json_load_file(path, 0, &err);
-    if (!root) return cli_fail("candidate '%s': %s (line %d)", path, err.text, err.line);
+    if (!root) return cli_fail_json("candidate", path, errno, &err);
     const json_t *res = json_object_get(root, "results");
     if (!json_is_object(res)) {
         json_decref(root);
@@ -181,11 +197,13 @@ static int run(int argc, char **argv)
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPT_METHOD,
                                          CLI_LONGOPT_PRECISION,
+                                         CLI_LONGOPT_KERNEL,
                                          {"fixture", required_argument, 0, 'f'},
                                          {"candidate", required_argument, 0, 'c'},
                                          {"diagnose", no_argument, 0, 'd'},
                                          {"emit-candidate", required_argument, 0, 'E'},
                                          {"simulate", required_argument, 0, 'S'},
+                                         {"matrix-input", no_argument, 0, 'X'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *fixture = NULL, *cand = NULL;
@@ -193,6 +211,7 @@ static int run(int argc, char **argv)
     sh_precision prec = SH_PREC_DOUBLE;
     int have_method = 0, diagnose = 0, simulate = -1; /* -1 none, T_COUNT = float */
     const char *emit = NULL;
+    int matrix_input = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -202,6 +221,7 @@ static int run(int argc, char **argv)
         case 'c': cand = optarg; break;
         case 'd': diagnose = 1; break;
         case 'E': emit = optarg; break;
+        case 'X': matrix_input = 1; break;
         case 'S':
             simulate = -2;
             for (int t = 0; t < T_COUNT; t++)
@@ -227,6 +247,7 @@ static int run(int argc, char **argv)
     if (!cand == !have_method) return cli_fail("verify: give exactly one of --candidate and --method");
     if (emit && !have_method) return cli_fail("verify: --emit-candidate needs --method");
     if (simulate != -1 && !emit) return cli_fail("verify: --simulate needs --emit-candidate");
+    if ((com.have_kernel || matrix_input) && !have_method) return cli_fail("verify: --kernel and --matrix-input need --method");
     fx_set fx;
     if (fx_load(fixture, &fx)) return CLI_EXIT_USAGE;
     double **got = calloc((size_t)fx.ncases + 1, sizeof *got);
@@ -247,20 +268,20 @@ static int run(int argc, char **argv)
                 goto done;
             }
             if (method == SH_ROT_Z && c->rot.beta != 0) {
-                rc = cli_fail("verify: method z rotates about z only; case '%s' has β = %.3g", c->id, c->rot.beta);
+                rc = cli_fail("verify: method z rotates about z only; case '%s' has β = %.3g rad", c->id, c->rot.beta);
                 goto done;
             }
             if (simulate >= 0 && simulate < T_COUNT)
                 st = transformed((transform)simulate, c, got[k], tmp);
             else
-                st = fx_apply(method, simulate == T_COUNT ? SH_PREC_FLOAT : prec, c, &c->rot,
-                              c->conv, c->input, got[k]);
+                st = fx_apply_kernel(method, simulate == T_COUNT ? SH_PREC_FLOAT : prec, com.kernel,
+                                     matrix_input, c, &c->rot, c->conv, c->input, got[k]);
         }
         if (st) { rc = cli_fail("verify: %s", sh_last_error()); goto done; }
         if (emit && (rc = write_candidate(emit, &fx, got))) goto done;
     }
     /* the verdict */
-    int failed = 0, fail_double = 0, worst_k = 0, worst_i = 0;
+    int failed = 0, fail_double = 0, worst_k = 0, worst_i = 0, failed_near = 0;
     double worst_ratio = -1;
     for (int k = 0; k < fx.ncases; k++) {
         const fx_case *c = &fx.cases[k];
@@ -268,6 +289,7 @@ static int run(int argc, char **argv)
         int at;
         const double e = max_err(got[k], c->expected, c->n, &at);
         if (!(e <= tol)) failed++;
+        if (!(e <= tol) && e <= c->tol_float) failed_near++;
         if (!(e <= c->tol_double)) fail_double++;
         if (!(e / tol <= worst_ratio)) { worst_ratio = e / tol; worst_k = k; worst_i = at; }
     }
@@ -296,6 +318,9 @@ static int run(int argc, char **argv)
     root = cli_put(root, "convention",
                    json_string(have_cs && have_nocs ? "cs+nocs" : have_nocs ? "nocs" : "cs"));
     if (have_method) root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
+    if (simulate >= 0) root = cli_put(root, "simulated", json_string(simulate < T_COUNT ? t_short[simulate] : "float"));
+    if (com.have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(com.kernel)));
+    if (matrix_input) root = cli_put(root, "input", json_string("matrix"));
     if (diagnose && failed) {
         /* float precision only: every case within its float32 tolerance */
         int float_ok = 0, best = -1, best_n = 0, best_seen = 0;
@@ -333,11 +358,24 @@ static int run(int argc, char **argv)
         root = cli_put(root, "diagnosis", json_string(cause ? cause : "no known transformation explains the mismatch"));
         root = cli_put(root, "diagnosis_matches", json_integer(best_n));
         root = cli_put(root, "diagnosis_checked", json_integer(best_seen));
+        root = cli_put(root, "diagnosis_tolerance", json_string("float32"));
+        /* "failed" counts cases beyond the tolerance_kind tolerance (double:
+         * 1e-13); the diagnosis compares at the float32 tolerance, so the two
+         * counts differ: say what each one counts */
+        fprintf(stderr,
+                "verify: failed counts the cases beyond their %s tolerance; the diagnosis compares at "
+                "each case's float32 tolerance: diagnosis_checked = the %d cases the mistake changes "
+                "by more than that, diagnosis_matches = the %d of them the candidate equals (%d of the "
+                "%d failed cases are within their float32 tolerance: too close to tell)\n",
+                prec == SH_PREC_FLOAT ? "float32" : "double", best_seen, best_n, failed_near, failed);
     }
-    if (failed) fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d\n",
-                        failed, fx.ncases, prec == SH_PREC_FLOAT ? "float32" : "double", wc->id, worst_i);
+    if (failed) fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n",
+                        failed, fx.ncases, prec == SH_PREC_FLOAT ? "float32" : "double", wc->id, worst_i,
+                        simulate >= 0 ? " (the simulated mistake, as asked)" : "");
     rc = cli_emit(root, com.fmt);
-    if (rc == 0 && failed) rc = CLI_EXIT_CHECK;
+    /* --simulate asks for a wrong kernel's outputs: they are meant to fail,
+     * and the command succeeded once the candidate file is written */
+    if (rc == 0 && failed && simulate < 0) rc = CLI_EXIT_CHECK;
     (void)fail_double;
 done:
     if (got)

@@ -10,6 +10,7 @@ extern const cli_command cmd_scale, cmd_scale_interp, cmd_scale_scene;
 extern const cli_command cmd_deriv, cmd_taylor_error;
 extern const cli_command cmd_bench, cmd_plan;
 extern const cli_command cmd_merge;
+extern const cli_command cmd_orthonormality;
 
 static const cli_command *const table[] = {
     &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
@@ -18,6 +19,7 @@ static const cli_command *const table[] = {
     &cmd_deriv, &cmd_taylor_error,
     &cmd_bench, &cmd_plan,
     &cmd_merge,
+    &cmd_orthonormality,
 };
 
 const cli_command *cli_find(const char *name)
@@ -27,9 +29,15 @@ const cli_command *cli_find(const char *name)
     return NULL;
 }
 
+/* Every help text ends by pointing at the conventions document. */
+static const char conventions_note[] =
+    "\nConventions (basis, index, rotations, angles and units, output): docs/CONVENTIONS.md\n"
+    "in the shlab source, installed as share/doc/shlab/CONVENTIONS.md.\n";
+
 int cli_help(const cli_command *cmd)
 {
     fputs(cmd->help, stdout);
+    fputs(conventions_note, stdout);
     if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
     return CLI_EXIT_OK;
 }
@@ -51,9 +59,11 @@ static void usage(FILE *o)
             "\n"
             "Conventions: real SH with the Condon-Shortley phase ('cs', default) or without\n"
             "('nocs'); flat index i = l(l+1)+m; order n = bands 0..n-1 (n² coefficients);\n"
-            "direction (sinθcosφ, sinθsinφ, cosθ); angles in radians unless --degrees.\n"
+            "direction (sinθcosφ, sinθsinφ, cosθ); angles in radians unless --degrees\n"
+            "(then angles in and out are in degrees).\n"
             "Every command takes --format table|csv|json (default table).\n"
             "Exit status: 0 success, 1 a check failed, 2 bad usage or input.\n");
+    fputs(conventions_note, o);
 }
 
 int main(int argc, char **argv)
@@ -77,5 +87,7 @@ int main(int argc, char **argv)
     }
     const cli_command *cmd = cli_find(c);
     if (!cmd) return cli_fail("unknown command '%s' (try 'shlab --help')", c);
-    return cmd->run(argc - 1, argv + 1);
+    const int rc = cmd->run(argc - 1, argv + 1);
+    cli_warn_flush(rc);
+    return rc;
 }

@@ -35,4 +35,12 @@ int sh__commit_temp(const char *tmp, const char *path);
  * max(0, cosθ)^e about +z scaled to a unit vector (sh_lobe_zonal / its norm). */
 int sh__lobe_zonal_unit(double e, int order, double *z);
 
+/* memory.c: the memory the machine has available now (MemAvailable, else
+ * free pages; SIZE_MAX if unknown); a size as "1.2 GB", "34.5 MB", "12 kB";
+ * SH_OK if `bytes` fit in 7/8 of it, else SH_ENOMEM with "<what> needs X of
+ * memory; Y is available". */
+size_t sh__mem_available(void);
+const char *sh__bytes_str(double bytes, char *buf, size_t n);
+int sh__mem_check(double bytes, const char *what);
+
 #endif

@@ -6,7 +6,7 @@
  *  [1] J. Křivánek et al., "Fast Approximation to Spherical Harmonic
  *      Rotation" (2005), Sec. 3.2 (error of the Taylor approximations as
  *      singular values of D(β) = R_Y(β) − R'_Y(β), and the lobe error).
- *  [2] CONVENTIONS.md, "Taylor-approximated rotation" (max, mean, lobe).
+ *  [2] docs/CONVENTIONS.md, "Taylor-approximated rotation" (max, mean, lobe).
  *  [3] GSL reference manual, "Singular Value Decomposition":
  *      gsl_linalg_SV_decomp_jacobi (one-sided Jacobi, accurate small
  *      singular values).
@@ -272,20 +272,35 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
     }
     free(own);
     sh_bench_opts bo = SH_BENCH_OPTS_DEFAULT;
-    bo.target_ms = o->target_ms > 0 ? o->target_ms : 2.0;
-    bo.repeat = o->repeat > 0 ? o->repeat : 5;
     bo.max_beta = o->max_beta; /* rotations of the scene's range */
     bo.conv = o->conv;
+    /* timing: every candidate one entry, interleaved in one run (measure.h) */
+    sh_bench_cfg cfg = SH_BENCH_CFG_DEFAULT;
+    cfg.min_sample_ms = o->target_ms > 0 ? o->target_ms : 2.0;
+    cfg.samples = o->repeat > 0 ? o->repeat : 5;
+    sh_bench_entry ent[SH_ROT_NMETHODS];
+    sh_bench_stats bs[SH_ROT_NMETHODS];
+    double mults[SH_ROT_NMETHODS];
+    for (int k = 0; k < nm && !o->cost && !st; k++)
+        if ((st = sh_rot_bench_entry(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &ent[k])))
+            for (int j = 0; j < k; j++) sh_bench_entry_free(&ent[j]);
+    if (st) return st;
+    if (!o->cost && nm > 0) {
+        st = sh_bench_interleaved(ent, nm, &cfg, NULL, bs, NULL);
+        for (int k = 0; k < nm; k++) {
+            mults[k] = ent[k].mults;
+            sh_bench_entry_free(&ent[k]);
+        }
+        if (st) return st;
+    }
     for (int k = 0; k < nm; k++) {
         cand[k].ok = cand[k].max_error <= o->tolerance;
         if (o->cost) {
             cand[k].ns_per_rotation = o->cost(o->cost_ctx, ms[k], o->order);
             cand[k].mults = 0;
         } else {
-            sh_bench_result r;
-            if ((st = sh_rot_bench(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &r))) return st;
-            cand[k].ns_per_rotation = r.ns_median;
-            cand[k].mults = r.mults;
+            cand[k].ns_per_rotation = bs[k].ns_median;
+            cand[k].mults = mults[k];
         }
         if (o->progress) o->progress(o->progress_ctx, nbeta + 2 + k, nbeta + 1 + nm, "steps (timing the methods)");
     }

@@ -1,7 +1,7 @@
 /* envmap.c — environment-map layouts, exact pixel solid angles, and the
  * projection of an environment image onto real SH.
  *
- * Layouts (CONVENTIONS.md "Environment maps"):
+ * Layouts (docs/CONVENTIONS.md "Environment maps"):
  *  - lat-long W×H: pixel (i,j) centre u=(i+½)/W, v=(j+½)/H, θ=πv, φ=2πu;
  *    row j spans θ ∈ [πj/H, π(j+1)/H], so its pixels have the exact solid
  *    angle Ω_j = (2π/W)(cos θ_top − cos θ_bottom).
@@ -30,15 +30,18 @@
  * check ∫ y_i y_j ≈ δ_ij.
  *
  * Projection: c_i = Σ_pixels L · y_i(centre) · Ω_pixel.  For lat-long it is
- * separable: per row one Legendre evaluation (sh__legendre_core) and the
- * azimuthal sums A_m = Σ_i L cos(mφ_i), B_m = Σ_i L sin(mφ_i) from a
- * cos/sin table built once, O(H·W·n + H·n²) per channel.  The angle map
+ * separable: the rows are rings of latitude with the exact row solid angle
+ * as weight, so the fast transform (sht.c) does it, O(H·W·log W + H·n²) for
+ * all channels at once; the direct form it replaced (per row one Legendre
+ * evaluation and the azimuthal sums A_m = Σ_i L cos(mφ_i), B_m = Σ_i L
+ * sin(mφ_i) from a cos/sin table, O(H·W·n + H·n²) per channel) is kept as
+ * sh__project_latlong_direct for the tests.  The angle map
  * is not separable, but its 8-fold grid symmetry lets one Legendre
  * evaluation serve up to 8 pixels (see project_probe).
  *
  * [1] R. Green, "Spherical Harmonic Lighting: The Gritty Details", GDC 2003.
  */
-#include "core/shlab_internal.h"
+#include "project/sht_internal.h"
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
@@ -243,7 +246,7 @@ int sh_image_from_fn(sh_layout layout, int width, int height, sh_sphere_fn f, vo
 
 /* ---------------------------------------------------------- projection */
 
-static int project_latlong(const sh_image *img, int order, sh_convention conv, double *coeffs)
+int sh__project_latlong_direct(const sh_image *img, int order, sh_convention conv, double *coeffs)
 {
     const int W = img->width, H = img->height, n = order, nn = n * n;
     const size_t plane = (size_t)W * H;
@@ -353,9 +356,48 @@ static int project_probe(const sh_image *img, int order, sh_convention conv, dou
     return SH_OK;
 }
 
+/* Row r of every channel of a lat-long image, as doubles. */
+static int latlong_row(void *ctx, int r, double *buf)
+{
+    const sh_image *img = ctx;
+    const size_t W = (size_t)img->width, plane = W * img->height;
+    for (int c = 0; c < img->nchan; c++) {
+        const float *row = img->data + c * plane + (size_t)r * W;
+        for (size_t i = 0; i < W; i++) buf[c * W + i] = row[i];
+    }
+    return SH_OK;
+}
+
+static int project_latlong(const sh_image *img, int order, sh_convention conv,
+                           const sh_run_opts *opts, double *coeffs)
+{
+    double *x = malloc(sizeof(double) * (size_t)img->height * 2);
+    if (!x) return sh_error(SH_ENOMEM, "sh_project_image: out of memory");
+    sh_grid g;
+    sh_sht *p = NULL;
+    int st = sh_grid_latlong(img->width, img->height, x, x + img->height, &g);
+    if (!st) st = sh_sht_create(order, &g, img->nchan, opts->nthreads, &p);
+    if (!st) {
+        sh_sht_set_progress(p, opts->progress, opts->progress_ctx);
+        st = sh__sht_analysis_cb(p, conv, latlong_row, (void *)img, coeffs);
+    }
+    sh_sht_destroy(p);
+    free(x);
+    return st;
+}
+
 int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_convention conv,
                      double *coeffs)
 {
+    const sh_run_opts opts = SH_RUN_OPTS_DEFAULT;
+    return sh_project_image_ex(img, layout, order, conv, &opts, coeffs);
+}
+
+int sh_project_image_ex(const sh_image *img, sh_layout layout, int order, sh_convention conv,
+                        const sh_run_opts *opts, double *coeffs)
+{
+    const sh_run_opts defaults = SH_RUN_OPTS_DEFAULT;
+    if (!opts) opts = &defaults;
     int st = sh_check_order(order);
     if (st) return st;
     if (!img || !img->data || img->nchan < 1 || img->nchan > SH_IMAGE_MAX_CHANNELS)
@@ -363,7 +405,7 @@ int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_conven
     if (!coeffs) return sh_error(SH_EINVAL, "sh_project_image: coefficient array is NULL");
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "unknown convention");
     if ((st = check_size(layout, img->width, img->height))) return st;
-    st = layout == SH_LAYOUT_LATLONG ? project_latlong(img, order, conv, coeffs)
+    st = layout == SH_LAYOUT_LATLONG ? project_latlong(img, order, conv, opts, coeffs)
                                      : project_probe(img, order, conv, coeffs);
     if (st) return st;
     const size_t total = (size_t)img->nchan * order * order;

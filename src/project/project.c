@@ -11,7 +11,7 @@
  *  [3] R. Cranley, T. N. L. Patterson, "Randomization of number theoretic
  *      methods for multiple integration", SIAM J. Numer. Anal. 13 (1976) 904.
  */
-#include "core/shlab_internal.h"
+#include "project/sht_internal.h"
 
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_qrng.h>
@@ -68,9 +68,15 @@ long sh_rule_samples_used(sh_rule r, long samples)
 /* Gauss-Legendre in x = cosθ with S nodes x_k, weights w_k, times 2S
  * uniform φ_j = 2πj/(2S):  c_lm = Σ_k w_k Q_l^|m|(x_k) · (2π/2S) Σ_j f_kj √2 trig(mφ_j).
  * Exact when f·y_i is a polynomial of degree <= 2S−1 in x and a
- * trigonometric polynomial of degree <= 2S−1 in φ.  Q is evaluated once per
- * row, the trig factors once per column. */
-static int project_quad(int order, sh_convention conv, sh_sphere_fn f, void *ctx, long S, double *c)
+ * trigonometric polynomial of degree <= 2S−1 in φ.
+ *
+ * sh_project computes it by the fast transform (sht.c: one FFT per ring, the
+ * Legendre sums across ring pairs), project_quad_fast below.  This is the
+ * direct sum it replaced, O(S²·order + S·order²) per ring pass with Q
+ * evaluated once per row and the trig factors once per column, kept as the
+ * tests' independent reference. */
+int sh__project_quad_direct(int order, sh_convention conv, sh_sphere_fn f, void *ctx, long S,
+                            double *c)
 {
     if (S > 100000000L / 2) return sh_error(SH_EINVAL, "quad: %ld nodes is too many", S);
     const int n = sh_ncoeff(order), nphi = (int)(2 * S);
@@ -200,16 +206,69 @@ static int sampler_next(sampler *s, double *theta, double *phi)
     return 1;
 }
 
+/* The ring callback of the fast path: f at the 2S points of ring r (the
+ * same points, evaluated the same way, as the direct sum). */
+typedef struct {
+    sh_sphere_fn f;
+    void *ctx;
+    const double *x;
+    int nphi;
+} quad_ctx;
+
+static int quad_ring(void *vctx, int r, double *buf)
+{
+    const quad_ctx *q = vctx;
+    const double x = q->x[r], theta = acos(x), s = sqrt((1.0 - x) * (1.0 + x));
+    for (int j = 0; j < q->nphi; j++) {
+        const double phi = 2.0 * M_PI * j / q->nphi;
+        const double d[3] = {s * cos(phi), s * sin(phi), x};
+        buf[j] = q->f(d, theta, phi, q->ctx);
+        if (!isfinite(buf[j]))
+            return sh_error(SH_ENUM, "function is not finite at theta=%g phi=%g", theta, phi);
+    }
+    return SH_OK;
+}
+
+static int project_quad_fast(int order, sh_convention conv, sh_sphere_fn f, void *ctx, long S,
+                             const sh_run_opts *opts, double *c)
+{
+    if (S > 100000000L / 2) return sh_error(SH_EINVAL, "quad: %ld nodes is too many", S);
+    if (S > (1 << 24)) return sh_error(SH_EINVAL, "quad: %ld nodes is too many", S);
+    double *xw = malloc(sizeof(double) * (size_t)S * 2);
+    if (!xw) return sh_error(SH_ENOMEM, "out of memory (quad with %ld nodes)", S);
+    sh_grid g;
+    sh_sht *p = NULL;
+    int st = sh_grid_gauss((int)S, (int)(2 * S), xw, xw + S, &g);
+    if (!st) st = sh_sht_create(order, &g, 1, opts->nthreads, &p);
+    if (!st) {
+        sh_sht_set_progress(p, opts->progress, opts->progress_ctx);
+        quad_ctx q = {f, ctx, xw, (int)(2 * S)};
+        st = sh__sht_analysis_cb(p, conv, quad_ring, &q, c);
+    }
+    sh_sht_destroy(p);
+    free(xw);
+    return st;
+}
+
 int sh_project(int order, sh_convention conv, sh_sphere_fn f, void *ctx, sh_rule rule, long samples,
                unsigned long seed, double *coeffs)
 {
+    const sh_run_opts opts = SH_RUN_OPTS_DEFAULT;
+    return sh_project_ex(order, conv, f, ctx, rule, samples, seed, &opts, coeffs);
+}
+
+int sh_project_ex(int order, sh_convention conv, sh_sphere_fn f, void *ctx, sh_rule rule,
+                  long samples, unsigned long seed, const sh_run_opts *opts, double *coeffs)
+{
+    const sh_run_opts defaults = SH_RUN_OPTS_DEFAULT;
+    if (!opts) opts = &defaults;
     int st = sh_check_order(order);
     if (st) return st;
     if (!f || !coeffs) return sh_error(SH_EINVAL, "sh_project: no function or output");
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "unknown convention");
     if (rule < SH_RULE_QUAD || rule > SH_RULE_QMC) return sh_error(SH_EINVAL, "unknown projection rule");
     if (samples <= 0) samples = sh_rule_default_samples(rule);
-    if (rule == SH_RULE_QUAD) return project_quad(order, conv, f, ctx, samples, coeffs);
+    if (rule == SH_RULE_QUAD) return project_quad_fast(order, conv, f, ctx, samples, opts, coeffs);
 
     if (samples > 1000000000L) return sh_error(SH_EINVAL, "%ld samples is too many", samples);
     const int n = sh_ncoeff(order);

@@ -13,15 +13,18 @@
  * "hann" and "lanczos" without W use W = order (stored as param = 0).
  *
  * Reconstruction f(θ_j, φ_i) = Σ_l σ_l Σ_m c_l^m y_l^m at the lat-long pixel
- * centres (CONVENTIONS.md) is separable: per row one Legendre evaluation and
+ * centres (docs/CONVENTIONS.md) is separable: per row one Legendre evaluation and
  *   a_m = Σ_l σ_l c_l^m Q_l^m,  b_m = Σ_l σ_l c_l^{−m} Q_l^m,
- *   f = a_0 + √2 Σ_{m>0} (a_m cos mφ + b_m sin mφ),
- * O(H·n² + H·W·n) per channel.
+ *   f = a_0 + √2 Σ_{m>0} (a_m cos mφ + b_m sin mφ).
+ * The rows are rings of latitude, so the fast synthesis of sht.c does it
+ * (Legendre sums across row pairs, one inverse FFT per row), O(H·n² +
+ * H·W·log W) for all channels at once; the direct form above, O(H·n² + H·W·n)
+ * per channel, is kept as sh__reconstruct_latlong_direct for the tests.
  *
  * [1] R. Green, "Spherical Harmonic Lighting: The Gritty Details", GDC 2003,
  *     section on ringing ("window your input data by pre-filtering it").
  */
-#include "core/shlab_internal.h"
+#include "project/sht_internal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -150,9 +153,68 @@ static int check_args(int order, sh_convention conv, const double *coeffs, int w
     return SH_OK;
 }
 
+int sh__reconstruct_latlong_direct(int order, sh_convention conv, const double *coeffs,
+                                   const sh_window *win, int width, double *out)
+{
+    int st = check_args(order, conv, coeffs, width);
+    if (st) return st;
+    const int W = width, H = width / 2;
+    synth_t s;
+    if ((st = synth_alloc(&s, order, win, W))) return st;
+    for (int j = 0; j < H; j++) {
+        synth_row_setup(&s, M_PI * (j + 0.5) / H);
+        synth_row(&s, conv, coeffs, out + (size_t)j * W);
+    }
+    synth_free(&s);
+    return SH_OK;
+}
+
+/* A plan for the lat-long grid of width W (height W/2) and the window
+ * factors σ_l; the caller frees *x and destroys *p. */
+static int latlong_plan(int order, const sh_window *win, int width, int nchan,
+                        const sh_run_opts *opts, double **x, sh_sht **p)
+{
+    const int H = width / 2;
+    *p = NULL;
+    *x = malloc(sizeof(double) * ((size_t)H + order));
+    if (!*x) return sh_error(SH_ENOMEM, "reconstruction: out of memory");
+    double *sig = *x + H;
+    for (int l = 0; l < order; l++) sig[l] = sh_window_factor(win, l, order);
+    sh_grid g;
+    int st = sh_grid_latlong(width, H, *x, NULL, &g);
+    if (!st) st = sh_sht_create(order, &g, nchan, opts->nthreads, p);
+    if (!st) sh_sht_set_progress(*p, opts->progress, opts->progress_ctx);
+    return st;
+}
+
+typedef struct {
+    sh_image *img;
+} put_image_ctx;
+
+static int put_image_row(void *ctx, int r, const double *buf)
+{
+    sh_image *img = ((put_image_ctx *)ctx)->img;
+    const size_t W = (size_t)img->width, plane = W * img->height;
+    for (int c = 0; c < img->nchan; c++) {
+        float *dst = img->data + c * plane + (size_t)r * W;
+        for (size_t i = 0; i < W; i++) dst[i] = (float)buf[c * W + i];
+    }
+    return SH_OK;
+}
+
 int sh_reconstruct_latlong(int order, sh_convention conv, const double *coeffs, int nchan,
                            const sh_window *win, int width, sh_image *out)
 {
+    const sh_run_opts opts = SH_RUN_OPTS_DEFAULT;
+    return sh_reconstruct_latlong_ex(order, conv, coeffs, nchan, win, width, &opts, out);
+}
+
+int sh_reconstruct_latlong_ex(int order, sh_convention conv, const double *coeffs, int nchan,
+                              const sh_window *win, int width, const sh_run_opts *opts,
+                              sh_image *out)
+{
+    const sh_run_opts defaults = SH_RUN_OPTS_DEFAULT;
+    if (!opts) opts = &defaults;
     if (!out) return sh_error(SH_EINVAL, "sh_reconstruct_latlong: output is NULL");
     memset(out, 0, sizeof *out);
     if (nchan < 1 || nchan > SH_IMAGE_MAX_CHANNELS || nchan == 2)
@@ -161,17 +223,9 @@ int sh_reconstruct_latlong(int order, sh_convention conv, const double *coeffs, 
     if (st) return st;
     for (int c = 1; c < nchan; c++)
         if ((st = check_args(order, conv, coeffs + (size_t)c * order * order, width))) return st;
-    const int W = width, H = width / 2, nn = order * order;
-    synth_t s;
-    if ((st = synth_alloc(&s, order, win, W))) return st;
-    double *row = malloc((size_t)W * sizeof *row);
+    const int W = width, H = width / 2;
     out->data = malloc((size_t)W * H * nchan * sizeof(float));
-    if (!row || !out->data) {
-        free(row);
-        synth_free(&s);
-        sh_image_free(out);
-        return sh_error(SH_ENOMEM, "sh_reconstruct_latlong: out of memory");
-    }
+    if (!out->data) return sh_error(SH_ENOMEM, "sh_reconstruct_latlong: out of memory");
     out->width = W;
     out->height = H;
     out->nchan = nchan;
@@ -179,52 +233,83 @@ int sh_reconstruct_latlong(int order, sh_convention conv, const double *coeffs, 
     if (nchan == 1) strcpy(out->names[0], "Y");
     else
         for (int c = 0; c < nchan; c++) strcpy(out->names[c], names[c]);
-    const size_t plane = (size_t)W * H;
-    for (int j = 0; j < H; j++) {
-        synth_row_setup(&s, M_PI * (j + 0.5) / H);
-        for (int c = 0; c < nchan; c++) {
-            synth_row(&s, conv, coeffs + (size_t)c * nn, row);
-            float *dst = out->data + c * plane + (size_t)j * W;
-            for (int i = 0; i < W; i++) dst[i] = (float)row[i];
+    double *x;
+    sh_sht *p;
+    st = latlong_plan(order, win, W, nchan, opts, &x, &p);
+    if (!st) {
+        put_image_ctx pc = {out};
+        st = sh__sht_synthesis_cb(p, conv, coeffs, x + H, put_image_row, &pc);
+    }
+    sh_sht_destroy(p);
+    free(x);
+    if (st) sh_image_free(out);
+    return st;
+}
+
+/* Per-row pieces of the ringing measure, summed over the rows in order at
+ * the end so that the result does not depend on the threads. */
+typedef struct {
+    double *mn, *eneg, *etot; /* [H] */
+    int W, H;
+} ring_ctx;
+
+static int ringing_row(void *ctx, int r, const double *f)
+{
+    ring_ctx *q = ctx;
+    /* exact pixel solid angle (2π/W)(cos θ_top − cos θ_bottom) */
+    const double th = M_PI * (r + 0.5) / q->H;
+    const double om = (2.0 * M_PI / q->W) * 2.0 * sin(th) * sin(0.5 * M_PI / q->H);
+    double mn = 0.0, eneg = 0.0, etot = 0.0;
+    for (int i = 0; i < q->W; i++) {
+        const double e = f[i] * f[i] * om;
+        etot += e;
+        if (f[i] < 0.0) {
+            eneg += e;
+            if (f[i] < mn) mn = f[i];
         }
     }
-    free(row);
-    synth_free(&s);
+    q->mn[r] = mn;
+    q->eneg[r] = eneg;
+    q->etot[r] = etot;
     return SH_OK;
 }
 
 int sh_ringing(int order, sh_convention conv, const double *coeffs, const sh_window *win,
                int width, double *most_negative, double *negative_energy_fraction)
 {
+    const sh_run_opts opts = SH_RUN_OPTS_DEFAULT;
+    return sh_ringing_ex(order, conv, coeffs, win, width, &opts, most_negative,
+                         negative_energy_fraction);
+}
+
+int sh_ringing_ex(int order, sh_convention conv, const double *coeffs, const sh_window *win,
+                  int width, const sh_run_opts *opts, double *most_negative,
+                  double *negative_energy_fraction)
+{
+    const sh_run_opts defaults = SH_RUN_OPTS_DEFAULT;
+    if (!opts) opts = &defaults;
     int st = check_args(order, conv, coeffs, width);
     if (st) return st;
     const int W = width, H = width / 2;
-    synth_t s;
-    if ((st = synth_alloc(&s, order, win, W))) return st;
-    double *row = malloc((size_t)W * sizeof *row);
-    if (!row) {
-        synth_free(&s);
-        return sh_error(SH_ENOMEM, "sh_ringing: out of memory");
+    double *rows = malloc(sizeof(double) * 3 * (size_t)H);
+    if (!rows) return sh_error(SH_ENOMEM, "sh_ringing: out of memory");
+    double *x;
+    sh_sht *p;
+    st = latlong_plan(order, win, W, 1, opts, &x, &p);
+    if (!st) {
+        ring_ctx q = {rows, rows + H, rows + 2 * H, W, H};
+        st = sh__sht_synthesis_cb(p, conv, coeffs, x + H, ringing_row, &q);
     }
+    sh_sht_destroy(p);
+    free(x);
     double mn = 0.0, eneg = 0.0, etot = 0.0;
-    const double half = 0.5 * M_PI / H;
-    for (int j = 0; j < H; j++) {
-        const double th = M_PI * (j + 0.5) / H;
-        /* exact pixel solid angle (2π/W)(cos θ_top − cos θ_bottom) */
-        const double om = (2.0 * M_PI / W) * 2.0 * sin(th) * sin(half);
-        synth_row_setup(&s, th);
-        synth_row(&s, conv, coeffs, row);
-        for (int i = 0; i < W; i++) {
-            const double f = row[i], e = f * f * om;
-            etot += e;
-            if (f < 0.0) {
-                eneg += e;
-                if (f < mn) mn = f;
-            }
-        }
+    for (int j = 0; j < H && !st; j++) {
+        if (rows[j] < mn) mn = rows[j];
+        eneg += rows[H + j];
+        etot += rows[2 * H + j];
     }
-    free(row);
-    synth_free(&s);
+    free(rows);
+    if (st) return st;
     if (!isfinite(mn) || !isfinite(etot)) return sh_error(SH_ENUM, "sh_ringing: overflow");
     if (most_negative) *most_negative = mn;
     if (negative_energy_fraction) *negative_energy_fraction = etot > 0.0 ? eneg / etot : 0.0;

@@ -8,7 +8,7 @@
  *      matrices in the basis of real spherical harmonics", J. Mol. Struct.
  *      (Theochem) 419 (1997) 19.  Equation numbers below are the paper's as
  *      cited by F. J. Simons' MATLAB port (blanco.m, slepian_alpha); the paper
- *      itself is not in ../shared/papers.  Eq. 64: three-term recurrence in l;
+ *      itself was not at hand.  Eq. 64: three-term recurrence in l;
  *      eqs. 65, 66: the diagonal corner elements; eqs. 67, 68: the edge rows
  *      by a ratio recurrence in m'; eq. 38: the symmetries.
  *  [2] T. Dachsel, J. Chem. Phys. 124 (2006) 144115: the three-term recurrence
@@ -43,6 +43,8 @@
 #include "rotate/rot_real.h"
 
 SH__ROT_DECLARE_BLOCKS(blanco);
+int sh__rot_blanco_blocks_par_d(int, const double *, const void *, double *, void *, uint64_t *);
+int sh__rot_blanco_blocks_par_f(int, const float *, const void *, float *, void *, uint64_t *);
 SH__ROT_DECLARE_TABLES(blanco);
 int sh__rot_blanco_band_d(int band, const sh_rotation *rot, double *block, void *work);
 
@@ -82,27 +84,72 @@ static size_t blanco_work(int order)
 }
 #endif
 
-/* Full (2l+1)² matrix d from the region m ≥ |m'| of g (stride W, offset L) by (S). */
-static void fill_sym(int l, const sh_real *g, int L, int W, sh_real *d)
+/* The real block of band l straight from the region m ≥ |m'| of d (g,
+ * stride W, offset L), without the full d matrix or the R_Y(β) block: with
+ * P = d_{m'm} + (−1)^m d_{m',−m}, Q = d_{m'm} − (−1)^m d_{m',−m} (the R_Y
+ * entries of rot_internal.h) and c' s' = cos, sin m'α, c s = cos, sin mγ,
+ * the products Z(α)·R_Y·Z(γ) are, for m', m > 0,
+ *   B(m', m) = c'c P − s's Q,    B(m', −m) = −c's P − s'c Q,
+ *   B(−m', m) = s'c P + c's Q,   B(−m', −m) = −s's P + c'c Q,
+ * and B(0, ±m) = √2 d_{0m} (c, −s), B(±m', 0) = √2 d_{m'0} (c', s'), B(0,0) = d_00
+ * (the same derivation as sh__rot_block_from_d, whose two z passes also
+ * multiply the zeros: 12 products per (m', m) here against 16).  The d
+ * entries outside the region by (S): for m', m > 0,
+ *   d_{m'm}  = g(m', m)                      (m ≥ m'),  (−1)^{m−m'} g(m, m')   (m < m'),
+ *   d_{m',−m} = (−1)^{m+m'} g(−m, m')          (m ≤ m'),  (−1)^{m+m'} g(−m', m)  (m > m'),
+ *   d_{m'0} = (−1)^{m'} g(0, m').
+ * tmp: 2(l+1) values.  Returns the multiplications. */
+static uint64_t SH_R(blanco_block)(int l, const sh_real *g, int L, int W, const sh_real *csa,
+                                   const sh_real *csg, sh_real *B, sh_real *tmp)
 {
     const int w = 2 * l + 1;
+    const sh_real r2 = SH_SQRT((sh_real)2);
+    sh_real *av = tmp, *dv = tmp + (l + 1); /* d_{m'm}, (−1)^{m+m'} d_{m',−m} of a row m' */
 #define G(a, b) g[(size_t)((a) + L) * W + (size_t)((b) + L)]
-    for (int a = -l; a <= l; a++)
-        for (int b = -l; b <= l; b++) {
-            const int aa = a < 0 ? -a : a, ab = b < 0 ? -b : b;
-            const sh_real sg = ((b - a) & 1) ? -1 : 1;
-            sh_real v;
-            if (b >= aa) v = G(a, b);
-            else if (a >= ab) v = sg * G(b, a);
-            else if (a <= -ab) v = G(-b, -a);
-            else v = sg * G(-a, -b);
-            d[(size_t)(a + l) * w + (size_t)(b + l)] = v;
+#define BB(a, b) B[(size_t)((a) + l) * w + (size_t)((b) + l)]
+    BB(0, 0) = G(0, 0);
+    for (int m = 1; m <= l; m++) {
+        const sh_real c = csg[2 * m], s = csg[2 * m + 1], e = r2 * G(0, m);
+        BB(0, m) = c * e;
+        BB(0, -m) = -s * e;
+        const sh_real ca = csa[2 * m], sa = csa[2 * m + 1], f = r2 * ((m & 1) ? -G(0, m) : G(0, m));
+        BB(m, 0) = ca * f;
+        BB(-m, 0) = sa * f;
+    }
+    for (int mp = 1; mp <= l; mp++) {
+        const sh_real ca = csa[2 * mp], sa = csa[2 * mp + 1];
+        /* the row's d entries from the region: av = d_{m'm}, dv = (−1)^m d_{m',−m}
+         * = (−1)^{m'} g(...) (S), so that P = a + dv, Q = a − dv below */
+        const sh_real sg = (mp & 1) ? -1 : 1;
+        for (int m = 1; m < mp; m++) {
+            av[m] = ((mp - m) & 1) ? -G(m, mp) : G(m, mp);
+            dv[m] = sg * G(-m, mp);
         }
+        for (int m = mp; m <= l; m++) {
+            av[m] = G(mp, m);
+            dv[m] = sg * G(-mp, m);
+        }
+        sh_real *Bp = &BB(mp, 0), *Bn = &BB(-mp, 0);
+        for (int m = 1; m <= l; m++) {
+            const sh_real P = av[m] + dv[m], Q = av[m] - dv[m];
+            const sh_real c = csg[2 * m], s = csg[2 * m + 1];
+            const sh_real cc = ca * c, ss = sa * s, cs = ca * s, sc = sa * c;
+            Bp[m] = cc * P - ss * Q;
+            Bp[-m] = -(cs * P) - sc * Q;
+            Bn[m] = sc * P + cs * Q;
+            Bn[-m] = cc * Q - ss * P;
+        }
+    }
 #undef G
+#undef BB
+    return 6u * (uint64_t)l + 12u * (uint64_t)l * l;
 }
 
-int SH_R(sh__rot_blanco_blocks)(int order, const sh_rotation *rot, const void *tables,
-                                sh_real *blocks, void *work, uint64_t *mults)
+/* The blocks from cos β, sin β, c = cos(β/2), s = sin(β/2), lower = (β ≤ π/2)
+ * and the multiple angles of α, γ already in work (csa, csg; blanco_work). */
+static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c, sh_real s,
+                                    int lower, const void *tables, sh_real *blocks, void *work,
+                                    uint64_t *mults)
 {
     const int L = order - 1, W = 2 * L + 1;
     const sh_real *tab = tables;
@@ -110,15 +157,9 @@ int SH_R(sh__rot_blanco_blocks)(int order, const sh_rotation *rot, const void *t
     sh_real *d = g2 + (size_t)W * W, *csa = d + (size_t)W * W, *csg = csa + 2 * (size_t)(L + 1);
     uint64_t count = 0;
 #define IX(a, b) ((size_t)((a) + L) * W + (size_t)((b) + L))
-    const sh_real beta = (sh_real)rot->beta;
-    const sh_real cb = SH_COS(beta), sb = SH_SIN(beta);
-    const sh_real c = SH_COS(beta / 2), s = SH_SIN(beta / 2), c2 = c * c, s2 = s * s;
-    const int lower = rot->beta <= M_PI / 2; /* edge ratios from the m' = l corner */
+    const sh_real c2 = c * c, s2 = s * s;
     const sh_real t = lower ? s / c : c / s;  /* tan(β/2) or cot(β/2), ≤ 1 */
-    count += 3 + 1;
-    SH_R(sh__rot_multiple_angles)((sh_real)rot->alpha, L, csa);
-    SH_R(sh__rot_multiple_angles)((sh_real)rot->gamma, L, csg);
-    if (L >= 2) count += 2 * (2 * (uint64_t)(L - 1) + 1); /* 2cosθ, then 2 per step m ≥ 2 */
+    count += 2;
 
     /* bands 0 and 1 (eqs. 48–52, in our index order): region m ≥ |m'| */
     sh_real *dm2 = g0, *dm1 = g1, *cur = g2; /* d^{l−2}, d^{l−1}, d^l */
@@ -131,9 +172,7 @@ int SH_R(sh__rot_blanco_blocks)(int order, const sh_rotation *rot, const void *t
     dm1[IX(1, 1)] = c2;
     dm1[IX(-1, 1)] = s2;
     count += 1;
-    fill_sym(1, dm1, L, W, d);
-    SH_R(sh__rot_block_from_d)(1, d, csa, csg, blocks + sh_rot_block_offset(1));
-    count += 2 + 8 * 3; /* block_from_d at l = 1: 2l + 8·l·w */
+    count += SH_R(blanco_block)(1, dm1, L, W, csa, csg, blocks + sh_rot_block_offset(1), d);
 
     for (int l = 2; l < order; l++) {
         const int w = 2 * l + 1;
@@ -197,10 +236,7 @@ int SH_R(sh__rot_blanco_blocks)(int order, const sh_rotation *rot, const void *t
                 count += 2;
             }
         }
-        fill_sym(l, cur, L, W, d);
-        SH_R(sh__rot_block_from_d)(l, d, csa, csg, blocks + sh_rot_block_offset(l));
-        /* block_from_d: 2l (√2 column/row) + two z passes of 4·l·w */
-        count += 2u * (uint64_t)l + 8u * (uint64_t)l * w;
+        count += SH_R(blanco_block)(l, cur, L, W, csa, csg, blocks + sh_rot_block_offset(l), d);
         sh_real *tmp = dm2;
         dm2 = dm1;
         dm1 = cur;
@@ -210,6 +246,52 @@ done:
 #undef IX
     if (mults) *mults += count;
     return SH_OK;
+}
+
+/* work layout of blanco_blocks_trig: three regions, d, then csa, csg */
+static sh_real *SH_R(blanco_csa)(int order, void *work)
+{
+    const size_t W = 2 * (size_t)order - 1;
+    return (sh_real *)work + 4 * W * W;
+}
+
+int SH_R(sh__rot_blanco_blocks)(int order, const sh_rotation *rot, const void *tables,
+                                sh_real *blocks, void *work, uint64_t *mults)
+{
+    const int L = order - 1;
+    sh_real *csa = SH_R(blanco_csa)(order, work), *csg = csa + 2 * (size_t)(L + 1);
+    const sh_real beta = (sh_real)rot->beta;
+    SH_R(sh__rot_multiple_angles)((sh_real)rot->alpha, L, csa);
+    SH_R(sh__rot_multiple_angles)((sh_real)rot->gamma, L, csg);
+    if (mults && L >= 2) *mults += 2 * (2 * (uint64_t)(L - 1) + 1); /* 2cosθ, then 2 per step m ≥ 2 */
+    if (mults) *mults += 2;
+    return SH_R(blanco_blocks_trig)(order, SH_COS(beta), SH_SIN(beta), SH_COS(beta / 2), SH_SIN(beta / 2),
+                                    rot->beta <= M_PI / 2, tables, blocks, work, mults);
+}
+
+/* From par (rot_internal.h; a matrix or quaternion, no angle): the half
+ * angles by c = √((1 + cos β)/2), s = sin β/(2c) for cos β ≥ 0 and
+ * s = √((1 − cos β)/2), c = sin β/(2s) otherwise (no cancellation in either),
+ * the multiple angles by the recurrence from (cos, sin). */
+int SH_R(sh__rot_blanco_blocks_par)(int order, const sh_real *par, const void *tables,
+                                    sh_real *blocks, void *work, uint64_t *mults)
+{
+    const int L = order - 1;
+    sh_real *csa = SH_R(blanco_csa)(order, work), *csg = csa + 2 * (size_t)(L + 1);
+    SH_R(sh__rot_multiple_angles_cs)(par[0], par[1], L, csa);
+    SH_R(sh__rot_multiple_angles_cs)(par[4], par[5], L, csg);
+    if (mults && L >= 2) *mults += 2 * (2 * (uint64_t)(L - 1) + 1);
+    const sh_real cb = par[2], sb = par[3];
+    const int lower = cb >= 0;
+    sh_real c, s;
+    if (lower) {
+        c = SH_SQRT((1 + cb) / 2);
+        s = sb / (2 * c);
+    } else {
+        s = SH_SQRT((1 - cb) / 2);
+        c = sb / (2 * s);
+    }
+    return SH_R(blanco_blocks_trig)(order, cb, sb, c, s, lower, tables, blocks, work, mults);
 }
 
 #ifndef SH_REAL_FLOAT
@@ -335,8 +417,10 @@ int sh__rot_blanco_band_d(int l, const sh_rotation *rot, double *block, void *wo
 
 static size_t blanco_band_work(int band) { return sh__rot_blanco_band_work(band); }
 
+static size_t blanco_tables_bytes(int order) { return blanco_table_len(order) * sizeof(double); }
 const sh__rot_ops sh__rot_blanco_ops = {
     .name = "blanco",
+    .tables_bytes = blanco_tables_bytes,
     .max_order = SHLAB_MAX_ORDER,
     .tables_new_d = sh__rot_blanco_tables_new_d,
     .tables_new_f = sh__rot_blanco_tables_new_f,
@@ -346,5 +430,7 @@ const sh__rot_ops sh__rot_blanco_ops = {
     .blocks_f = sh__rot_blanco_blocks_f,
     .band_d = sh__rot_blanco_band_d,
     .band_work_bytes = blanco_band_work,
+    .blocks_par_d = sh__rot_blanco_blocks_par_d,
+    .blocks_par_f = sh__rot_blanco_blocks_par_f,
 };
 #endif

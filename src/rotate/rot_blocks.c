@@ -3,7 +3,7 @@
  * the real block from a Wigner small-d matrix, the nocs sign flip.
  *
  * References
- *  [1] CONVENTIONS.md: g(s) = f(R⁻¹s), R = Rz(α)Ry(β)Rz(γ), real SH with CS phase.
+ *  [1] docs/CONVENTIONS.md: g(s) = f(R⁻¹s), R = Rz(α)Ry(β)Rz(γ), real SH with CS phase.
  *  [2] D^l_{m'm}(α,β,γ) = e^{−im'α} d^l_{m'm}(β) e^{−imγ}, Y_l^m(R⁻¹s) =
  *      Σ_{m'} Y_l^{m'}(s) D^l_{m'm}(R)  (Edmonds / Wikipedia "Wigner D-matrix").
  *
@@ -22,35 +22,23 @@
 void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real *in, sh_real *out,
                                 uint64_t *mults)
 {
-    /* per band: out_l = B_l · in_l, (2l+1)² multiplications */
+    /* per band: out_l = B_l · in_l, (2l+1)² multiplications.  Each row is a
+     * dot product vectorised 16 bytes wide (partial sums in 2 doubles / 4
+     * floats, added at the end: not the left-to-right order of a scalar
+     * loop, the same accuracy).  An earlier form, four rows at a time with
+     * four scalar accumulators, was packed by -O3 -march=native into one
+     * vector of the four rows' entries gathered column by column, and ran
+     * slower than with -O2 (README "Rotation speed"). */
     uint64_t count = 0;
     for (int l = 0; l < order; l++) {
         const int w = 2 * l + 1;
         const sh_real *B = blocks + sh_rot_block_offset(l);
         const sh_real *x = in + (size_t)l * l;
         sh_real *y = out + (size_t)l * l;
-        /* four rows at a time: four independent accumulator chains instead of
-         * one (the single chain is bound by the add latency); each row is
-         * still summed left to right, so the result is bit for bit the same */
-        int r = 0;
-        for (; r + 4 <= w; r += 4) {
-            const sh_real *r0 = B + (size_t)r * w, *r1 = r0 + w, *r2 = r1 + w, *r3 = r2 + w;
-            sh_real a0 = 0, a1 = 0, a2 = 0, a3 = 0;
-            for (int c = 0; c < w; c++) {
-                const sh_real xc = x[c];
-                a0 += r0[c] * xc;
-                a1 += r1[c] * xc;
-                a2 += r2[c] * xc;
-                a3 += r3[c] * xc;
-            }
-            y[r] = a0;
-            y[r + 1] = a1;
-            y[r + 2] = a2;
-            y[r + 3] = a3;
-        }
-        for (; r < w; r++) {
-            sh_real acc = 0;
+        for (int r = 0; r < w; r++) {
             const sh_real *row = B + (size_t)r * w;
+            sh_real acc = 0;
+            SH_PRAGMA(omp simd simdlen(SH_SIMD_LANES16) reduction(+ : acc))
             for (int c = 0; c < w; c++) acc += row[c] * x[c];
             y[r] = acc;
         }
@@ -59,20 +47,21 @@ void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real 
     if (mults) *mults += count;
 }
 
-void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
+/* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin, from c1, s1.
+ * The recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
+ * double), so with reseed every SH_ANGLE_RESEED steps two consecutive pairs
+ * are taken from libm (argument m·θ formed in double) and the recurrence
+ * restarts from it. */
+static void SH_R(angles_rec)(sh_real c1, sh_real s1, int reseed, sh_real theta, int mmax, sh_real *cs)
 {
-    /* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin.  The
-     * recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
-     * double), so every SH_ANGLE_RESEED steps two consecutive pairs are taken from libm (argument
-     * m·θ formed in double) and the recurrence restarts from it. */
-    const sh_real c1 = SH_COS(theta), s1 = SH_SIN(theta), two_c = 2 * c1;
+    const sh_real two_c = 2 * c1;
     cs[0] = 1;
     cs[1] = 0;
     if (mmax < 1) return;
     cs[2] = c1;
     cs[3] = s1;
     for (int m = 2; m <= mmax; m++) {
-        if (m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
+        if (reseed && m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
             const double a = (double)m * (double)theta;
             cs[2 * m] = (sh_real)cos(a);
             cs[2 * m + 1] = (sh_real)sin(a);
@@ -81,6 +70,20 @@ void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
         cs[2 * m] = two_c * cs[2 * (m - 1)] - cs[2 * (m - 2)];
         cs[2 * m + 1] = two_c * cs[2 * (m - 1) + 1] - cs[2 * (m - 2) + 1];
     }
+}
+
+void SH_R(sh__rot_multiple_angles)(sh_real theta, int mmax, sh_real *cs)
+{
+    SH_R(angles_rec)(SH_COS(theta), SH_SIN(theta), 1, theta, mmax, cs);
+}
+
+void SH_R(sh__rot_multiple_angles_cs)(sh_real c1, sh_real s1, int mmax, sh_real *cs)
+{
+    /* the recurrence of sh__rot_multiple_angles from the seeds c1, s1 (a
+     * rotation given as a matrix: no angle); past the reseeding distance the
+     * angle is taken once, θ = atan2(s1, c1), and the reseeded routine used */
+    if (mmax >= SH_ANGLE_RESEED) SH_R(sh__rot_multiple_angles)((sh_real)atan2(s1, c1), mmax, cs);
+    else SH_R(angles_rec)(c1, s1, 0, 0, mmax, cs);
 }
 
 void SH_R(sh__rot_z_band)(int l, const sh_real *cs, sh_real *c, uint64_t *mults)

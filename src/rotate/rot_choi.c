@@ -9,13 +9,13 @@
  *      determination of rotation matrices between spherical harmonics by
  *      direct recursion", J. Chem. Phys. 111 (1999) 8825, Sec. II–III: band 1
  *      from the Cartesian matrix, band l by coupling band 1 with band l−1
- *      through Clebsch-Gordan coefficients.  (The paper itself is not in
- *      ../shared/papers; the formulas below are derived here from [2] and
+ *      through Clebsch-Gordan coefficients.  (The paper itself was not at
+ *      hand; the formulas below are derived here from [2] and
  *      verified numerically in tests/test_rot_choi_blanco.c, so no equation
  *      number of [1] is quoted.)
  *  [2] Edmonds, Angular Momentum in Quantum Mechanics, eq. (4.3.1)/(4.6.5):
  *      D^{j1}_{m1'm1} D^{j2}_{m2'm2} = Σ_J C(j1 m1' j2 m2'|J M') C(j1 m1 j2 m2|J M) D^J_{M'M}.
- *  [3] CONVENTIONS.md and rot_blocks.c: D^l_{m'm} = e^{−im'α} d^l_{m'm}(β) e^{−imγ},
+ *  [3] docs/CONVENTIONS.md and rot_blocks.c: D^l_{m'm} = e^{−im'α} d^l_{m'm}(β) e^{−imγ},
  *      Y_l^m(R⁻¹s) = Σ_{m'} Y_l^{m'}(s) D^l_{m'm}(R), i.e. Y(R⁻¹s) = Dᵀ Y(s),
  *      and the real matrix R_sh = conj(U) D Uᵀ for y = U Y.
  *
@@ -250,8 +250,10 @@ int SH_R(sh__rot_choi_blocks)(int order, const sh_rotation *rot, const void *tab
 }
 
 #ifndef SH_REAL_FLOAT
+static size_t choi_tables_bytes(int order) { return choi_table_len(order) * sizeof(double); }
 const sh__rot_ops sh__rot_choi_ops = {
     .name = "choi",
+    .tables_bytes = choi_tables_bytes,
     .max_order = SHLAB_MAX_ORDER,
     .tables_new_d = sh__rot_choi_tables_new_d,
     .tables_new_f = sh__rot_choi_tables_new_f,

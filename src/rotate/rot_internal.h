@@ -22,6 +22,7 @@ typedef struct {
     int max_order;
     int approximate; /* 1: a Taylor approximation (not held to the reference) */
     /* per-order tables: NULL if the method needs none */
+    size_t (*tables_bytes)(int order); /* their size in double (NULL: small, O(order²)) */
     int (*tables_new_d)(int order, void **tables);
     int (*tables_new_f)(int order, void **tables);
     void (*tables_free)(void *tables);
@@ -56,7 +57,72 @@ typedef struct {
     int (*stream_init)(int lmax, void *state); /* optional, after zeroing */
     int (*stream_d)(int l, const sh_rotation *rot, void *state, double *block);
     int (*stream_f)(int l, const sh_rotation *rot, void *state, float *block);
+    /* sparse methods from a matrix or quaternion (optional): the same as
+     * set_P, with the rotation given as par (SH__PAR_N values, below) instead
+     * of angles — no trigonometric call */
+    int (*set_par_d)(int order, const double *par, const void *tables, void *state,
+                     uint64_t *mults);
+    int (*set_par_f)(int order, const float *par, const void *tables, void *state,
+                     uint64_t *mults);
+    /* 1: the kernels read rot->R only (not the angles): a plan set from a
+     * matrix does not extract them */
+    int matrix_only;
+    /* block methods from a matrix or quaternion (optional): blocks_P with the
+     * rotation given as par (below) — no trigonometric call */
+    int (*blocks_par_d)(int order, const double *par, const void *tables, double *blocks,
+                        void *work, uint64_t *mults);
+    int (*blocks_par_f)(int order, const float *par, const void *tables, float *blocks,
+                        void *work, uint64_t *mults);
 } sh__rot_ops;
+
+/* ---- the rotation as the sparse kernels use it ----------------------------
+ * par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β) (ivanic's unrolled
+ * kernel: the matrix R, row-major, 9 values), at most SH__PAR_N values,
+ * from a matrix or quaternion by algebra (rot_fast.c: sh__rot_par_matrix_P,
+ * sh__rot_par_quat_P; derivation there) or from the Euler angles by libm
+ * (sh__rot_par_euler_P).  par[6] = β only when need_beta (the Taylor
+ * kernels), else 0.  Computed in double for either precision. */
+#define SH__PAR_N 9
+#define SH__PAR_MULTS_MATRIX 12 /* multiplications of sh__rot_par_matrix (and 2 √, 2 ÷) */
+#define SH__PAR_MULTS_QUAT 18   /* of sh__rot_par_quat (and 1 √, 3 ÷) */
+#define SH__PAR_MULTS_BETA_F 10 /* β in float (polynomial; and 1 ÷); double: atan2 */
+#define SH__QUAT_MATRIX_MULTS 19 /* sh__rot_quat_matrix (and 1 ÷) */
+void sh__rot_par_matrix_d(const double *R, int need_beta, double *par);
+void sh__rot_par_matrix_f(const float *R, int need_beta, float *par);
+void sh__rot_par_quat_d(const double *q, int need_beta, double *par);
+void sh__rot_par_quat_f(const float *q, int need_beta, float *par);
+void sh__rot_par_euler_d(const sh_rotation *rot, double *par);
+void sh__rot_par_euler_f(const sh_rotation *rot, float *par);
+/* The matrix of a quaternion (any non-zero norm), in double. */
+void sh__rot_quat_matrix(const double q[4], double R[9]);
+
+/* ---- the unrolled kernels (rot_fast.c + the generated rot_unrolled_gen.h),
+ * one table per precision and variant (ISA and lane count) ---------------- */
+enum { SH__FAST_ZXZXZ = 0, SH__FAST_TAYLOR1, SH__FAST_TAYLOR15, SH__FAST_TAYLOR2, SH__FAST_IVANIC,
+       SH__FAST_NMETH };
+#define SH__FAST_MAXO 16 /* capacity of the tables (the generator's --max-order ≤ this) */
+#define SH__FAST_DEFINE(T, P)                                                                      \
+    /* one call: `lanes` rotations (par, lane stride KP) applied to `lanes` vectors (in, out:  \
+     * order² values, lane stride K); in == out allowed */                                     \
+    typedef void (*sh__fast_fn_##P)(const T *par, size_t KP, const T *in, T *out, size_t K);      \
+    typedef struct {                                                                               \
+        const char *name;                                                                          \
+        int lanes, max_order;                                                                      \
+        const sh__fast_fn_##P (*fn)[SH__FAST_MAXO + 1]; /* [method][order], NULL: none */          \
+        const unsigned (*mults)[SH__FAST_MAXO + 1];     /* multiplications of one fn call */       \
+        /* K rotations (matrices: 9 rows of K, or quaternions: 4 rows of K; nocs negates β)     \
+         * applied to K vectors, structure of arrays */                                            \
+        void (*rotate)(int meth, int order, int nocs, size_t K, const T *rot, int quat,            \
+                       const T *in, T *out);                                                       \
+        /* one rotation (par) applied to K vectors, structure of arrays */                         \
+        void (*many)(int meth, int order, const T *par, size_t K, const T *in, T *out);           \
+        /* par of one rotation from its matrix (as sh__rot_par_matrix_P, built with the            \
+         * variant's flags; one-lane variants only, else NULL) */                                  \
+        void (*par_matrix)(const T *R, int need_beta, T *par);                                     \
+    } sh__rot_fast_##P;
+SH__FAST_DEFINE(double, d)
+SH__FAST_DEFINE(float, f)
+#undef SH__FAST_DEFINE
 
 /* ---- rot_blocks.c (generic): shared pieces ----------------------------- */
 /* out = blocks · in, band by band; counts n(4n²−1)/3 multiplications. */
@@ -71,6 +137,11 @@ void sh__rot_blocks_apply_f(int order, const float *blocks, const float *in, flo
 #define SH_ANGLE_RESEED 16
 void sh__rot_multiple_angles_d(double theta, int mmax, double *cs);
 void sh__rot_multiple_angles_f(float theta, int mmax, float *cs);
+/* The same from c = cosθ, s = sinθ: the recurrence from these seeds for
+ * mmax < SH_ANGLE_RESEED (no trigonometric call), else from θ = atan2(s, c)
+ * as above. */
+void sh__rot_multiple_angles_cs_d(double c, double s, int mmax, double *cs);
+void sh__rot_multiple_angles_cs_f(float c, float s, int mmax, float *cs);
 /* Real Z rotation of one band's coefficients in place:
  *   c_m ← cos(mα) c_m − sin(mα) c_{−m},  c_{−m} ← sin(mα) c_m + cos(mα) c_{−m}
  * (f = a cos mφ + b sin mφ rotated by α about z).  cs from multiple_angles. */
@@ -108,6 +179,9 @@ void sh__rot_blocks_nocs_f(int order, float *blocks);
                                uint64_t *);                                                        \
     void sh__rot_##m##_apply_f(int, const void *, const void *, const float *, float *, void *,   \
                                uint64_t *)
+#define SH__ROT_DECLARE_SET_PAR(m)                                                                 \
+    int sh__rot_##m##_set_par_d(int, const double *, const void *, void *, uint64_t *);            \
+    int sh__rot_##m##_set_par_f(int, const float *, const void *, void *, uint64_t *)
 #define SH__ROT_DECLARE_TABLES(m)                                                                  \
     int sh__rot_##m##_tables_new_d(int, void **);                                                  \
     int sh__rot_##m##_tables_new_f(int, void **)
@@ -129,6 +203,27 @@ int sh__rot_reference_selfcheck(int band, const sh_rotation *rot, int digits, do
 extern const sh__rot_ops sh__rot_z_ops, sh__rot_ivanic_ops, sh__rot_zxzxz_ops, sh__rot_choi_ops,
     sh__rot_blanco_ops, sh__rot_wigner_ops, sh__rot_reference_ops;
 extern const sh__rot_ops sh__rot_taylor1_ops, sh__rot_taylor15_ops, sh__rot_taylor2_ops;
+extern const sh__rot_ops sh__rot_halfpi_ops;
+
+/* ---- rot_halfpi.c: the band kernel of `halfpi`, shared with the threaded
+ * all-band rotation (rotation_stream.c).  Band l of nj vectors (job j: the
+ * multiple-angle table cs[j] of sh__rot_halfpi_set_angles with M ≥ l, input
+ * in[j], output out[j], 2l+1 values each, out may be in); nocs: the vectors
+ * are in the nocs convention.  work: sh__rot_halfpi_work_bytes(≥ l, ≥ nj)
+ * bytes.  Bands are independent: no state passes from one to the next. */
+size_t sh__rot_halfpi_work_bytes(int L, int J);
+void sh__rot_halfpi_band_d(int l, int nocs, int nj, const double *const *cs, int M,
+                           const double *const *in, double *const *out, void *work,
+                           uint64_t *mults);
+void sh__rot_halfpi_band_f(int l, int nocs, int nj, const float *const *cs, int M,
+                           const float *const *in, float *const *out, void *work, uint64_t *mults);
+/* cos, sin of mθ, m = 0..M (to an ulp for any m), into cs[2m], cs[2m+1] */
+void sh__rot_halfpi_angles(double theta, int M, double *cs);
+/* A job's table: the multiple angles of α, β, γ at cs, cs + 2(M+1),
+ * cs + 4(M+1) (6(M+1) values); inverse: those of Rᵀ, angles −γ, −β, −α. */
+void sh__rot_halfpi_set_angles(const sh_rotation *rot, int inverse, int M, double *cs);
+/* d^l_{m'm}(π/2), m', m = 0..l, into d[m'(l+1) + m]; work as for nj = 0. */
+void sh__rot_halfpi_delta_d(int l, void *work, double *d);
 
 /* rotation_plan.c: non-zero if the band iterator computes each band alone
  * (a single-band routine with a per-band workspace): dropping it and asking

@@ -10,7 +10,7 @@
  *      Chem. A 102 (1998) 9099–9100 (the corrected Table 2).
  *  [3] R. Green, "Spherical Harmonic Lighting: The Gritty Details" (2003),
  *      Appendix I — a transcription of [1]+[2] with two misprints (below).
- *  [4] CONVENTIONS.md: g(s) = f(R⁻¹s); `nocs` = Ivanic's real basis.
+ *  [4] docs/CONVENTIONS.md: g(s) = f(R⁻¹s); `nocs` = Ivanic's real basis.
  *
  * Basis.  [1] uses real SH without the Condon-Shortley phase (our `nocs`):
  * band 1 is ∝ (y, z, x) for m = −1, 0, 1.  A linear function c·s rotated as
@@ -152,22 +152,56 @@ static void SH_R(ivanic_band1)(const sh_rotation *rot, sh_real *M1)
         }
 }
 
-/* row (=|+=) c ⊙ A, c ⊙ (A + B), c ⊙ (A − B): w products each */
-#define IV_PASS(name, expr)                                                                        \
-    static inline void SH_R(name##_set)(int w, sh_real *row, const sh_real *c, const sh_real *A,  \
-                                        const sh_real *B)                                          \
-    {                                                                                              \
-        for (int k = 0; k < w; k++) row[k] = c[k] * (expr);                                        \
-    }                                                                                              \
-    static inline void SH_R(name##_add)(int w, sh_real *row, const sh_real *c, const sh_real *A,  \
-                                        const sh_real *B)                                          \
-    {                                                                                              \
-        for (int k = 0; k < w; k++) row[k] += c[k] * (expr);                                       \
+/* One row of band l in one pass, each entry written once:
+ *   row_k = (u_k·U_k + v_k·V_k) + w_k·W_k   (u·U left out when !hu, w·W when wk = 0)
+ * with U_k = r00·pa_{k−1} inside and ue0, uew at the two edge columns,
+ * V = A, A + B or A − B (vk = 0, 1, 2), W = C + D or C − D (wk = 1, 2).  The
+ * sums are those of the formula in the header, in the same order.  Called
+ * with constant flags, so each combination is its own branch-free loop
+ * (GCC inlines it).  Earlier the row was written by a u·U pass and then
+ * read back and updated by a v·V and a w·W pass: once -O3 vectorises those
+ * passes, a vector load of the row just stored element by element waits
+ * for store-to-load forwarding (the −O3 slowdown of README "Rotation
+ * speed"); written once, the row has no such dependence. */
+static inline __attribute__((always_inline)) void SH_R(iv_row)(
+    int w, sh_real *restrict row, int hu, sh_real r00, sh_real ue0, sh_real uew,
+    const sh_real *restrict pa, const sh_real *restrict u, int vk, const sh_real *restrict v,
+    const sh_real *restrict A, const sh_real *restrict B, int wk, const sh_real *restrict wc,
+    const sh_real *restrict C, const sh_real *restrict D)
+{
+#define IV_V(k) (vk == 0 ? A[k] : vk == 1 ? A[k] + B[k] : A[k] - B[k])
+#define IV_W(k) (wk == 1 ? C[k] + D[k] : C[k] - D[k])
+#define IV_ENTRY(k, U)                                                                             \
+    do {                                                                                           \
+        sh_real x_ = hu ? u[k] * (U) + v[k] * IV_V(k) : v[k] * IV_V(k);                            \
+        if (wk) x_ += wc[k] * IV_W(k);                                                             \
+        row[k] = x_;                                                                               \
+    } while (0)
+    IV_ENTRY(0, ue0);
+SH_SIMD_SHORT
+    for (int k = 1; k < w - 1; k++) IV_ENTRY(k, r00 * pa[k - 1]);
+    IV_ENTRY(w - 1, uew);
+#undef IV_ENTRY
+#undef IV_V
+#undef IV_W
+}
+
+/* iv_row with the flags as constants: one instance per combination used */
+static inline __attribute__((always_inline)) void SH_R(iv_row_any)(
+    int w, sh_real *row, int hu, sh_real r00, sh_real ue0, sh_real uew, const sh_real *pa,
+    const sh_real *u, int vk, const sh_real *v, const sh_real *A, const sh_real *B, int wk,
+    const sh_real *wc, const sh_real *C, const sh_real *D)
+{
+#define IV_CASE(HU, VK, WK)                                                                        \
+    if (hu == HU && vk == VK && wk == WK) {                                                        \
+        SH_R(iv_row)(w, row, HU, r00, ue0, uew, pa, u, VK, v, A, B, WK, wc, C, D);                 \
+        return;                                                                                    \
     }
-IV_PASS(iv_one, A[k])
-IV_PASS(iv_sum, A[k] + B[k])
-IV_PASS(iv_dif, A[k] - B[k])
-#undef IV_PASS
+    IV_CASE(1, 1, 0) IV_CASE(1, 0, 0) IV_CASE(1, 0, 1) IV_CASE(1, 0, 2) IV_CASE(1, 1, 2)
+    IV_CASE(1, 2, 1) IV_CASE(1, 2, 0) IV_CASE(0, 1, 0) IV_CASE(0, 2, 0) IV_CASE(0, 1, 2)
+    IV_CASE(0, 2, 1) IV_CASE(0, 0, 0) IV_CASE(0, 0, 1) IV_CASE(0, 0, 2)
+#undef IV_CASE
+}
 
 /* One step of the recursion: cur = M^l (CS) from prev = M^{l−1}, band 1 M1
  * (CS, see the header), the band's coefficient planes t; P has room for
@@ -193,6 +227,7 @@ static uint64_t SH_R(ivanic_step)(int l, const sh_real *M1, const sh_real *prev,
             const sh_real *pa = prev + (size_t)a * pw;
             sh_real *row = Pi + (size_t)a * w;
             row[0] = r1 * pa[0] + rm * pa[pw - 1];
+SH_SIMD_SHORT
             for (int k = 0; k < pw; k++) row[k + 1] = r0 * pa[k];
             row[w - 1] = r1 * pa[pw - 1] - rm * pa[0];
         }
@@ -204,37 +239,27 @@ static uint64_t SH_R(ivanic_step)(int l, const sh_real *M1, const sh_real *prev,
     for (int m = -l; m <= l; m++) {
         const int am = m < 0 ? -m : m;
         const size_t o = (size_t)(m + l) * w;
-        sh_real *row = cur + o;
-        const sh_real *u = tu + o, *v = tv + o, *wc = tw + o;
-        const int has_u = am < l;
-        if (has_u) { /* u·U, U = _0P_{mn} */
-            const sh_real *pa = prev + (size_t)(m + lp) * pw;
-            row[0] = u[0] * (r01 * pa[0] + r0m * pa[pw - 1]);
-            for (int k = 0; k < pw; k++) row[k + 1] = u[k + 1] * (r00 * pa[k]);
-            row[w - 1] = u[w - 1] * (r01 * pa[pw - 1] - r0m * pa[0]);
-            count += (uint64_t)pw + 4 + (uint64_t)w;
-        }
+        /* u·U (|m| < l), U = _0P_{mn}: edges by the b = ±l formulas */
+        const int hu = am < l;
+        const sh_real *pa = hu ? prev + (size_t)(m + lp) * pw : NULL;
+        const sh_real ue0 = hu ? r01 * pa[0] + r0m * pa[pw - 1] : 0;
+        const sh_real uew = hu ? r01 * pa[pw - 1] - r0m * pa[0] : 0;
         /* v·V ([2] Table 2; √(1+δ) folded into v, the (1−δ) term skipped) */
-        if (m == 0) {
-            if (has_u) SH_R(iv_sum_add)(w, row, v, PP(1), PN(-1));
-            else SH_R(iv_sum_set)(w, row, v, PP(1), PN(-1));
-        } else if (m == 1 || m == -1) {
-            const sh_real *A = m == 1 ? PP(0) : PN(0);
-            if (has_u) SH_R(iv_one_add)(w, row, v, A, NULL);
-            else SH_R(iv_one_set)(w, row, v, A, NULL);
-        } else if (m > 1) {
-            if (has_u) SH_R(iv_dif_add)(w, row, v, PP(m - 1), PN(-m + 1));
-            else SH_R(iv_dif_set)(w, row, v, PP(m - 1), PN(-m + 1));
-        } else {
-            if (has_u) SH_R(iv_sum_add)(w, row, v, PP(m + 1), PN(-m - 1));
-            else SH_R(iv_sum_set)(w, row, v, PP(m + 1), PN(-m - 1));
+        int vk;
+        const sh_real *A, *B;
+        if (m == 0) vk = 1, A = PP(1), B = PN(-1);
+        else if (m == 1 || m == -1) vk = 0, A = m == 1 ? PP(0) : PN(0), B = NULL;
+        else if (m > 1) vk = 2, A = PP(m - 1), B = PN(-m + 1);
+        else vk = 1, A = PP(m + 1), B = PN(-m - 1);
+        /* w·W (m ≠ 0, |m| < l−1) */
+        int wk = 0;
+        const sh_real *C = NULL, *D = NULL;
+        if (m != 0 && am < l - 1) {
+            if (m > 0) wk = 1, C = PP(m + 1), D = PN(-m - 1);
+            else wk = 2, C = PP(m - 1), D = PN(-m + 1);
         }
-        count += (uint64_t)w;
-        if (m != 0 && am < l - 1) { /* w·W */
-            if (m > 0) SH_R(iv_sum_add)(w, row, wc, PP(m + 1), PN(-m - 1));
-            else SH_R(iv_dif_add)(w, row, wc, PP(m - 1), PN(-m + 1));
-            count += (uint64_t)w;
-        }
+        SH_R(iv_row_any)(w, cur + o, hu, r00, ue0, uew, pa, tu + o, vk, tv + o, A, B, wk, tw + o, C, D);
+        count += (hu ? (uint64_t)pw + 4 + (uint64_t)w : 0) + (uint64_t)w + (wk ? (uint64_t)w : 0);
     }
 #undef PP
 #undef PN
@@ -311,6 +336,10 @@ int SH_R(sh__rot_ivanic_stream)(int l, const sh_rotation *rot, void *state, sh_r
 }
 
 #ifndef SH_REAL_FLOAT
+/* The coefficient tables of band l in double (for tools/gen_rot_unrolled.c). */
+void sh__rot_ivanic_coeffs(int l, double *t);
+void sh__rot_ivanic_coeffs(int l, double *t) { ivanic_coeffs_d(l, t); }
+
 static void ivanic_tables_free(void *tables)
 {
     ivanic_tables *T = tables;
@@ -335,8 +364,10 @@ static int ivanic_stream_init(int lmax, void *state)
     *(size_t *)state = (size_t)(2 * lmax + 1) * (2 * lmax + 1);
     return SH_OK;
 }
+static size_t ivanic_tables_bytes(int order) { return 3 * sh_rot_block_offset(order) * sizeof(double); }
 const sh__rot_ops sh__rot_ivanic_ops = {
     .name = "ivanic",
+    .tables_bytes = ivanic_tables_bytes,
     .max_order = SHLAB_MAX_ORDER,
     .tables_new_d = sh__rot_ivanic_tables_new_d,
     .tables_new_f = sh__rot_ivanic_tables_new_f,
@@ -350,5 +381,6 @@ const sh__rot_ops sh__rot_ivanic_ops = {
     .stream_init = ivanic_stream_init,
     .stream_d = sh__rot_ivanic_stream_d,
     .stream_f = sh__rot_ivanic_stream_f,
+    .matrix_only = 1,
 };
 #endif

@@ -10,7 +10,7 @@
  *  [4] Trapani & Navaza 2006 (d(π/2) by recursion); the recursion used here is
  *      the three-term one in m' below, run in the stable direction.
  *
- * Decomposition (our conventions, CONVENTIONS.md).  Ry(β) = Rx(−90°) Rz(β)
+ * Decomposition (our conventions, docs/CONVENTIONS.md).  Ry(β) = Rx(−90°) Rz(β)
  * Rx(+90°) (the conjugated z axis Rx(−90°)ẑ is ŷ), and R_sh is a
  * homomorphism, so R_Y(β) = X₋₉₀ Z(β) X₊₉₀ with X_θ = R_sh(Rx(θ)), and
  *   R_sh(Rz(α)Ry(β)Rz(γ)) = Z(α) X₋₉₀ Z(β) X₊₉₀ Z(γ).
@@ -83,6 +83,7 @@
 SH__ROT_DECLARE_BLOCKS(zxzxz);
 SH__ROT_DECLARE_APPLY(zxzxz);
 SH__ROT_DECLARE_TABLES(zxzxz);
+SH__ROT_DECLARE_SET_PAR(zxzxz);
 
 #include <stdlib.h>
 #include <string.h>
@@ -389,6 +390,7 @@ static uint64_t zx_band_mults(int l) { return 12u * (uint64_t)l + 2u * ((uint64_
 /* The per-rotation state: multiple angles of α+π, β+π, γ (2·order values
  * each; the +π is the sign (−1)^m, exact). */
 static size_t zx_na(int order) { return 2 * (size_t)order; }
+static void SH_R(zx_flip)(int order, sh_real *st, uint64_t *count);
 static void SH_R(zx_angles)(int order, const sh_rotation *rot, sh_real *st, uint64_t *count)
 {
     const size_t na = zx_na(order);
@@ -396,6 +398,23 @@ static void SH_R(zx_angles)(int order, const sh_rotation *rot, sh_real *st, uint
     SH_R(sh__rot_multiple_angles)((sh_real)rot->alpha, order - 1, csa);
     SH_R(sh__rot_multiple_angles)((sh_real)rot->beta, order - 1, csb);
     SH_R(sh__rot_multiple_angles)((sh_real)rot->gamma, order - 1, csg);
+    SH_R(zx_flip)(order, st, count);
+}
+/* the same from par (cos, sin of α, β, γ; rot_internal.h): no angle */
+static void SH_R(zx_angles_par)(int order, const sh_real *par, sh_real *st, uint64_t *count)
+{
+    const size_t na = zx_na(order);
+    sh_real *csa = st, *csb = csa + na, *csg = csb + na;
+    SH_R(sh__rot_multiple_angles_cs)(par[0], par[1], order - 1, csa);
+    SH_R(sh__rot_multiple_angles_cs)(par[2], par[3], order - 1, csb);
+    SH_R(sh__rot_multiple_angles_cs)(par[4], par[5], order - 1, csg);
+    SH_R(zx_flip)(order, st, count);
+}
+/* the +π of α and β: (−1)^m */
+static void SH_R(zx_flip)(int order, sh_real *st, uint64_t *count)
+{
+    const size_t na = zx_na(order);
+    sh_real *csa = st, *csb = csa + na;
     for (int m = 1; m < order; m += 2) {
         csa[2 * m] = -csa[2 * m], csa[2 * m + 1] = -csa[2 * m + 1];
         csb[2 * m] = -csb[2 * m], csb[2 * m + 1] = -csb[2 * m + 1];
@@ -408,6 +427,15 @@ int SH_R(sh__rot_zxzxz_set)(int order, const sh_rotation *rot, const void *table
 {
     uint64_t count = 0;
     SH_R(zx_angles)(order, rot, state, &count);
+    if (mults) *mults += count;
+    return SH_OK;
+}
+
+int SH_R(sh__rot_zxzxz_set_par)(int order, const sh_real *par, const void *tables, void *state,
+                                uint64_t *mults)
+{
+    uint64_t count = 0;
+    SH_R(zx_angles_par)(order, par, state, &count);
     if (mults) *mults += count;
     return SH_OK;
 }
@@ -497,9 +525,11 @@ static size_t zx_work(int order) /* blocks: angles, e, col, u, t; apply: u, t */
     return (3 * zx_na(order) + 8 * (size_t)order) * sizeof(double);
 }
 static size_t zx_state(int order) { return 3 * zx_na(order) * sizeof(double); }
+static size_t zx_tables_bytes(int order) { return zx_off(order) * sizeof(double); }
 const sh__rot_ops sh__rot_zxzxz_ops = {
     .name = "zxzxz",
     .max_order = ZX_MAX_ORDER,
+    .tables_bytes = zx_tables_bytes,
     .tables_new_d = sh__rot_zxzxz_tables_new_d,
     .tables_new_f = sh__rot_zxzxz_tables_new_f,
     .tables_free = zx_tables_free,
@@ -507,6 +537,8 @@ const sh__rot_ops sh__rot_zxzxz_ops = {
     .state_bytes = zx_state,
     .set_d = sh__rot_zxzxz_set_d,
     .set_f = sh__rot_zxzxz_set_f,
+    .set_par_d = sh__rot_zxzxz_set_par_d,
+    .set_par_f = sh__rot_zxzxz_set_par_f,
     .blocks_d = sh__rot_zxzxz_blocks_d,
     .blocks_f = sh__rot_zxzxz_blocks_f,
     .apply_d = sh__rot_zxzxz_apply_d,

@@ -3,7 +3,7 @@
  * and ZYZ extraction from a matrix, stable at and near β = 0 and β = π.
  *
  * References
- *  [1] CONVENTIONS.md: R = Rz(α) Ry(β) Rz(γ),
+ *  [1] docs/CONVENTIONS.md: R = Rz(α) Ry(β) Rz(γ),
  *        R = [[cαcβcγ − sαsγ, −cαcβsγ − sαcγ, cαsβ],
  *             [sαcβcγ + cαsγ, −sαcβsγ + cαcγ, sαsβ],
  *             [−sβcγ,          sβsγ,            cβ ]].

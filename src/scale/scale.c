@@ -5,7 +5,7 @@
  *     ψ = sinθ (plain) or ψ = sin τ(θ) · τ′(θ) (energy-preserving),
  *
  * which maps the coefficients S_r of F_r to those of the scaled function
- * F_d(θ,φ) = F_r(τ(θ),φ) ψ(θ)/sinθ  ([1] eqs. 3-6; CONVENTIONS.md "Scaling").
+ * F_d(θ,φ) = F_r(τ(θ),φ) ψ(θ)/sinθ  ([1] eqs. 3-6; docs/CONVENTIONS.md "Scaling").
  * This operation is the subject of US patent 7,663,623; shlab implements it
  * to verify and measure it.
  *
@@ -88,7 +88,7 @@ int sh_scaling_check(const sh_scaling *s)
     return SH_OK;
 }
 
-/* τ and τ′ of the three families (CONVENTIONS.md "Scaling"):
+/* τ and τ′ of the three families (docs/CONVENTIONS.md "Scaling"):
  *  linear    τ = min(kθ, π),                     τ′ = k (kθ < π), 0 beyond;
  *  cone      τ = atan2(k sinθ, cosθ + (1−k) sinθ cotθ₀), i.e.
  *            cot τ = (cot θ + (1−k) cot θ₀)/k; with y = k sinθ,

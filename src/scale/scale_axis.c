@@ -3,7 +3,7 @@
  *
  * The families of scale.c scale about +z.  For a unit axis a, let Q be a
  * rotation with Q a = ẑ.  If g(s) = f(Q⁻¹ s) (coefficients R_sh(Q) c_f, the
- * function rotation of CONVENTIONS.md), then a displacement of f along a is
+ * function rotation of docs/CONVENTIONS.md), then a displacement of f along a is
  * a displacement of g along ẑ, so
  *
  *     S_d = R_sh(Q⁻¹) · M · R_sh(Q) · S_r,      R_sh(Q⁻¹) = R_sh(Q)ᵀ.

@@ -152,7 +152,7 @@ static double occ_beta(const sh_scale_scene *sc, double k, double phi)
 /* ---- environment for the midrange scene ---------------------------------- */
 
 /* Bilinear lookup of channel-averaged luminance in a lat-long image
- * (CONVENTIONS.md: pixel centre θ = π(j+½)/H, φ = 2π(i+½)/W; φ wraps). */
+ * (docs/CONVENTIONS.md: pixel centre θ = π(j+½)/H, φ = 2π(i+½)/W; φ wraps). */
 static double probe_lookup(const sh_image *img, const double d[3])
 {
     double th, ph;

@@ -12,7 +12,7 @@ extern "C" {
 
 /* --------------------------------------------------------------- Legendre
  * Normalised associated Legendre functions  Q_l^m(x) = K_l^m P_l^m(x)
- * (P with the Condon-Shortley phase, K as in CONVENTIONS.md), for
+ * (P with the Condon-Shortley phase, K as in docs/CONVENTIONS.md), for
  * 0 <= m <= l <= lmax, so that y_l^0 = Q_l^0 and y_l^{±m} = √2 Q_l^m trig(mφ).
  * Holmes & Featherstone (2002) recurrence with an extended exponent for the
  * sectoral seed, so that values are correct (not flushed to zero) until the

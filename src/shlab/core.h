@@ -12,8 +12,9 @@ extern "C" {
 #endif
 
 /* Largest supported order (bands 0..SHLAB_MAX_ORDER-1).  The normalised
- * Legendre recurrence is tested against GSL up to l = 2000 and beyond. */
-#define SHLAB_MAX_ORDER 2049
+ * Legendre recurrence is tested against GSL up to l = 2000 and beyond; the
+ * halfpi rotation is tested to l = 4000. */
+#define SHLAB_MAX_ORDER 4097
 
 /* ---------------------------------------------------------------- status */
 enum {

@@ -10,7 +10,7 @@
 extern "C" {
 #endif
 
-/* Rotations (CONVENTIONS.md): a proper rotation R acts on functions,
+/* Rotations (docs/CONVENTIONS.md): a proper rotation R acts on functions,
  * g(s) = f(R⁻¹ s); the SH rotation matrix R_sh(R) maps the coefficients of f
  * to those of g, so R_sh(AB) = R_sh(A) R_sh(B).  Euler angles are ZYZ active:
  * R = Rz(α) Ry(β) Rz(γ).  An sh_rotation carries both the 3×3 matrix (row
@@ -64,6 +64,7 @@ typedef enum {
     SH_ROT_TAYLOR1,   /* approximate: Z(α)·(I + βJ)·Z(γ)  (Krivánek et al. 2005) */
     SH_ROT_TAYLOR15,  /* approximate: Z(α)·(I + βJ + β²/2·diag(J²))·Z(γ) */
     SH_ROT_TAYLOR2,   /* approximate: Z(α)·(I + βJ + β²/2·J²)·Z(γ) */
+    SH_ROT_HALFPI,    /* d^l(π/2) generated band by band (O(l²) each), Z·Δ·Z(β)·Δ·Z; high bands */
     SH_ROT_NMETHODS
 } sh_rot_method;
 typedef enum { SH_PREC_DOUBLE = 0, SH_PREC_FLOAT = 1 } sh_precision;
@@ -76,16 +77,35 @@ int sh_precision_parse(const char *s, sh_precision *out);
 int sh_rot_method_max_order(sh_rot_method m);
 /* 1 for the exact methods, 0 for the Taylor approximations. */
 int sh_rot_method_is_exact(sh_rot_method m);
+/* The method `rotate` and `rotmat` use when none is named: an exact method
+ * that stays a rotation at every band.  All bands 0..order−1: zxzxz up to
+ * order SH_ROT_DEFAULT_ZXZXZ_MAX (per-order tables of order³/3 values, the
+ * fastest apply there), halfpi above (O(order) scratch, any order, threads).
+ * One band alone (one_band ≠ 0): blanco (O(l²), no lower band).  ivanic and
+ * choi, l-recursions from the 3×3 matrix, lose orthogonality geometrically
+ * (1e-12 at l = 50, 4e-8 at 100, > 1 after 180) and are never the default. */
+#define SH_ROT_DEFAULT_ZXZXZ_MAX 32
+sh_rot_method sh_rot_method_default(int order, int one_band);
 
 /* A rotation plan: create once for (order, method, precision, convention) —
  * per-order tables (X±90 blocks, recursion coefficients) are built here —
  * then set a rotation and apply it to many vectors.  Not thread-safe; one
  * plan per thread.  Float plans compute and apply in float arithmetic;
- * vectors cross the interface as double. */
+ * vectors cross this interface as double (sh_rot_plan_apply_f and the
+ * batches below take float). */
 typedef struct sh_rot_plan sh_rot_plan;
 int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                        sh_rot_plan **out);
 void sh_rot_plan_free(sh_rot_plan *p);
+/* Bytes sh_rot_plan_create would allocate (blocks — none for the sparse
+ * methods z, zxzxz, halfpi and the Taylor kernels until sh_rot_plan_blocks —,
+ * tables, scratch, vectors); 0 for an unknown method.  sh_rot_plan_create
+ * refuses (SH_ENOMEM, one line naming the size) a plan larger than the
+ * memory available. */
+size_t sh_rot_plan_bytes(int order, sh_rot_method method, sh_precision prec);
+/* The checks sh_rot_plan_create makes before allocating (arguments, size
+ * against the memory available), alone: SH_OK or its error. */
+int sh_rot_plan_check(int order, sh_rot_method method, sh_precision prec);
 /* Set the rotation (computes the block matrix, or for ZXZXZ the angles). */
 int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot);
 /* out = R_sh in (in-place allowed).  in and out have order² entries. */
@@ -95,6 +115,69 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks);
 /* Multiplications executed (counted by the kernels' loops, not by formula) by
  * the last sh_rot_plan_set and by one sh_rot_plan_apply. */
 void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *apply_mults);
+
+/* Kernels.  zxzxz and the Taylor methods (up to order 10) and ivanic (up to
+ * order 6) have unrolled kernels (generated straight-line code), built once
+ * per instruction set; the plan picks one when it is created and keeps it:
+ *   scalar    the loop kernels (every method and order; the reference path)
+ *   unrolled  the unrolled kernels, built with the default flags
+ *   sse2      unrolled; batches in SSE2 lanes (4 floats / 2 doubles)
+ *   avx2      unrolled with AVX2 + FMA; batches in 8 / 4 lanes
+ *   avx512    unrolled with AVX-512 registers; batches in 16 / 8 lanes
+ *   auto      the best this CPU runs (avx512, else avx2, else sse2, else
+ *             unrolled)
+ * A plan whose method or order has no unrolled kernel uses the loop kernels
+ * (sh_rot_plan_kernel then says scalar).  sh_rot_plan_create uses auto. */
+typedef enum {
+    SH_KERNEL_AUTO = 0,
+    SH_KERNEL_SCALAR,
+    SH_KERNEL_UNROLLED,
+    SH_KERNEL_SSE2,
+    SH_KERNEL_AVX2,
+    SH_KERNEL_AVX512,
+    SH_KERNEL_N
+} sh_rot_kernel;
+const char *sh_rot_kernel_name(sh_rot_kernel k);
+int sh_rot_kernel_parse(const char *s, sh_rot_kernel *out);
+/* 1 if kernel k is compiled in and this CPU (and OS) runs it. */
+int sh_rot_kernel_available(sh_rot_kernel k);
+/* sh_rot_plan_create with a kernel; SH_ENOTSUP if it is not available. */
+int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
+                              sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out);
+sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
+
+/* The rotation as a row-major 3×3 matrix or a quaternion (w, x, y, z; any
+ * non-zero norm), without trigonometric calls for zxzxz and the Taylor
+ * methods (cos, sin of α, β, γ by algebra from the well-conditioned
+ * entries, exact at β = 0 and π; the Taylor methods take β by one atan2).
+ * blanco takes the half angles by square roots.
+ * The matrix must be a rotation (not checked beyond finite entries; use
+ * sh_rotation_from_matrix to check or orthonormalise one).  The _f forms
+ * take float input and compute in float (float plans only). */
+int sh_rot_plan_set_matrix(sh_rot_plan *p, const double R[9]);
+int sh_rot_plan_set_quat(sh_rot_plan *p, const double q[4]);
+int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9]);
+int sh_rot_plan_set_quat_f(sh_rot_plan *p, const float q[4]);
+/* out = R_sh in for a float plan, float vectors (in-place allowed). */
+int sh_rot_plan_apply_f(sh_rot_plan *p, const float *in, float *out);
+/* Batches, as structure of arrays (coefficient-major, vector-minor):
+ * coefficient i of vector k at in[i·K + k], order²·K values; in == out
+ * allowed.  apply_many: the plan's rotation applied to K vectors (colour
+ * channels, many functions).  rotate_many: K rotations applied to K vectors,
+ * rotation k given as R[j·K + k], j = 0..8 (row-major entries), or as a
+ * quaternion q[j·K + k], j = 0..3; vectorised across rotations by the SIMD
+ * kernels.  Double plans take the double forms, float plans the _f forms.
+ * After rotate_many the plan has no rotation set. */
+int sh_rot_plan_apply_many(sh_rot_plan *p, size_t K, const double *in, double *out);
+int sh_rot_plan_apply_many_f(sh_rot_plan *p, size_t K, const float *in, float *out);
+int sh_rot_plan_rotate_many(sh_rot_plan *p, size_t K, const double *R, const double *in,
+                            double *out);
+int sh_rot_plan_rotate_many_f(sh_rot_plan *p, size_t K, const float *R, const float *in,
+                              float *out);
+int sh_rot_plan_rotate_many_quat(sh_rot_plan *p, size_t K, const double *q, const double *in,
+                                 double *out);
+int sh_rot_plan_rotate_many_quat_f(sh_rot_plan *p, size_t K, const float *q, const float *in,
+                                   float *out);
 
 /* One band only (l = band), as a (2l+1)² row-major block, for methods that
  * can compute a band without the lower ones (blanco, wigner, reference; the
@@ -113,6 +196,42 @@ int sh_rot_bands_next(sh_rot_bands *it, int *l, double *block);
  * streaming ones pass through the bands in between. */
 int sh_rot_bands_get(sh_rot_bands *it, int l, double *block);
 void sh_rot_bands_free(sh_rot_bands *it);
+/* All bands at high order (rotation_stream.c): the halfpi method — d^l(π/2)
+ * generated band by band, nothing kept between bands — run on threads across
+ * bands and across batches of rotations, with O(order) scratch per thread
+ * (sh_rot_stream_bytes: 0.7 MB per thread at order 1001, 3 MB at 4097) and
+ * no memory beyond the caller's vectors.
+ * Results are bit for bit the same for any number of threads.  Create once
+ * for (order, convention, threads) and apply to any number of rotations and
+ * vectors; the per-order scratch is all it keeps.  threads ≤ 0: all cores
+ * (OpenMP's default, so OMP_NUM_THREADS counts); 1 when built without
+ * OpenMP.  Refused (SH_ENOMEM, naming the size) if the scratch would not fit
+ * in the memory available. */
+typedef struct sh_rot_stream sh_rot_stream;
+int sh_rot_stream_create(int order, sh_convention conv, int threads, sh_rot_stream **out);
+void sh_rot_stream_free(sh_rot_stream *s);
+/* Bytes sh_rot_stream_create allocates (each apply adds 48·order bytes per
+ * rotation for its angles); the vectors are the caller's. */
+size_t sh_rot_stream_bytes(int order, int threads);
+int sh_rot_stream_threads(const sh_rot_stream *s);
+/* Called (from one thread at a time) as bands finish: done of order. */
+void sh_rot_stream_set_progress(sh_rot_stream *s, sh_progress_fn fn, void *ctx);
+/* out + (r·nvec + v)·order² = R_sh(rots[r]) · (in + v·order²) for r < nrot,
+ * v < nvec — or R_sh(rots[r])ᵀ, the inverse rotation, if inverse ≠ 0 (its
+ * angles −γ, −β, −α are exact, so a round trip adds no rounding of angles).
+ * in == out is allowed when nrot = 1. */
+int sh_rot_stream_apply(sh_rot_stream *s, int nrot, const sh_rotation *rots, int inverse, int nvec,
+                        const double *in, double *out);
+/* One band alone, by the same kernel: band l of nvec vectors (in + v·(2l+1),
+ * 2l+1 values each) into out (may be in); O(l²) time and memory per vector,
+ * no lower band computed.  Allocates its own scratch: thread-safe. */
+int sh_rot_band_apply(int l, sh_convention conv, const sh_rotation *rot, int inverse, int nvec,
+                      const double *in, double *out);
+/* The Wigner small-d matrix at π/2 of band l: d[m'(l+1) + m] = d^l_{m'm}(π/2)
+ * for m', m = 0..l (standard phase, as rot_wigner.c); the negative indices
+ * follow from d_{m',−m} = (−1)^{l+m'} d_{m'm} and d_{−m',m} = (−1)^{l+m} d_{m'm}.
+ * O(l²), within ~1e-15 of the exact values up to l = 4000. */
+int sh_wigner_d_halfpi(int l, double *d);
 /* Dense order²×order² matrix (row-major) from blocks. */
 void sh_rot_blocks_to_dense(int order, const double *blocks, double *dense);
 /* Reference band block: MPFR with precision chosen for `digits` (≥ 30)

@@ -38,7 +38,7 @@ typedef struct {
 } sh_scaling;
 /* SH_OK if the family and its parameters are valid, else SH_EINVAL. */
 int sh_scaling_check(const sh_scaling *s);
-/* τ(θ) and τ′(θ) of a family (CONVENTIONS.md "Scaling"); θ in [0, π]. */
+/* τ(θ) and τ′(θ) of a family (docs/CONVENTIONS.md "Scaling"); θ in [0, π]. */
 int sh_scale_tau(const sh_scaling *s, double theta, double *tau, double *dtau);
 /* Kinks / fast turns of τ in (0, π) (at most SH_SCALE_MAX_BREAKS); returns the count. */
 int sh_scale_breaks(const sh_scaling *s, double *breaks);
@@ -63,7 +63,7 @@ int sh_scale_integrals_tau(int order, sh_scale_tau_fn tau, void *ctx, int energy
 int sh_scale_matrix_quad(int order, sh_convention conv, const sh_scaling *s, int nodes, int panels,
                          double *M);
 /* N(2N²+1)/3, the number of (i, j) with m_i = m_j; the entries of M with
- * |M_ij| > rel·max|M| (rel = 1e-12 in CONVENTIONS.md). */
+ * |M_ij| > rel·max|M| (rel = 1e-12 in docs/CONVENTIONS.md). */
 long sh_scale_pattern_bound(int order);
 long sh_scale_nonzeros(int order, const double *M, double rel);
 /* τ of a family as an sh_scale_tau_fn (ctx: const sh_scaling *, checked). */

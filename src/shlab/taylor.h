@@ -12,7 +12,7 @@ extern "C" {
 
 /* Derivatives of R_Y(β) = R_sh(Ry(β)) and Krivánek et al.'s (2005) Taylor
  * approximations (rotation_deriv.c, taylor_error.c, rot_taylor.c).  Blocks use
- * the layout of sh_rot_block_offset; J = dR_Y/dβ at β = 0 (CONVENTIONS.md). */
+ * the layout of sh_rot_block_offset; J = dR_Y/dβ at β = 0 (docs/CONVENTIONS.md). */
 #define SH_DERIV_MAX_ORDER 64 /* the Ivanic-Ruedenberg recursion loses digits above */
 /* d^k R_Y/dβ^k at β, bands 0..order-1, by Krivánek's Appendix A: the Leibniz
  * rule carried through the Ivanic-Ruedenberg recursion (derivation in

@@ -8,7 +8,7 @@
  *      Approximation to Spherical Harmonic Rotation", IRISA PI 1728 (2005),
  *      Sec. 3 (the expansion and shRotYdiff15), Sec. 3.1 (cost 9n² − 4n),
  *      Appendix C (z rotation).
- *  [2] CONVENTIONS.md "Taylor-approximated rotation":
+ *  [2] docs/CONVENTIONS.md "Taylor-approximated rotation":
  *        taylor1:   T = I + βJ
  *        taylor1.5: T = I + βJ + (β²/2)·diag(J²)
  *        taylor2:   T = I + βJ + (β²/2)·J²
@@ -60,6 +60,9 @@ SH__ROT_DECLARE_APPLY(taylor1);
 SH__ROT_DECLARE_APPLY(taylor15);
 SH__ROT_DECLARE_APPLY(taylor2);
 SH__ROT_DECLARE_TABLES(taylor);
+SH__ROT_DECLARE_SET_PAR(taylor1);
+SH__ROT_DECLARE_SET_PAR(taylor15);
+SH__ROT_DECLARE_SET_PAR(taylor2);
 
 static inline size_t tab_off(int l) { return (size_t)(l + 1) * (size_t)(l + 1) - 1; }
 
@@ -208,6 +211,17 @@ static void SH_R(ty_state)(int order, const sh_rotation *rot, void *state, uint6
     SH_R(sh__rot_multiple_angles)((sh_real)rot->gamma, order - 1, csg);
     *count += 2 + (order > 2 ? 2u * 2u * (uint64_t)(order - 2) : 0); /* bb = ½β², angles */
 }
+/* the same from par (rot_internal.h: cos, sin of α and γ, and β) */
+static void SH_R(ty_state_par)(int order, const sh_real *par, void *state, uint64_t *count)
+{
+    ty_state_head *h = state;
+    sh_real *csa = (sh_real *)((char *)state + ty_head()), *csg = csa + 2 * order;
+    h->beta = par[6];
+    h->bb = (sh_real)0.5 * h->beta * h->beta;
+    SH_R(sh__rot_multiple_angles_cs)(par[0], par[1], order - 1, csa);
+    SH_R(sh__rot_multiple_angles_cs)(par[4], par[5], order - 1, csg);
+    *count += 2 + (order > 2 ? 2u * 2u * (uint64_t)(order - 2) : 0); /* bb = ½β², angles */
+}
 
 /* work: pad (2·order + 3) */
 static void SH_R(ty_apply)(int kind, int order, const void *tables, const void *state,
@@ -263,6 +277,14 @@ static int SH_R(ty_blocks)(int kind, int order, const sh_rotation *rot, const vo
         if (mults) *mults += count;                                                                \
         return SH_OK;                                                                              \
     }                                                                                              \
+    int SH_R(sh__rot_##name##_set_par)(int order, const sh_real *par, const void *tables,          \
+                                       void *state, uint64_t *mults)                              \
+    {                                                                                              \
+        uint64_t count = 0;                                                                        \
+        SH_R(ty_state_par)(order, par, state, &count);                                             \
+        if (mults) *mults += count;                                                                \
+        return SH_OK;                                                                              \
+    }                                                                                              \
     void SH_R(sh__rot_##name##_apply)(int order, const void *tables, const void *state,            \
                                       const sh_real *in, sh_real *out, void *work, uint64_t *mults) \
     {                                                                                              \
@@ -301,6 +323,8 @@ static size_t ty_work(int order) /* blocks: state, pad, e, col; apply: pad */
         .state_bytes = ty_state_bytes,                                                             \
         .set_d = sh__rot_##kn##_set_d,                                                           \
         .set_f = sh__rot_##kn##_set_f,                                                           \
+        .set_par_d = sh__rot_##kn##_set_par_d,                                                   \
+        .set_par_f = sh__rot_##kn##_set_par_f,                                                   \
         .blocks_d = sh__rot_##kn##_blocks_d,                                                     \
         .blocks_f = sh__rot_##kn##_blocks_f,                                                     \
         .apply_d = sh__rot_##kn##_apply_d,                                                       \

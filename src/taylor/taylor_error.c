@@ -4,12 +4,12 @@
  * References
  *  [1] J. Křivánek et al. 2005 (IRISA PI 1728), Sec. 3.2 and Figure 3:
  *      E(β) = ‖D(β)Λ‖; max over unit Λ = largest singular value σ₁ of D;
- *      "average over unit Λ" taken by the paper (and CONVENTIONS.md) as the
+ *      "average over unit Λ" taken by the paper (and docs/CONVENTIONS.md) as the
  *      mean singular value; the actual error for the lobe cos^7.
  *  [2] GSL manual, "Singular Value Decomposition": gsl_linalg_SV_decomp_jacobi
  *      (one-sided Jacobi orthogonalization, singular values to high relative
  *      accuracy), returns A = U S Vᵀ with S ≥ 0 in decreasing order.
- *  [3] CONVENTIONS.md "Taylor-approximated rotation" (the three expansions
+ *  [3] docs/CONVENTIONS.md "Taylor-approximated rotation" (the three expansions
  *      and the error measures), lights: sh_lobe_zonal (closed-form
  *      coefficients of max(0, cosθ)^e about +z).
  *

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI contract of bench and plan (issue 5).  No timing is asserted: only the
+# CLI contract of bench and plan.  No timing is asserted: only the
 # structure of the results, the counted work against the paper's formula,
 # the error contract, and plan --order auto on an EXR the test writes itself.
 . tests/cli/lib.inc
@@ -21,24 +21,76 @@ for t in taylor1 taylor1.5 taylor2; do
     else notok "bench $t (exit $rc: $(head -c 200 "$TMP/err"))"; fi
 done
 
-expect_success "bench zxzxz,ivanic" bench --methods zxzxz,ivanic --order 3,6 --count 20 --repeat 3 --batch 4 --format csv --quiet
+expect_success "bench zxzxz,ivanic" bench --methods zxzxz,ivanic --order 3,6 --count 20 --repeat 3 --batch 4 --format csv --quiet --kernel scalar
 rows=$(($(wc -l <"$TMP/out") - 1))
 [ "$rows" = 8 ] && ok "bench: 2 methods x 2 orders x 2 modes = 8 rows" || notok "bench rows $rows"
-# columns (after convention,repeat,setup_ns): method,order,precision,mode,ns_per_rotation,
-# ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch
-head -1 "$TMP/out" | grep -q ',method,order,precision,mode,ns_per_rotation,ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch$' \
+# the columns of the row objects, in this order (new ones after batch); the
+# run-level ones (convention, repeat, ..., load) lead every CSV row
+head -1 "$TMP/out" | grep -q '^convention,repeat,min_sample_ms,setup_ns,noisy,noise,offcpu,load,method,order,precision,mode,ns_per_rotation,ns_median,ns_min,ns_max,mults,mults_per_ns,count,batch,kernel,input,ns_q1,ns_q3,spread,sample_ms,ratio_to,ratio,ratio_q1,ratio_q3,noisy_order$' \
     && ok "bench csv header" || notok "bench csv header: $(head -1 "$TMP/out")"
-bad=$(awk -F, 'NR > 1 && !($10 > 0 && $10 <= $9 && $9 <= $11 && $8 == $9 && $13 > 0) { print }' "$TMP/out")
-[ -z "$bad" ] && ok "bench: 0 < min <= median <= max, ns_per_rotation = median" || notok "bench spread: $bad"
+# col NAME: awk expression for the column named NAME (from the header)
+col() { echo "\$$(head -1 "$TMP/out" | tr ',' '\n' | grep -nx "$1" | head -1 | cut -d: -f1)"; }
+bad=$(awk -F, "NR > 1 && !($(col ns_min) > 0 && $(col ns_min) <= $(col ns_q1) && $(col ns_q1) <= $(col ns_median) \
+      && $(col ns_median) <= $(col ns_q3) && $(col ns_q3) <= $(col ns_max) && $(col ns_per_rotation) == $(col ns_median) \
+      && $(col mults) > 0 && $(col count) == 20 && $(col sample_ms) > 0) { print }" "$TMP/out")
+[ -z "$bad" ] && ok "bench: 0 < min <= q1 <= median <= q3 <= max, ns_per_rotation = median, count 20" || notok "bench spread: $bad"
+bad=$(awk -F, "NR > 1 && !($(col spread) >= 0 && ($(col spread) - ($(col ns_q3) - $(col ns_q1)) / $(col ns_median))^2 < 1e-20) { print }" "$TMP/out")
+[ -z "$bad" ] && ok "bench: spread = (q3 - q1) / median" || notok "bench spread column: $bad"
+# paired ratios: the baseline (first method) against itself is exactly 1 in
+# every round; the others lie between their quartiles
+bad=$(awk -F, "NR > 1 && !($(col ratio_to) ~ /^zxzxz\/scalar\/euler\// && $(col ratio_q1) <= $(col ratio) && $(col ratio) <= $(col ratio_q3) \
+      && ($(col method) != \"zxzxz\" || ($(col ratio) == 1 && $(col ratio_q1) == 1 && $(col ratio_q3) == 1))) { print }" "$TMP/out")
+[ -z "$bad" ] && ok "bench: ratio to zxzxz, baseline 1, q1 <= ratio <= q3" || notok "bench ratios: $bad"
+# the noise verdict is stated with its reason (true iff a reason is given)
+bad=$(awk -F, "NR > 1 && !(($(col noisy) == \"true\" && $(col noise) != \"\") || ($(col noisy) == \"false\" && $(col noise) == \"\")) { print }" "$TMP/out")
+[ -z "$bad" ] && ok "bench: noisy is true exactly when a reason is given" || notok "bench noisy: $bad"
 # zxzxz per vector: n(2n²+18n−14)/3 (Krivánek Sec. 3.1) + multiple angles 6(n−2)
-for n in 3 6; do
-    m=$(awk -F, -v n=$n '$4 == "zxzxz" && $5 == n && $7 == "per-rotation" { print $12 }' "$TMP/out")
-    want=$((n * (2 * n * n + 18 * n - 14) / 3 + 6 * (n - 2)))
-    close "$m" "$want" 0 && ok "bench zxzxz n=$n mults $m = paper + angles" || notok "bench zxzxz n=$n mults $m want $want"
+for o in 3 6; do
+    m=$(awk -F, -v n=$o "$(col method) == \"zxzxz\" && $(col order) == n && $(col mode) == \"per-rotation\" { print $(col mults) }" "$TMP/out")
+    want=$((o * (2 * o * o + 18 * o - 14) / 3 + 6 * (o - 2)))
+    close "$m" "$want" 0 && ok "bench zxzxz n=$o mults $m = paper + angles" || notok "bench zxzxz n=$o mults $m want $want"
 done
 grep -qi nan "$TMP/out" && notok "bench: NaN in output" || ok "bench: no NaN"
 expect_success "bench json" bench --methods zxzxz --order 4 --count 10 --repeat 2 --mode batched --format json --quiet
-grep -q '"convention":"cs"' "$TMP/out" && grep -q '"mode":"batched"' "$TMP/out" && ok "bench json fields" || notok "bench json: $(head -c 200 "$TMP/out")"
+grep -q '"convention":"cs"' "$TMP/out" && grep -q '"mode":"batched"' "$TMP/out" && grep -q '"noisy":\(true\|false\)' "$TMP/out" \
+    && ok "bench json fields" || notok "bench json: $(head -c 200 "$TMP/out")"
+expect_success "bench --baseline" bench --methods zxzxz,ivanic --baseline ivanic --order 4 --count 10 --repeat 3 --mode per-rotation --format csv --quiet
+bad=$(awk -F, "NR > 1 && !($(col ratio_to) ~ /^ivanic\// && ($(col method) != \"ivanic\" || $(col ratio) == 1)) { print }" "$TMP/out")
+[ -z "$bad" ] && ok "bench --baseline ivanic: ratios to ivanic" || notok "bench --baseline: $bad"
+expect_usage_error "bench baseline not timed" bench --methods zxzxz --baseline ivanic --order 3
+expect_usage_error "bench bad baseline" bench --methods zxzxz --baseline nope --order 3
+# a baseline fixed in kernel, input and mode: every row divides by that one
+# entry, which is 1 against itself; the other rows keep their own kernel
+expect_success "bench --baseline spec" bench --methods zxzxz --kernel scalar,auto --input euler,matrix --mode all \
+    --baseline zxzxz/scalar/euler/per-rotation --order 4 --count 10 --repeat 3 --batch 4 --format csv --quiet
+bad=$(awk -F, "NR > 1 && !($(col ratio_to) == \"zxzxz/scalar/euler/per-rotation\" && ($(col kernel) != \"scalar\" || $(col input) != \"euler\" || $(col mode) != \"per-rotation\" || $(col ratio) == 1)) { print }" "$TMP/out")
+rows=$(($(wc -l <"$TMP/out") - 1))
+[ -z "$bad" ] && [ "$rows" = 10 ] && ok "bench --baseline METHOD/KERNEL/INPUT/MODE: 10 rows, one baseline" || notok "bench --baseline spec ($rows rows): $bad"
+expect_usage_error "bench baseline input not timed" bench --methods zxzxz --baseline zxzxz/scalar/matrix --order 3
+expect_usage_error "bench baseline bad mode" bench --methods zxzxz --baseline zxzxz/scalar/euler/sideways --order 3
+# instructions under valgrind (when it is installed): deterministic for the
+# same binary, per vector at least the counted multiplications' instructions
+# (one instruction does at most two of them at -O2), and cheaper batched
+export TMPDIR="$TMP" # bench --instructions keeps its callgrind file in $TMPDIR
+"$SHLAB" bench --instructions --methods zxzxz --order 3 --format csv --quiet >"$TMP/out" 2>"$TMP/err"; rc=$?
+if [ $rc = 2 ] && grep -q "sanitizer build" "$TMP/err"; then
+    [ ! -s "$TMP/out" ] && [ "$(wc -l <"$TMP/err")" = 1 ] && ok "bench --instructions: refused in one line in a sanitizer build" \
+        || notok "bench --instructions in a sanitizer build: $(head -c 200 "$TMP/err")"
+elif command -v valgrind >/dev/null 2>&1; then
+    expect_success "bench --instructions" bench --instructions --methods zxzxz,taylor1.5 --order 3,6 --batch 4 --format csv --quiet
+    cp "$TMP/out" "$TMP/ins1"
+    head -1 "$TMP/out" | grep -q '^convention,tool,n,method,order,precision,mode,kernel,input,instructions,mults,batch$' \
+        && ok "bench --instructions header" || notok "bench --instructions header: $(head -1 "$TMP/out")"
+    bad=$(awk -F, 'NR > 1 && !($10 >= $11 / 2 && $10 > 0) { print }' "$TMP/out")
+    [ -z "$bad" ] && [ "$(wc -l <"$TMP/out")" = 9 ] && ok "bench --instructions: 8 rows, instructions >= mults / 2" || notok "bench --instructions: $bad"
+    bad=$(awk -F, 'NR > 1 { k = $4 " " $5; if ($7 == "per-rotation") p[k] = $10; else b[k] = $10 } END { for (k in p) if (!(b[k] < p[k])) print k }' "$TMP/out")
+    [ -z "$bad" ] && ok "bench --instructions: batched < per-rotation per vector" || notok "bench --instructions batched: $bad"
+    expect_success "bench --instructions again" bench --instructions --methods zxzxz,taylor1.5 --order 3,6 --batch 4 --format csv --quiet
+    cmp -s "$TMP/out" "$TMP/ins1" && ok "bench --instructions: the same counts twice" || notok "bench --instructions differs between runs"
+    ls "$TMP"/shlab-callgrind-* >/dev/null 2>&1 && notok "bench --instructions left its temporary directory" || ok "bench --instructions: temporary files removed"
+else
+    ok "bench --instructions: skipped (valgrind not installed)"
+fi
 
 # plan
 expect_usage_error "plan no tolerance" plan --order 4 --max-beta 0.1

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI contract of `shlab eval` and `shlab convert` (CONVENTIONS.md "Output").
+# CLI contract of `shlab eval` and `shlab convert` (docs/CONVENTIONS.md "Output").
 . tests/cli/lib.inc
 
 expect_success "shlab --help" --help

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Golden rotation fixtures (data/fixtures/rotation) and `shlab verify`:
-# every exact method matches every fixture it is accurate for (issue 3), the
+# every exact method matches every fixture it is accurate for (1e-13), the
 # methods whose high-band breakdown is measured fail with their worst case at
 # l = 200, and --diagnose names each simulated mistake.
 . tests/cli/lib.inc

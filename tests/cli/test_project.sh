@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI contract of `shlab project` (CONVENTIONS.md "Output").  Truths: closed
+# CLI contract of `shlab project` (docs/CONVENTIONS.md "Output").  Truths: closed
 # forms (√π/2, √(π/3), √π(1−cos t), V√(4π)), the exactness of quad on a
 # constant, and a reconstruct → project round trip of chosen coefficients.
 . tests/cli/lib.inc

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI contract of `shlab reconstruct` (CONVENTIONS.md "Output"): errors exit 2
+# CLI contract of `shlab reconstruct` (docs/CONVENTIONS.md "Output"): errors exit 2
 # with one "shlab: error:" line, nothing on stdout and no output file left.
 . tests/cli/lib.inc
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI contract of rotmat, rotate and euler (issue 3), with closed-form truths.
+# CLI contract of rotmat, rotate and euler, with closed-form truths.
 . tests/cli/lib.inc
 # coefficient I of a long-format CSV result (one row per coefficient, value last)
 coef() { awk -F, -v i="$2" 'NR == i + 2 { print $NF }' "$1"; }
@@ -13,7 +13,6 @@ expect_usage_error "rotmat bad method" rotmat --order 3 --method nope --euler 1,
 expect_usage_error "rotmat bad precision" rotmat --order 3 --precision half --euler 1,2,3
 expect_usage_error "rotmat order too large" rotmat --order 33 --euler 1,2,3
 expect_usage_error "rotmat band not below order" rotmat --order 3 --band 3 --euler 1,2,3
-expect_usage_error "rotmat degrees with a matrix" rotmat --order 2 --matrix 1,0,0,0,1,0,0,0,1 --degrees
 expect_success "rotmat order and band" rotmat --order 4 --band 2 --euler 1,2,3 --method blanco --format json
 if grep -q '"band":2' "$TMP/out" && grep -q '"order":4' "$TMP/out"; then ok "rotmat --order 4 --band 2 prints band 2"; else notok "order+band: $(head -c 200 "$TMP/out")"; fi
 # an exact method that has broken down says so on stderr (ivanic past l ~ 150)

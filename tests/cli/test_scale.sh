@@ -76,9 +76,9 @@ expect_usage_error "scale-scene missing probe" scale-scene --scene midrange --or
 expect_usage_error "scale-scene light on sphere" scale-scene --scene sphere --order 4 --k 2 --light green
 expect_usage_error "scale-scene order 17" scale-scene --scene sphere --order 17 --k 2
 expect_success "scale-scene cone" scale-scene --scene cone --order 4 --k 0.8,1.5 --format csv
-# header: scene,order,convention,method,size,occluder_angle,wobble,cone_family_angle,k,family,energy,err_scaled,err_geom,err_trunc
-bad=$(awk -F, 'NR > 1 && $10 == "cone" && $11 == "false" && $13 + 0 > 1e-12 { print $9, $13 }' "$TMP/out")
-nrows=$(awk -F, 'NR > 1 && $10 == "cone"' "$TMP/out" | wc -l)
+# header: scene,order,convention,method,size,occluder_angle,wobble,cone_family_angle,unit,k,family,energy,err_scaled,err_geom,err_trunc
+bad=$(awk -F, 'NR > 1 && $11 == "cone" && $12 == "false" && $14 + 0 > 1e-12 { print $10, $14 }' "$TMP/out")
+nrows=$(awk -F, 'NR > 1 && $11 == "cone"' "$TMP/out" | wc -l)
 [ -z "$bad" ] && [ "$nrows" = 4 ] && ok "cone family is exact geometry on the cone occluder" || notok "cone geometry error: $bad ($nrows rows)"
 expect_success "scale-scene midrange" scale-scene --scene midrange --order 4 --k -0.6,0.6 --nodes 100 --format csv
 # header: scene,order,convention,method,environment,nodes,dir_x,dir_y,dir_z,rotation_method,k,family,energy,err_scaled,err_geom,err_trunc

@@ -50,7 +50,7 @@ got=$(sed -n 's/^{"item":\([0-9]*\),.*/\1/p' "$TMP/s" | head -6 | tr '\n' ' ')
 # a band's row does not depend on the other bands computed (probes seeded by the band)
 "$SHLAB" stability --method blanco --lmax 12 --ref-max 4 --format csv > "$TMP/a" 2>/dev/null
 "$SHLAB" stability --method blanco --bands 3,12 --ref-max 4 --format csv > "$TMP/b" 2>/dev/null
-ra=$(awk -F, '$1 == "blanco" && $5 == 12' "$TMP/a"); rb=$(awk -F, '$1 == "blanco" && $5 == 12' "$TMP/b")
+ra=$(awk -F, '$1 == "blanco" && $6 == 12' "$TMP/a"); rb=$(awk -F, '$1 == "blanco" && $6 == 12' "$TMP/b")
 [ -n "$ra" ] && [ "$ra" = "$rb" ] && ok "band 12 alone = band 12 of 0..12" || notok "band 12: '$ra' vs '$rb'"
 
 # --bands and a sweep that stops (--stop-above): rows after the first stop are dropped
@@ -58,7 +58,7 @@ SB="stability --method ivanic --bands 2,5,9,14,16,18,20,22,25,30 --ref-max -1 --
 "$SHLAB" $SB > "$TMP/whole" 2>/dev/null
 for i in 0 1 2; do "$SHLAB" $SB --shard $i/3 > "$TMP/s$i" 2>/dev/null; done
 "$SHLAB" merge "$TMP/s0" "$TMP/s1" "$TMP/s2" > "$TMP/merged" 2>"$TMP/err"
-last=$(tail -1 "$TMP/whole" | cut -d, -f5)
+last=$(tail -1 "$TMP/whole" | cut -d, -f6)
 [ -n "$last" ] && [ "$last" -lt 30 ] && cmp -s "$TMP/whole" "$TMP/merged" \
     && ok "stopped sweep (--stop-above, stops at band $last) merges to the unsharded rows" \
     || notok "stopped sweep: last band '$last', $(head -c 200 "$TMP/err")"
@@ -89,8 +89,8 @@ PL="plan --order 5 --max-beta 12 --degrees --tolerance 1e-3 --format csv --quiet
 "$SHLAB" $PL > "$TMP/pl" 2>/dev/null
 for i in 0 1 2; do "$SHLAB" $PL --shard $i/3 > "$TMP/p$i" 2>/dev/null; done
 "$SHLAB" merge "$TMP/p0" "$TMP/p1" "$TMP/p2" > "$TMP/merged" 2>/dev/null
-# candidate columns method, exact, ok, max_error, worst_beta, mults (14-16, 18-20)
-cut -d, -f14-16,18-20 "$TMP/pl" | sort > "$TMP/a"; cut -d, -f14-16,18-20 "$TMP/merged" | sort > "$TMP/b"
+# candidate columns method, exact, ok, max_error, worst_beta, mults (15-17, 19-21)
+cut -d, -f15-17,19-21 "$TMP/pl" | sort > "$TMP/a"; cut -d, -f15-17,19-21 "$TMP/merged" | sort > "$TMP/b"
 [ "$(wc -l < "$TMP/a")" -gt 5 ] && cmp -s "$TMP/a" "$TMP/b" && ok "plan: 3 shards merge to the same errors per method" \
     || notok "plan: merged errors differ"
 for i in 0 1; do "$SHLAB" $PL --tolerance 1e-30 --shard $i/2 > "$TMP/p$i" 2>/dev/null; done

@@ -5,26 +5,26 @@
 
 # deriv: J band 1 in nocs is Figure 2's [[0,0,0],[0,0,-1],[0,1,0]]
 expect_success "deriv J order 2 nocs" deriv --order 2 --k 1 --convention nocs --format csv
-# columns: order,k,beta,convention,way,row,c0..c3
-v=$(awk -F, 'NR==4 {print $10}' "$TMP/out"); w=$(awk -F, 'NR==5 {print $9}' "$TMP/out")
+# columns: order,k,beta,unit,convention,way,row,c0..c3
+v=$(awk -F, 'NR==4 {print $11}' "$TMP/out"); w=$(awk -F, 'NR==5 {print $10}' "$TMP/out")
 if close "$v" -1 1e-15 && close "$w" 1 1e-15; then ok "deriv J band 1 (nocs) = Figure 2"; else notok "deriv J band 1: $v $w"; fi
 expect_success "deriv json" deriv --order 3 --k 2 --beta 30 --degrees --format json
 if grep -q '"convention"' "$TMP/out" && grep -q '"k": *2,' "$TMP/out" && grep -q '"matrix"' "$TMP/out" && ! grep -qi nan "$TMP/out"; then ok "deriv json fields"; else notok "deriv json fields"; fi
 # the two ways agree (k = 3, beta = 1.1, order 5)
 "$SHLAB" deriv --order 5 --k 3 --beta 1.1 --format csv > "$TMP/a" 2>/dev/null
 "$SHLAB" deriv --order 5 --k 3 --beta 1.1 --way generator --format csv > "$TMP/b" 2>/dev/null
-d=$(paste -d, "$TMP/a" "$TMP/b" | awk -F, 'NR > 1 { h = NF / 2; for (i = 7; i <= h; i++) { x = $i - $(i + h); if (x < 0) x = -x; if (x > m) m = x } } END { print m + 0 }')
+d=$(paste -d, "$TMP/a" "$TMP/b" | awk -F, 'NR > 1 { h = NF / 2; for (i = 8; i <= h; i++) { x = $i - $(i + h); if (x < 0) x = -x; if (x > m) m = x } } END { print m + 0 }')
 if close "$d" 0 1e-12; then ok "deriv recursion == generator (max diff $d)"; else notok "deriv ways differ by $d"; fi
 # k = 40 at order 3: J has eigenvalues 0, ±i (band 1), 0, ±i, ±2i (band 2), so
 # trace(J^40) = 2 + 2 + 2·2^40 = 2199023255556 (the trace of J^41 is 0)
 expect_success "deriv k 40" deriv --order 3 --k 40 --format csv
-t=$(awk -F, 'NR > 1 { r = $6; tr += $(7 + r) } END { printf "%.17g", tr }' "$TMP/out")
+t=$(awk -F, 'NR > 1 { r = $7; tr += $(8 + r) } END { printf "%.17g", tr }' "$TMP/out")
 close "$t" 2199023255556 1e-12 && ok "deriv k=40: trace $t = 4 + 2^41" || notok "deriv k=40 trace $t"
 # any β: β and β + 2π·1000 agree (R_Y is 2π-periodic)
 b2=$(awk 'BEGIN { printf "%.17g", 0.4 + 2000 * atan2(0, -1) }')
 "$SHLAB" deriv --order 4 --k 2 --beta 0.4 --format csv > "$TMP/a" 2>/dev/null
 "$SHLAB" deriv --order 4 --k 2 --beta "$b2" --format csv > "$TMP/b" 2>/dev/null
-d=$(paste -d, "$TMP/a" "$TMP/b" | awk -F, 'NR > 1 { h = NF / 2; for (i = 7; i <= h; i++) { x = $i - $(i + h); if (x < 0) x = -x; if (x > m) m = x } } END { print m + 0 }')
+d=$(paste -d, "$TMP/a" "$TMP/b" | awk -F, 'NR > 1 { h = NF / 2; for (i = 8; i <= h; i++) { x = $i - $(i + h); if (x < 0) x = -x; if (x > m) m = x } } END { print m + 0 }')
 [ -s "$TMP/b" ] && close "$d" 0 1e-9 && ok "deriv beta vs beta + 2000 pi (max diff $d)" || notok "deriv large beta: diff $d"
 expect_success "deriv huge beta" deriv --order 3 --k 1 --beta 1e300
 expect_usage_error "deriv k overflows" deriv --order 3 --k 5000

@@ -1,0 +1,47 @@
+/* memory.c — how much memory a job may take: the sizes of big allocations are
+ * checked against what the machine has before anything is allocated, so a
+ * request that cannot fit is refused with one line naming its size instead of
+ * being overcommitted and killed later. */
+#include "core/shlab_internal.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+size_t sh__mem_available(void)
+{
+    /* MemAvailable (Linux ≥ 3.14): free memory plus what the page cache would give back */
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (f) {
+        char line[256];
+        unsigned long long kb = 0;
+        int found = 0;
+        while (!found && fgets(line, sizeof line, f))
+            found = sscanf(line, "MemAvailable: %llu kB", &kb) == 1;
+        fclose(f);
+        if (found) return (size_t)kb * 1024;
+    }
+    const long pages = sysconf(_SC_AVPHYS_PAGES), psz = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && psz > 0) return (size_t)pages * (size_t)psz;
+    return SIZE_MAX;
+}
+
+const char *sh__bytes_str(double bytes, char *buf, size_t n)
+{
+    if (bytes >= 1e9) snprintf(buf, n, "%.1f GB", bytes / 1e9);
+    else if (bytes >= 1e6) snprintf(buf, n, "%.1f MB", bytes / 1e6);
+    else snprintf(buf, n, "%.0f kB", bytes / 1e3);
+    return buf;
+}
+
+int sh__mem_check(double bytes, const char *what)
+{
+    /* an eighth of what is available is left to everything else running */
+    const size_t avail = sh__mem_available();
+    const double usable = (double)avail - (double)(avail / 8);
+    if (bytes <= usable) return SH_OK;
+    char a[32], b[32];
+    return sh_error(SH_ENOMEM, "%s needs %s of memory; %s is available", what,
+                    sh__bytes_str(bytes, a, sizeof a), sh__bytes_str((double)avail, b, sizeof b));
+}

@@ -1,0 +1,89 @@
+/* sht_internal.h — pieces of the fast spherical harmonic transforms shared by
+ * the driver (sht.c), the Legendre kernels (sht_kern.c, compiled once per
+ * instruction set) and the tests.  Not installed. */
+#ifndef SHLAB_SHT_INTERNAL_H
+#define SHLAB_SHT_INTERNAL_H
+
+#include "core/shlab_internal.h"
+
+/* Ring pairs are handed to the kernels in chunks padded to a multiple of
+ * SHT_LANES, which every kernel's block (lanes × vectors) divides. */
+#define SHT_LANES 32
+
+/* Extended exponent of the sectoral seeds (legendre.c, [2] there): a value is
+ * mant · 2^(SHT_SCALE·k) with k ≤ 0 an integer per lane.  A lane "lives" (its
+ * values are accumulated) once k = 0; values with k < 0 are below
+ * 2^(SHT_RESCALE − SHT_SCALE) = 2^−400 and are dropped, far below rounding of
+ * the O(1) values they would be added to. */
+#define SHT_SCALE 800
+#define SHT_RESCALE 400
+
+/* Lanes (ring pairs) are stored in groups of SHT_GRP, one cache line of
+ * doubles: the chunk buffers are group-major, [group][m][row][SHT_GRP], so
+ * that the ring stage writes and reads one group's region contiguously and
+ * the Legendre stage reads, for one m, a line per group and row. */
+#define SHT_GRP 8
+
+/* One job of the Legendre stage: one m, every ring pair of one chunk.  Lane
+ * i of a per-m array A lives at A[(i / SHT_GRP)·stride + i % SHT_GRP]. */
+typedef struct {
+    int m, lmax, nchan, npad;   /* npad: lanes, a multiple of SHT_LANES */
+    const double *x;            /* [npad] cosθ of the pair's north ring (0 for padding) */
+    const double *mant, *scl;   /* Q_m^m(x) = mant · 2^(SHT_SCALE·scl), group stride sstride */
+    size_t sstride, dstride;    /* group strides of the seeds and of in/out */
+    const double *alpha, *g;    /* scaled recursion of this m (sht_kern.c), indexed by l − m */
+    /* analysis: in  = rows (4c + k)·SHT_GRP, k = S_re, S_im, D_re, D_im (north ± south),
+     *           out[(l−m)·nchan·2 + 2c + k] += g_{l−m} Σ_lanes Q_l^m · (S or D)_k, k = re, im;
+     *           acc: scratch of (lmax−m+1)·nchan·2·8 doubles, 64-byte aligned.
+     * synthesis: in = [(l−m)·nchan·2 + 2c + k] coefficients of this m (times g),
+     *           out = rows (4c + k)·SHT_GRP, k = north re, north im, south re, south im. */
+    const double *in;
+    double *out, *acc;
+} sht_kjob;
+
+typedef void (*sht_kern_fn)(const sht_kjob *);
+
+/* Instruction sets with a compiled kernel (sht_kern.c built once per set). */
+typedef enum { SHT_ISA_AUTO = 0, SHT_ISA_BASE, SHT_ISA_AVX2, SHT_ISA_AVX512 } sht_isa;
+const char *sh__sht_isa_name(sht_isa isa);
+/* Non-zero if the kernels of `isa` are compiled in and this CPU runs them. */
+int sh__sht_isa_usable(sht_isa isa);
+/* Force the kernels of a plan (tests compare every usable set with BASE). */
+int sh__sht_set_isa(sh_sht *p, sht_isa isa);
+/* Use chunks of `pairs` ring pairs (a multiple of SHT_LANES, at most what the
+ * plan was sized for): tests run several chunks on small grids. */
+int sh__sht_set_chunk(sh_sht *p, int pairs);
+
+void sh__sht_analysis_base(const sht_kjob *j);
+void sh__sht_synthesis_base(const sht_kjob *j);
+#if defined(SHLAB_SHT_X86)
+void sh__sht_analysis_avx2(const sht_kjob *j);
+void sh__sht_synthesis_avx2(const sht_kjob *j);
+void sh__sht_analysis_avx512(const sht_kjob *j);
+void sh__sht_synthesis_avx512(const sht_kjob *j);
+#endif
+
+/* Transforms with the map streamed ring by ring (sht.c): get fills buf with
+ * ring r (nchan × nphi values, channel-major), put receives it.  Both are
+ * called from the plan's threads at once (for different rings) when the plan
+ * has more than one; a non-zero status stops the transform and is returned
+ * (the failure of the lowest ring index, whatever the threads).  sigma: a
+ * factor per band applied to the coefficients (window), or NULL. */
+typedef int (*sht_get_fn)(void *ctx, int ring, double *buf);
+typedef int (*sht_put_fn)(void *ctx, int ring, const double *buf);
+int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx, double *coeffs);
+int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, const double *sigma,
+                         sht_put_fn put, void *ctx);
+
+/* The slow direct paths the transforms replaced, kept as independent
+ * references for the tests: a direct sum in φ ring by ring with one
+ * sh__legendre_core call per ring (project.c, envmap.c), and a direct
+ * synthesis row by row (reconstruct.c, out = W × W/2 doubles per channel). */
+int sh__project_quad_direct(int order, sh_convention conv, sh_sphere_fn f, void *ctx, long S,
+                            double *c);
+int sh__project_latlong_direct(const sh_image *img, int order, sh_convention conv,
+                               double *coeffs);
+int sh__reconstruct_latlong_direct(int order, sh_convention conv, const double *coeffs,
+                                   const sh_window *win, int width, double *out);
+
+#endif

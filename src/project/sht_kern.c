@@ -1,0 +1,335 @@
+/* sht_kern.c — the Legendre stage of the spherical harmonic transforms (sht.c):
+ * for one m and one chunk of ring pairs, the normalised associated Legendre
+ * functions Q_l^m(x), l = m..lmax, by the recurrence of legendre.c, vectorised
+ * across ring pairs (not along l), and
+ *   analysis:  out_l,k += Σ_pairs Q_l^m(x) · (S_k if l−m even, D_k if odd),
+ *   synthesis: north/south_k = E_k ± O_k,  E_k = Σ_{l−m even} Q_l^m(x) c_l,k,
+ *                                           O_k = Σ_{l−m odd}  Q_l^m(x) c_l,k,
+ * where S = F(north) + F(south), D = F(north) − F(south): a pair of rings at
+ * ±x shares one recursion because Q_l^m(−x) = (−1)^(l−m) Q_l^m(x).
+ *
+ * This file is compiled once per instruction set (Makefile: baseline, AVX2+FMA,
+ * AVX-512F) with GCC vector extensions; sht.c picks the widest set the CPU runs
+ * (sh__sht_isa_usable) when a plan is created.  The FMA builds contract a·b+c
+ * (-ffp-contract=fast), so results differ between sets by rounding only; for
+ * one set they do not depend on the number of threads.
+ *
+ * Recurrence (Holmes & Featherstone 2002, eq. 11, as in legendre.c):
+ *     Q_l^m = a_l x Q_{l−1}^m − c_l Q_{l−2}^m,   Q_{m−1}^m = 0,
+ *     a_l = sqrt((4l²−1)/(l²−m²)),  c_l = a_l·sqrt(((l−1)²−m²)/(4(l−1)²−1)),
+ * run in the scaled form Q_{m+i}^m = g_i T_i, g_0 = g_1 = 1, g_i = c_{m+i} g_{i−2}:
+ *     T_i = α_i x T_{i−1} − T_{i−2},   α_i = a_{m+i} g_{i−1} / g_i,
+ * one multiply and one fused multiply-subtract per step (the per-m tables α, g
+ * are made by the plan in long double; g stays within a few powers of ten).
+ * Analysis multiplies the lane sums of band l by g_i, synthesis the
+ * coefficients.  The recursion is seeded by the sectoral T_0 = Q_m^m, which
+ * sht.c carries as mant · 2^(800·k)
+ * (Fukushima 2012's extended exponent, as legendre.c; k ≤ 0 per lane).  While
+ * some lane of a block has k < 0 the "checked" loop runs: a lane whose mantissa
+ * passes 2^400 is rescaled by 2^−800 and k += 1; only lanes with k = 0 are
+ * accumulated (the others are < 2^−400).  Once every lane has k = 0 the plain
+ * loop runs, two steps at a time so that the parity of l − m is fixed per step.
+ *
+ *  [1] S. A. Holmes, W. E. Featherstone, J. Geodesy 76 (2002) 279.
+ *  [2] T. Fukushima, J. Geodesy 86 (2012) 271.
+ *  [3] M. Reinecke, D. S. Seljebotn, "Libsharp — spherical harmonic transforms
+ *      revisited", A&A 554 (2013) A112 (ring pairs, vectorisation across rings).
+ */
+#include "project/sht_internal.h"
+
+#include <string.h>
+#if defined(SHT_KERN_AVX512) || defined(SHT_KERN_AVX2)
+#include <immintrin.h>
+#endif
+
+/* VL doubles a vector; a block is NVA (analysis) or NVS (synthesis) vectors,
+ * as many as the registers hold (measured with `shlab bench --peers --kernel`). */
+#if defined(SHT_KERN_AVX512)
+#define VL 8
+#define NVA 4
+#define NVS 4
+#define KN(name) name##_avx512
+#elif defined(SHT_KERN_AVX2)
+#define VL 4
+#define NVA 4
+#define NVS 2
+#define KN(name) name##_avx2
+#else
+#define VL 2
+#define NVA 4
+#define NVS 4
+#define KN(name) name##_base
+#endif
+#define NVMAX 4
+_Static_assert(NVA <= NVMAX && NVS <= NVMAX, "block too wide");
+_Static_assert(SHT_LANES % (VL * NVA) == 0 && SHT_LANES % (VL * NVS) == 0,
+               "a chunk must hold whole kernel blocks");
+#define AI static inline __attribute__((always_inline))
+_Static_assert(SHT_GRP % VL == 0, "a vector must lie in one group of lanes");
+
+typedef double vd __attribute__((vector_size(VL * 8)));
+typedef long long vm __attribute__((vector_size(VL * 8)));
+typedef double vdu __attribute__((vector_size(VL * 8), aligned(8)));
+
+static inline vd vload(const double *p) { return *(const vdu *)p; }
+static inline void vstore(double *p, vd v) { *(vdu *)p = v; }
+static inline vd bc(double s) { return (vd){0} + s; }
+static inline vd sel(vm msk, vd a, vd b) { return (vd)(((vm)a & msk) | ((vm)b & ~msk)); }
+static inline vd vabs(vd a) { return (vd)((vm)a & 0x7fffffffffffffffLL); }
+/* Mask tests and the lane sum, with the instruction set's own reductions. */
+#if defined(SHT_KERN_AVX512)
+static inline unsigned msk_bits(vm m) { return _mm512_cmpneq_epi64_mask((__m512i)m, _mm512_setzero_si512()); }
+static inline double hsum(vd v) { return _mm512_reduce_add_pd((__m512d)v); }
+#elif defined(SHT_KERN_AVX2)
+static inline unsigned msk_bits(vm m) { return (unsigned)_mm256_movemask_pd((__m256d)m); }
+static inline double hsum(vd v)
+{
+    const __m128d h = _mm_add_pd(_mm256_castpd256_pd128((__m256d)v), _mm256_extractf128_pd((__m256d)v, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(h, _mm_unpackhi_pd(h, h)));
+}
+#else
+static inline unsigned msk_bits(vm m)
+{
+    unsigned r = 0;
+    for (int k = 0; k < VL; k++) r |= (m[k] != 0) << k;
+    return r;
+}
+static inline double hsum(vd v)
+{
+    double s = 0.0;
+    for (int k = 0; k < VL; k++) s += v[k];
+    return s;
+}
+#endif
+static inline int all_set(vm m) { return msk_bits(m) == (1u << VL) - 1; }
+static inline int any_set(vm m) { return msk_bits(m) != 0; }
+
+/* State of one block: nv ≤ NVMAX vectors of lanes; off[v]: where vector v's lanes
+ * start in a group-major array of group stride 1 row (see lane_off). */
+typedef struct {
+    vd x[NVMAX], p1[NVMAX], p2[NVMAX], sc[NVMAX];
+    size_t doff[NVMAX];
+} blk_t;
+
+/* Offset of lane i in a group-major array with group stride `stride`. */
+static inline size_t lane_off(int i, size_t stride) { return (size_t)(i / SHT_GRP) * stride + i % SHT_GRP; }
+
+/* Returns 0 if every seed of the block is zero (padding, poles), 1 if no lane
+ * lives yet, 2 if some do, 3 if all do. */
+AI int blk_load(blk_t *B, const sht_kjob *j, int b, const int nv)
+{
+    vm nz = {0}, live = (vm){0} - 1, some = {0};
+    for (int v = 0; v < nv; v++) {
+        const size_t so = lane_off(b + v * VL, j->sstride);
+        B->doff[v] = lane_off(b + v * VL, j->dstride);
+        B->x[v] = vload(j->x + b + v * VL);
+        B->p1[v] = vload(j->mant + so);
+        B->sc[v] = vload(j->scl + so);
+        B->p2[v] = bc(0.0);
+        nz |= B->p1[v] != 0.0;
+        live &= B->sc[v] == 0.0;
+        some |= B->sc[v] == 0.0;
+    }
+    if (!any_set(nz)) return 0;
+    return all_set(live) ? 3 : any_set(some) ? 2 : 1;
+}
+
+/* One step with rescaling: T_i = α_i x T_{i−1} − T_{i−2}; a lane whose
+ * mantissa passes 2^400 while its scale k < 0 is multiplied by 2^−800 and
+ * k += 1.  q (if not NULL) gets the new values of the live lanes, 0 elsewhere. */
+AI void step_checked(blk_t *B, double alpha, vd *q, const int nv)
+{
+    for (int v = 0; v < nv; v++) {
+        vd pn = alpha * B->x[v] * B->p1[v] - B->p2[v];
+        const vm big = (vabs(pn) > 0x1p400) & (B->sc[v] < 0.0);
+        const vd f = sel(big, bc(0x1p-800), bc(1.0));
+        pn *= f;
+        B->p1[v] *= f;
+        B->sc[v] += sel(big, bc(1.0), bc(0.0));
+        B->p2[v] = B->p1[v];
+        B->p1[v] = pn;
+        if (q) q[v] = sel(B->sc[v] == 0.0, pn, bc(0.0));
+    }
+}
+
+AI int blk_any_live(const blk_t *B, const int nv)
+{
+    vm m = {0};
+    for (int v = 0; v < nv; v++) m |= B->sc[v] == 0.0;
+    return any_set(m);
+}
+
+AI int blk_all_live(const blk_t *B, const int nv)
+{
+    vm m = (vm){0} - 1;
+    for (int v = 0; v < nv; v++) m &= B->sc[v] == 0.0;
+    return all_set(m);
+}
+
+/* Steps while no lane lives: nothing to accumulate.  The test for a live lane
+ * is made every 4 steps; a lane that came alive in between is then ≤ 2^−400
+ * times the growth of 3 steps (< 2^−340), and those terms are dropped. */
+AI int run_dead(blk_t *B, const double *al, int i, int nl, const int nv)
+{
+    while (i < nl) {
+        const int e = i + 4 < nl ? i + 4 : nl;
+        for (; i < e; i++) step_checked(B, al[i], NULL, nv);
+        if (blk_any_live(B, nv)) break;
+    }
+    return i;
+}
+
+/* ------------------------------------------------------------ analysis */
+
+/* acc[2c + k] += Σ_v q[v] · in[doff[v] + (4c + 2·odd + k)·SHT_GRP] */
+AI void acc_analysis(vd *acc, const vd *q, const double *in, const size_t *doff, int nc, int odd,
+                     const int nv)
+{
+    for (int c = 0; c < nc; c++) {
+        const double *dr = in + (size_t)(4 * c + 2 * odd) * SHT_GRP, *di = dr + SHT_GRP;
+        vd sr = acc[2 * c], si = acc[2 * c + 1];
+        for (int v = 0; v < nv; v++) {
+            sr += q[v] * vload(dr + doff[v]);
+            si += q[v] * vload(di + doff[v]);
+        }
+        acc[2 * c] = sr;
+        acc[2 * c + 1] = si;
+    }
+}
+
+/* The plain loop (every lane lives) from i (odd_first: parity of i) to nl − 1. */
+AI void plain_analysis(blk_t *B, const double *al, int i, int nl, vd *acc, const double *in, int nc,
+                       int odd_first, const int nv)
+{
+    const int s = 2 * nc;
+    for (; i + 1 < nl; i += 2) {
+        const double a0 = al[i], a1 = al[i + 1];
+        for (int v = 0; v < nv; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
+        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first, nv);
+        for (int v = 0; v < nv; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
+        acc_analysis(acc + (size_t)(i + 1) * s, B->p1, in, B->doff, nc, !odd_first, nv);
+    }
+    if (i < nl) {
+        for (int v = 0; v < nv; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
+        acc_analysis(acc + (size_t)i * s, B->p2, in, B->doff, nc, odd_first, nv);
+    }
+}
+
+AI void analysis_body(const sht_kjob *j, const int nc)
+{
+    const int nl = j->lmax - j->m + 1, np = j->npad, s = 2 * nc;
+    const double *al = j->alpha, *in = j->in;
+    vd *acc = (vd *)j->acc;
+    memset(acc, 0, sizeof(vd) * (size_t)nl * s);
+    for (int b = 0; b < np; b += VL * NVA) {
+        blk_t B;
+        const int kind = blk_load(&B, j, b, NVA);
+        if (!kind) continue;
+        vd q[NVMAX];
+        int i = 1;
+        if (kind == 1) i = run_dead(&B, al, 0, nl, NVA);
+        else {
+            for (int v = 0; v < NVA; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
+            acc_analysis(acc, q, in, B.doff, nc, 0, NVA); /* i = 0: l = m */
+        }
+        if (kind != 3) /* some lanes still scaled: checked steps, live lanes accumulated */
+            while (i < nl) {
+                const int e = i + 4 < nl ? i + 4 : nl;
+                for (; i < e; i++) {
+                    step_checked(&B, al[i], q, NVA);
+                    acc_analysis(acc + (size_t)i * s, q, in, B.doff, nc, i & 1, NVA);
+                }
+                if (blk_all_live(&B, NVA)) break;
+            }
+        if (i & 1) plain_analysis(&B, al, i, nl, acc, in, nc, 1, NVA);
+        else plain_analysis(&B, al, i, nl, acc, in, nc, 0, NVA);
+    }
+    /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i) */
+    for (int i = 0; i < nl; i++)
+        for (int k = 0; k < s; k++) j->out[(size_t)i * s + k] += j->g[i] * hsum(acc[(size_t)i * s + k]);
+}
+
+/* (A constant channel count, as in synthesis, was measured slower here.) */
+void KN(sh__sht_analysis)(const sht_kjob *j) { analysis_body(j, j->nchan); }
+
+/* ----------------------------------------------------------- synthesis */
+
+/* e[2c + k] += q · cin[2c + k]  (e: E or O of every channel) */
+AI void acc_synthesis(vd (*e)[NVMAX], const vd *q, const double *cin, int nc, const int nv)
+{
+    for (int ck = 0; ck < 2 * nc; ck++) {
+        const double cv = cin[ck];
+        for (int v = 0; v < nv; v++) e[ck][v] += q[v] * cv;
+    }
+}
+
+AI void plain_synthesis(blk_t *B, const double *al, int i, int nl, vd (*E)[NVMAX], vd (*O)[NVMAX],
+                        const double *cin, int nc, int odd_first, const int nv)
+{
+    const int s = 2 * nc;
+    vd (*e0)[NVMAX] = odd_first ? O : E, (*e1)[NVMAX] = odd_first ? E : O;
+    for (; i + 1 < nl; i += 2) {
+        const double a0 = al[i], a1 = al[i + 1];
+        for (int v = 0; v < nv; v++) B->p2[v] = a0 * B->x[v] * B->p1[v] - B->p2[v];
+        acc_synthesis(e0, B->p2, cin + (size_t)i * s, nc, nv);
+        for (int v = 0; v < nv; v++) B->p1[v] = a1 * B->x[v] * B->p2[v] - B->p1[v];
+        acc_synthesis(e1, B->p1, cin + (size_t)(i + 1) * s, nc, nv);
+    }
+    if (i < nl) {
+        for (int v = 0; v < nv; v++) B->p2[v] = al[i] * B->x[v] * B->p1[v] - B->p2[v];
+        acc_synthesis(e0, B->p2, cin + (size_t)i * s, nc, nv);
+    }
+}
+
+/* cin[i·2nc + 2c + k]: the coefficients of this m already multiplied by g_i. */
+AI void synthesis_body(const sht_kjob *j, const int nc)
+{
+    const int nl = j->lmax - j->m + 1, np = j->npad, s = 2 * nc;
+    const double *al = j->alpha, *cin = j->in;
+    for (int b = 0; b < np; b += VL * NVS) {
+        blk_t B;
+        vd E[2 * SH_IMAGE_MAX_CHANNELS][NVMAX], O[2 * SH_IMAGE_MAX_CHANNELS][NVMAX];
+        for (int ck = 0; ck < s; ck++)
+            for (int v = 0; v < NVS; v++) E[ck][v] = O[ck][v] = bc(0.0);
+        const int kind = blk_load(&B, j, b, NVS);
+        if (kind) {
+            vd q[NVMAX];
+            int i = 1;
+            if (kind == 1) i = run_dead(&B, al, 0, nl, NVS);
+            else {
+                for (int v = 0; v < NVS; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
+                acc_synthesis(E, q, cin, nc, NVS); /* l = m */
+            }
+            if (kind != 3)
+                while (i < nl) {
+                    const int e = i + 4 < nl ? i + 4 : nl;
+                    for (; i < e; i++) {
+                        step_checked(&B, al[i], q, NVS);
+                        acc_synthesis((i & 1) ? O : E, q, cin + (size_t)i * s, nc, NVS);
+                    }
+                    if (blk_all_live(&B, NVS)) break;
+                }
+            if (i & 1) plain_synthesis(&B, al, i, nl, E, O, cin, nc, 1, NVS);
+            else plain_synthesis(&B, al, i, nl, E, O, cin, nc, 0, NVS);
+        }
+        /* north = E + O, south = E − O */
+        for (int c = 0; c < nc; c++)
+            for (int k = 0; k < 2; k++) {
+                double *north = j->out + (size_t)(4 * c + k) * SHT_GRP;
+                double *south = j->out + (size_t)(4 * c + 2 + k) * SHT_GRP;
+                for (int v = 0; v < NVS; v++) {
+                    vstore(north + B.doff[v], E[2 * c + k][v] + O[2 * c + k][v]);
+                    vstore(south + B.doff[v], E[2 * c + k][v] - O[2 * c + k][v]);
+                }
+            }
+    }
+}
+
+/* The channel count as a constant for the common cases (one map, RGB), so
+ * that the channel loops unroll and the accumulators stay in registers. */
+void KN(sh__sht_synthesis)(const sht_kjob *j)
+{
+    if (j->nchan == 1) synthesis_body(j, 1);
+    else if (j->nchan == 3) synthesis_body(j, 3);
+    else synthesis_body(j, j->nchan);
+}

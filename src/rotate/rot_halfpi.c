@@ -1,0 +1,612 @@
+/* rot_halfpi.c — the `halfpi` method: every band rotated through d^l(π/2),
+ * which is generated band by band from a closed-form seed row, O(l²) time
+ * and O(l) memory per band (precision-generic, see rot_real.h).  Nothing is
+ * kept between bands or between rotations: bands are independent, so the
+ * all-band rotation streams with no memory beyond the vectors and runs on
+ * threads across bands (rotation_stream.c).
+ *
+ * References
+ *  [1] S. Trapani, J. Navaza, "Calculation of spherical harmonics and Wigner d
+ *      functions by FFT", Acta Cryst. A 62 (2006) 262: d(β) = Δ e^{−ikβ} Δ
+ *      with Δ = d(π/2), and Δ by a recursion.  The recursion used here is the
+ *      three-term one in m' at fixed m (the J± relation at β = π/2), run
+ *      downward from the closed-form row m' = l (the stable direction, see
+ *      below), as in rot_zxzxz.c.
+ *  [2] J. Kautz, P.-P. Sloan, J. Snyder, EGWR 2002 (the ZXZXZ decomposition,
+ *      which is the same factorisation written with real X±90 blocks).
+ *  [3] T. Risbo, J. Geodesy 70 (1996) 383; N. A. Gumerov, R. Duraiswami,
+ *      "Recursive computation of spherical harmonic rotation coefficients of
+ *      large degree" (2015): stability of Wigner-d recursions at large l.
+ *  [4] Edmonds (4.1.23), as in rot_wigner.c, for d^l_{l,m}(π/2).
+ *
+ * The factorisation.  With Ry(β) = Rz(−90°) Ry(−90°) Rz(β) Ry(90°) Rz(90°)
+ * (Ry(β) = Rx(−90°) Rz(β) Rx(90°) and Rx(θ) = Rz(−90°) Ry(θ) Rz(90°), see
+ * rot_zxzxz.c), D(Rz(θ)) = diag(e^{−imθ}), d(−θ) = d(θ)ᵀ:
+ *   d_{m'm}(β) = i^{m'−m} Σ_k Δ_{km'} Δ_{km} e^{−ikβ},   Δ = d^l(π/2).       (F)
+ * Δ restricted to m', m ≥ 0 (written Δ⁺, (l+1)² values) determines all of Δ:
+ *   Δ_{mk} = (−1)^{m−k} Δ_{km},  Δ_{k,−m} = (−1)^{l+k} Δ_{km},
+ *   Δ_{−k,m} = (−1)^{l+m} Δ_{km}                                          (S)
+ * and by the first of (S) only its lower triangle, the "wedge" m ≤ k
+ * ((l+1)(l+2)/2 values, an eighth of the (2l+1)² of d), is generated.
+ *
+ * The band rotation in real arithmetic (derived from (F), (S) and the real
+ * basis y^{±m} = (Y^m ± (−1)^m Y^{−m})/(√2 or i√2), CS phase): with the
+ * coefficients c_m = x_m, s_m = x_{−m} (m > 0) of band l, σ_m = (−1)^⌊m/2⌋
+ * and w_0 = ½, w_k = 1 (k > 0),
+ *   A  Z(γ):  c'_m = c_m cos mγ − s_m sin mγ,  s'_m = c_m sin mγ + s_m cos mγ;
+ *             zc_m = σ_m √2 c'_m, zs_m = σ_m √2 s'_m (m > 0), zc_0 = c_0, zs_0 = 0.
+ *   3 for k = 0..l, with z = zc if k ≡ l (mod 2) else zs:
+ *             E_k = Σ_{m even} Δ_{km} z_m,  O_k = Σ_{m odd} Δ_{km} z_m;
+ *             t_k = E_k − i O_k (k ≡ l),  t_k = −O_k − i E_k (k ≢ l).
+ *   B  t'_k = e^{−ikβ} t_k = ρ_k + i ι_k.
+ *   5 for m' = 0..l:  U_{m'} = Σ_{k ≡ l} w_k Δ_{km'} (ρ_k if m' even, ι_k if odd),
+ *                     V_{m'} = Σ_{k ≢ l} w_k Δ_{km'} (ι_k if m' even, ρ_k if odd);
+ *             (R, I) = (U, V) for even m', (V, U) for odd m';
+ *             a''_{m'} = 2 i^{m'} (R + i I).
+ *   D  b = e^{−im'α} a'';  out c''_{m'} = √2 Re b, s''_{m'} = −√2 Im b (m' > 0),
+ *             c''_0 = Re b_0.
+ * (t_{−k} = (−1)^k conj(t_k) folds the negative k into the w_k-weighted sums.)
+ * Stages 3 and 5 are each one pass over Δ⁺ ((l+1)² multiply-adds); over the
+ * wedge, entry Δ_{rc} (c < r) serves both as (k, m) = (r, c) and, by (S), as
+ * (c, r): in each stage a wedge row is one dot product and one axpy
+ * (hp_dot_axpy), whose even and odd columns go to different sums — two
+ * lanes of one vector.  Stage 3 runs while the rows are generated (r = l down
+ * to 0); stage 5 needs every t'_k first, so the wedge is generated a second
+ * time for it rather than stored: storing it (64 MB a band at l = 4000)
+ * means writing it to memory and reading it back, while the recursion's
+ * three rows stay in cache (measured on one vector: ~35% slower per band
+ * at l = 300, 10–15% faster at l = 1000, and O(l) scratch instead of O(l²)).  Cost per band and vector:
+ * 2(l+1)² multiply-adds, like ZXZXZ's two X products, plus 2·3·(l+1)²/2 for
+ * the two generations of Δ, shared by all vectors and rotations of a batch.
+ * Row tails below HP_TINY (beyond the turning point m² + r² ≈ l², where Δ
+ * decays like an Airy function) are skipped by both stages (hp_active).
+ *
+ * Generating Δ⁺ (the wedge, row r = m' from l down to 0, all m ≤ r at once):
+ *   Δ_{l,m} = (−1)^{l−m} √C(2l, l+m) / 2^l                                  ([4])
+ *     e_0² = Π_{k=1..l} (2k−1)/(2k),  e_m = e_{m−1} √((l−m+1)/(l+m)), in long
+ *     double (relative error ~ l·5e-20);
+ *   Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1},
+ *     B_j = √((l+j)(l−j+1))  (B_{l+1} = 0)                                   ([1])
+ *   the J± relation √((l−m')(l+m'+1)) d_{m'+1,m} + √((l+m')(l−m'+1)) d_{m'−1,m}
+ *   = 2m d_{m'm} at cosβ = 0.  Downward in m' each column goes from the
+ *   classically forbidden region (m² + m'² > l², where the wanted solution
+ *   grows in the direction of the recursion) into the oscillatory one: the
+ *   stable direction.  Measured against the same recursion in binary128 the
+ *   wedge is within 8.5e-16 (absolute) at l = 1000.
+ * Underflow: the seeds go down to 2^−l (m = l), below double's range for
+ * l > 1022.  A column whose seed is below 2^HP_LOW_EXP is carried scaled:
+ * the recursion keeps mantissa · 2^{kexp[m]} (the seed's mantissa, kexp =
+ * −exponent), divides by 2^HP_RESCALE_EXP whenever it grows past it, and the
+ * wedge receives value · 2^−kexp (0 while kexp > HP_FLUSH_K, i.e. while every
+ * value of the column is below 2^−600: negligible next to the O(1) entries).
+ */
+#include "rotate/rot_internal.h"
+#include "rotate/rot_real.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+SH__ROT_DECLARE_BLOCKS(halfpi);
+SH__ROT_DECLARE_APPLY(halfpi);
+
+#ifdef SH_REAL_FLOAT
+#define HP_LOW_EXP (-60)
+#define HP_RESCALE_EXP 30
+#define HP_FLUSH_K 90
+#else
+#define HP_LOW_EXP (-600)
+#define HP_RESCALE_EXP 400
+#define HP_FLUSH_K 1000
+#endif
+
+/* One vector of HP_VBYTES: NL lanes (4 doubles or 8 floats), columns c,
+ * c+1, … alternately even and odd.  Lane arithmetic is defined element by
+ * element (and ISO C mode keeps the compiler from contracting a·b + c into
+ * an FMA), so the result does not depend on the instructions used: the
+ * hot functions are compiled for AVX-512, AVX2 and the baseline
+ * (HP_CLONES, chosen at load time) and all give the same bits. */
+#define HP_VBYTES 32
+#define NL ((int)(HP_VBYTES / sizeof(sh_real)))
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi" /* only inline helpers pass these vectors */
+typedef sh_real SH_R(hp_v) __attribute__((vector_size(HP_VBYTES)));
+#define VR SH_R(hp_v)
+#define HP_INLINE static inline __attribute__((always_inline))
+HP_INLINE VR SH_R(hp_ld)(const sh_real *p)
+{
+    VR v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+HP_INLINE void SH_R(hp_st)(sh_real *p, VR v) { memcpy(p, &v, sizeof v); }
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define HP_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define HP_CLONES
+#endif
+
+/* Over columns c = 0..n−1 of a wedge row: the dot product Σ row[c]·z[c],
+ * even c into *se and odd c into *so, and the axpy T[c] += row[c]·(ke or ko
+ * for even or odd c).  Fixed summation order: four vectors of partial sums
+ * (8 doubles, 16 floats), combined pairwise at the end, then the tail. */
+HP_INLINE void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh_real *T,
+                                     sh_real ke, sh_real ko, sh_real *se, sh_real *so)
+{
+    VR k, a0, a1, a2, a3;
+    for (int i = 0; i < NL; i++) k[i] = (i & 1) ? ko : ke, a0[i] = a1[i] = a2[i] = a3[i] = 0;
+    int c = 0;
+    for (; c + 4 * NL <= n; c += 4 * NL) {
+        const VR r0 = SH_R(hp_ld)(row + c), r1 = SH_R(hp_ld)(row + c + NL);
+        const VR r2 = SH_R(hp_ld)(row + c + 2 * NL), r3 = SH_R(hp_ld)(row + c + 3 * NL);
+        a0 += r0 * SH_R(hp_ld)(z + c);
+        a1 += r1 * SH_R(hp_ld)(z + c + NL);
+        a2 += r2 * SH_R(hp_ld)(z + c + 2 * NL);
+        a3 += r3 * SH_R(hp_ld)(z + c + 3 * NL);
+        SH_R(hp_st)(T + c, SH_R(hp_ld)(T + c) + r0 * k);
+        SH_R(hp_st)(T + c + NL, SH_R(hp_ld)(T + c + NL) + r1 * k);
+        SH_R(hp_st)(T + c + 2 * NL, SH_R(hp_ld)(T + c + 2 * NL) + r2 * k);
+        SH_R(hp_st)(T + c + 3 * NL, SH_R(hp_ld)(T + c + 3 * NL) + r3 * k);
+    }
+    a0 = (a0 + a1) + (a2 + a3);
+    sh_real e = 0, o = 0;
+    for (int i = 0; i < NL; i += 2) e += a0[i], o += a0[i + 1];
+    for (; c + 2 <= n; c += 2) {
+        e += row[c] * z[c];
+        o += row[c + 1] * z[c + 1];
+        T[c] += row[c] * ke;
+        T[c + 1] += row[c + 1] * ko;
+    }
+    if (c < n) { /* c even */
+        e += row[c] * z[c];
+        T[c] += row[c] * ke;
+    }
+    *se = e;
+    *so = o;
+}
+
+/* ---- scratch ------------------------------------------------------------ */
+/* Per band l ≤ L and nj ≤ J jobs: three wedge rows, three recursion rows,
+ * B, 1/B, 2m, the column scales, ten per-job vectors, kexp: O(l), either
+ * precision. */
+#ifndef SH_REAL_FLOAT
+static size_t hp_nreal(int L, int J)
+{
+    const size_t n = (size_t)L + 1;
+    return 3 * n + 3 * n + 2 * (n + 1) + 2 * n + 10 * n * (size_t)J + 16;
+}
+size_t sh__rot_halfpi_work_bytes(int L, int J)
+{
+    return hp_nreal(L, J) * sizeof(double) + ((size_t)L + 1) * sizeof(int) + 64;
+}
+#endif
+
+typedef struct {
+    int l, ms;          /* band; first scaled column (l+1: none) */
+    sh_real *w[3];      /* wedge rows (true values) by r mod 3 */
+    sh_real *rec[3];    /* recursion rows of the scaled columns, by r mod 3 */
+    sh_real *B, *iB;    /* B_j, 1/B_j, j = 0..l+1 */
+    sh_real *twom;      /* 2m */
+    sh_real *scale;     /* 2^−kexp[m] (0: flushed) */
+    int *kexp;
+    sh_real *job;       /* per-job vectors */
+} SH_R(hp_gen);
+#define HPGEN SH_R(hp_gen)
+
+static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
+{
+    const size_t n = (size_t)l + 1;
+    sh_real *p = work;
+    g->l = l;
+    g->w[0] = p, p += n;
+    g->w[1] = p, p += n;
+    g->w[2] = p, p += n;
+    g->rec[0] = p, p += n;
+    g->rec[1] = p, p += n;
+    g->rec[2] = p, p += n;
+    g->B = p, p += n + 1;
+    g->iB = p, p += n + 1;
+    g->twom = p, p += n;
+    g->scale = p, p += n;
+    g->job = p, p += 10 * n * (size_t)nj;
+    g->kexp = (int *)(p + 1);
+}
+
+/* The seed row Δ_{l,m} (long double, [4]) and the recursion coefficients. */
+static void SH_R(hp_init)(HPGEN *g)
+{
+    const int l = g->l;
+    sh_real *w0 = g->w[l % 3];
+    long double e2 = 1;
+    for (int k = 1; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
+    long double e = sqrtl(e2);
+    g->ms = l + 1;
+    for (int m = 0; m <= l; m++) {
+        if (m) e *= sqrtl((long double)(l - m + 1) / (l + m));
+        const long double v = ((l - m) & 1) ? -e : e;
+        int ex;
+        const long double f = frexpl(v, &ex);
+        g->twom[m] = (sh_real)(2 * m);
+        if (ex >= HP_LOW_EXP && g->ms > l) {
+            w0[m] = (sh_real)v;
+            g->kexp[m] = 0;
+            g->scale[m] = 1;
+        } else { /* seeds decrease with m: every later column is scaled too */
+            if (g->ms > l) g->ms = m;
+            g->kexp[m] = -ex;
+            g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->kexp[m]);
+            g->rec[l % 3][m] = (sh_real)f;
+            g->rec[(l + 1) % 3][m] = 0;
+            w0[m] = (sh_real)f * g->scale[m];
+        }
+    }
+    memset(g->w[(l + 1) % 3], 0, ((size_t)l + 1) * sizeof(sh_real)); /* row l+1 */
+    for (int j = 0; j <= l + 1; j++) {
+        const double b = sqrt((double)(l + j) * (double)(l - j + 1));
+        g->B[j] = (sh_real)b;
+        g->iB[j] = b > 0 ? (sh_real)(1.0 / b) : 0;
+    }
+}
+
+/* out[m] = (2m·x1[m] − b2·x2[m])·ib for m in [m0, m1): the recursion, a vector
+ * at a time (the same operations on every column). */
+HP_INLINE void SH_R(hp_rec3)(int m0, int m1, const sh_real *tm, const sh_real *x1,
+                             const sh_real *x2, sh_real b2, sh_real ib, sh_real *out)
+{
+    VR vb, vi;
+    for (int i = 0; i < NL; i++) vb[i] = b2, vi[i] = ib;
+    int m = m0;
+    for (; m + NL <= m1; m += NL)
+        SH_R(hp_st)(out + m, (SH_R(hp_ld)(tm + m) * SH_R(hp_ld)(x1 + m) - vb * SH_R(hp_ld)(x2 + m)) * vi);
+    for (; m < m1; m++) out[m] = (tm[m] * x1[m] - b2 * x2[m]) * ib;
+}
+
+/* Wedge row r < l from rows r+1 and r+2 (row l+1 is zero). */
+HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
+{
+    const int nu = r + 1 < g->ms ? r + 1 : g->ms; /* unscaled columns 0..nu−1 */
+    sh_real *w = g->w[r % 3];
+    const sh_real b2 = g->B[r + 2], ib = g->iB[r + 1];
+    /* Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1} */
+    SH_R(hp_rec3)(0, nu, g->twom, g->w[(r + 1) % 3], g->w[(r + 2) % 3], b2, ib, w);
+    if (nu > r) return;
+    /* scaled columns ms..r: the same recursion on the mantissas */
+    sh_real *x = g->rec[r % 3];
+    SH_R(hp_rec3)(nu, r + 1, g->twom, g->rec[(r + 1) % 3], g->rec[(r + 2) % 3], b2, ib, x);
+    /* a row grows by at most ~2√(2l) < 2^7.5 (l < 4097), so a check every
+     * 8 rows keeps the mantissas below 2^(HP_RESCALE_EXP + 60), far from overflow */
+    if (!(r & 7)) {
+        const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP), down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
+        sh_real *y1 = g->rec[(r + 1) % 3];
+        for (int m = nu; m <= r; m++)
+            if (SH_FABS(x[m]) > lim) {
+                x[m] *= down, y1[m] *= down;
+                g->kexp[m] -= HP_RESCALE_EXP;
+                g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->kexp[m]);
+            }
+    }
+    int m = nu;
+    for (; m + NL <= r + 1; m += NL)
+        SH_R(hp_st)(w + m, SH_R(hp_ld)(x + m) * SH_R(hp_ld)(g->scale + m));
+    for (; m <= r; m++) w[m] = x[m] * g->scale[m];
+}
+
+/* Columns 0..n−1 of wedge row r (n ≤ r+1) hold every entry of magnitude
+ * ≥ HP_TINY; the stages skip the rest.  Entries beyond the turning point
+ * m² + r² ≈ l² decay fast (and the flushed scaled columns are 0), so near
+ * r = l most of a row is skipped.  Skipping |Δ| < HP_TINY changes a stage's
+ * sum by less than l·HP_TINY·max|z| (≤ 1e-23 relative). */
+#ifdef SH_REAL_FLOAT
+#define HP_TINY 0x1p-45f
+typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffff
+#else
+#define HP_TINY 0x1p-90
+typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffffffffffffLL
+#endif
+HP_INLINE int SH_R(hp_active)(const sh_real *w, int r)
+{
+    int n = r + 1;
+    SH_R(hp_vi) mask, tau;
+    VR t;
+    for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = HP_TINY;
+    memcpy(&tau, &t, sizeof tau);
+    while (n >= NL) { /* a vector of |w| < HP_TINY (compared as integers: |w| ≥ 0) */
+        SH_R(hp_vi) a;
+        memcpy(&a, w + n - NL, sizeof a);
+        const SH_R(hp_vi) big = (a & mask) >= tau;
+        int any = 0;
+        for (int i = 0; i < NL; i++) any |= big[i] != 0;
+        if (any) break;
+        n -= NL;
+    }
+    while (n > 0 && !(SH_FABS(w[n - 1]) >= HP_TINY)) n--;
+    return n;
+}
+
+/* The next wedge row, r = l, l−1, …, 0 in turn (row l is the seed row of
+ * hp_init), and in *na its active length for the stages (0 without jobs). */
+HP_INLINE const sh_real *SH_R(hp_next)(HPGEN *g, int r, int nj, int *na, uint64_t *count)
+{
+    if (r < g->l) {
+        SH_R(hp_row)(g, r);
+        *count += 3u * (uint64_t)(r + 1);
+    }
+    const sh_real *row = g->w[r % 3];
+    *na = nj ? SH_R(hp_active)(row, r) : 0;
+    return row;
+}
+
+/* ---- the band kernel ------------------------------------------------------ */
+/* Rotate band l of nj vectors: job j has the multiple-angle table cs[j]
+ * (csa = cos, sin of mα at cs[j][2m], csb = of mβ at + 2(M+1), csg = of mγ at
+ * + 4(M+1); M ≥ l), input in[j] and output out[j] (2l+1 values each; out
+ * may equal in).  nocs: the vectors are in the nocs convention (odd m
+ * negated on the way in and out).  work: sh__rot_halfpi_work_bytes(≥ l, ≥ nj). */
+HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs, int M,
+                               const sh_real *const *in, sh_real *const *out, void *work,
+                               uint64_t *mults)
+{
+    HPGEN g;
+    SH_R(hp_layout)(l, nj, work, &g);
+    const size_t n = (size_t)l + 1;
+    const sh_real r2 = SH_SQRT((sh_real)2);
+    uint64_t count = 0;
+    /* A: Z(γ), σ, √2 */
+    for (int j = 0; j < nj; j++) {
+        sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n;
+        const sh_real *x = in[j] + l, *csg = cs[j] + 4 * (size_t)(M + 1);
+        const sh_real fl = nocs ? -1 : 1;
+        zc[0] = x[0];
+        zs[0] = 0;
+        for (int m = 1; m <= l; m++) {
+            const sh_real f = (m & 1) ? fl : 1, c = f * x[m], s = f * x[-m];
+            const sh_real cm = csg[2 * m], sm = csg[2 * m + 1], sg = (m & 2) ? -r2 : r2;
+            zc[m] = sg * (c * cm - s * sm);
+            zs[m] = sg * (c * sm + s * cm);
+        }
+        memset(E, 0, 2 * n * sizeof *E);
+        count += 6u * (uint64_t)l;
+    }
+    /* generation with stage 3 (rows l..0) */
+    SH_R(hp_init)(&g);
+    for (int r = l; r >= 0; r--) {
+        int na;
+        const sh_real *row = SH_R(hp_next)(&g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const int off = na < r ? na : r;
+        for (int j = 0; j < nj; j++) {
+            sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
+            const sh_real *z = ((l - r) & 1) ? zs : zc;
+            const sh_real *zev = (l & 1) ? zs : zc, *zod = (l & 1) ? zc : zs;
+            sh_real se, so;
+            /* (k, m) = (r, c): dot into E_r, O_r; (k, m) = (c, r), c < r, by (S):
+             * (−1)^{r−c} Δ_{rc} z^{(c)}_r into E_c (r even) or O_c (r odd) */
+            SH_R(hp_dot_axpy)(off, row, z, (r & 1) ? O : E, sr * zev[r], -sr * zod[r], &se, &so);
+            if (na > r) {
+                if (r & 1) so += row[r] * z[r];
+                else se += row[r] * z[r];
+            }
+            E[r] += se;
+            O[r] += so;
+            count += 2u * (uint64_t)off + 1;
+        }
+    }
+    /* B: t_k, e^{−ikβ}, and the stage-5 coefficients h (hE for even m', hO
+     * for odd m', w_k included) and G = (−1)^k h */
+    for (int j = 0; j < nj; j++) {
+        sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
+        sh_real *hE = zc, *hO = zs, *GE = O + n, *GO = GE + n, *U = GO + n; /* V = U + n */
+        const sh_real *csb = cs[j] + 2 * (size_t)(M + 1);
+        for (int k = 0; k <= l; k++) {
+            const int same = !((l - k) & 1);
+            const sh_real re = same ? E[k] : -O[k], im = same ? -O[k] : -E[k];
+            const sh_real cb = csb[2 * k], sb = csb[2 * k + 1], wk = k ? 1 : (sh_real)0.5;
+            const sh_real rho = wk * (cb * re + sb * im), iota = wk * (cb * im - sb * re);
+            hE[k] = same ? rho : iota;
+            hO[k] = same ? iota : rho;
+            GE[k] = (k & 1) ? -hE[k] : hE[k];
+            GO[k] = (k & 1) ? -hO[k] : hO[k];
+        }
+        memset(U, 0, 2 * n * sizeof *U);
+        count += 6u * (uint64_t)(l + 1);
+    }
+    /* stage 5: the wedge generated again (rows l..0) */
+    SH_R(hp_init)(&g);
+    for (int r = l; r >= 0; r--) {
+        int na;
+        const sh_real *row = SH_R(hp_next)(&g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const int same = !((l - r) & 1), off = na < r ? na : r;
+        for (int j = 0; j < nj; j++) {
+            sh_real *hE = g.job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
+            sh_real *U = GO + n, *V = U + n;
+            sh_real se, so;
+            /* (k, m') = (r, c): U/V_c += Δ_{rc} h_r; (k, m') = (c, r), c < r:
+             * (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r (c ≢ l) */
+            sh_real *T = same ? U : V;
+            SH_R(hp_dot_axpy)(off, row, (r & 1) ? GO : GE, T, hE[r], hO[r], &se, &so);
+            if (na > r) T[r] += row[r] * ((r & 1) ? hO[r] : hE[r]);
+            if (l & 1) U[r] += sr * so, V[r] += sr * se;
+            else U[r] += sr * se, V[r] += sr * so;
+            count += 2u * (uint64_t)off + 1;
+        }
+    }
+    /* D: a'' = 2 i^{m'} (R + iI), b = e^{−im'α} a'', out */
+    for (int j = 0; j < nj; j++) {
+        const sh_real *U = g.job + 10 * n * j + 6 * n, *V = U + n;
+        const sh_real *csa = cs[j];
+        sh_real *y = out[j] + l;
+        const sh_real fl = nocs ? -1 : 1, t2 = 2 * r2;
+        y[0] = 2 * U[0];
+        for (int m = 1; m <= l; m++) {
+            /* even m': 2σ(R + iI); odd m': 2σ(−I + iR); σ, 2 and √2 in one factor */
+            const sh_real R = (m & 1) ? V[m] : U[m], I = (m & 1) ? U[m] : V[m];
+            const sh_real sg = ((m & 2) ? -t2 : t2) * ((m & 1) ? fl : 1);
+            const sh_real ar = (m & 1) ? -I : R, ai = (m & 1) ? R : I;
+            const sh_real ca = csa[2 * m], sa = csa[2 * m + 1];
+            y[m] = sg * (ca * ar + sa * ai);
+            y[-m] = -sg * (ca * ai - sa * ar);
+        }
+        count += 6u * (uint64_t)l;
+    }
+    if (mults) *mults += count;
+}
+
+/* d^l_{m'm}(π/2) for m', m = 0..l into d[m'(l+1) + m] (the wedge generated
+ * as for a rotation, the rest by (S)).  work: sh__rot_halfpi_work_bytes(l, 0). */
+HP_CLONES void SH_R(sh__rot_halfpi_delta)(int l, void *work, sh_real *d)
+{
+    HPGEN g;
+    SH_R(hp_layout)(l, 0, work, &g);
+    SH_R(hp_init)(&g);
+    const int n = l + 1;
+    for (int r = l; r >= 0; r--) {
+        if (r < l) SH_R(hp_row)(&g, r);
+        for (int c = 0; c <= r; c++) {
+            const sh_real v = g.w[r % 3][c];
+            d[(size_t)r * n + c] = v;
+            d[(size_t)c * n + r] = ((r - c) & 1) ? -v : v;
+        }
+    }
+}
+
+/* ---- the method's plan interface ---------------------------------------- */
+#ifndef SH_REAL_FLOAT
+/* cos, sin of m·θ, m = 0..M, to within an ulp or two for any m: the product
+ * m·θ is split exactly into p + e (e = fma(m, θ, −p)) and
+ * cos(p + e) = cos p − e sin p, sin(p + e) = sin p + e cos p (e ≤ ulp(p)/2,
+ * so e² is below rounding).  The Chebyshev recurrence of rot_blocks.c, or
+ * libm of the rounded product, would be off by ~m·θ·1e-16 (3e-13 at m =
+ * 1000), the size of the whole rotation's error budget at high band. */
+void sh__rot_halfpi_angles(double theta, int M, double *cs)
+{
+    for (int m = 0; m <= M; m++) {
+        const double p = (double)m * theta, e = fma((double)m, theta, -p);
+        const double c = cos(p), s = sin(p);
+        cs[2 * m] = c - s * e;
+        cs[2 * m + 1] = s + c * e;
+    }
+}
+
+/* The per-rotation table of a job: α, β, γ, or for the inverse rotation
+ * Rᵀ = Z(−γ) R_Y(−β) Z(−α) the angles −γ, −β, −α (exact negations). */
+void sh__rot_halfpi_set_angles(const sh_rotation *rot, int inverse, int M, double *cs)
+{
+    const size_t s = 2 * (size_t)(M + 1);
+    sh__rot_halfpi_angles(inverse ? rot->gamma : rot->alpha, M, cs);
+    sh__rot_halfpi_angles(rot->beta, M, cs + s);
+    sh__rot_halfpi_angles(inverse ? rot->alpha : rot->gamma, M, cs + 2 * s);
+    if (inverse)
+        for (size_t i = 1; i < 3 * s; i += 2) cs[i] = -cs[i];
+}
+#endif
+
+static size_t hp_state_n(int order) { return 6 * (size_t)order; }
+
+int SH_R(sh__rot_halfpi_set)(int order, const sh_rotation *rot, const void *tables, void *state,
+                             uint64_t *mults)
+{
+#ifdef SH_REAL_FLOAT
+    /* angles in double, then rounded: the table sits at the end of the state */
+    float *cs = state;
+    double *tmp = (double *)((char *)state + hp_state_n(order) * sizeof(float));
+    tmp = (double *)(((uintptr_t)tmp + 7) & ~(uintptr_t)7);
+    sh__rot_halfpi_set_angles(rot, 0, order - 1, tmp);
+    for (size_t i = 0; i < hp_state_n(order); i++) cs[i] = (float)tmp[i];
+#else
+    sh__rot_halfpi_set_angles(rot, 0, order - 1, state);
+#endif
+    if (mults) *mults += 3u * 4u * (uint64_t)order;
+    return SH_OK;
+}
+
+void SH_R(sh__rot_halfpi_apply)(int order, const void *tables, const void *state,
+                                const sh_real *in, sh_real *out, void *work, uint64_t *mults)
+{
+    const sh_real *cs = state;
+    for (int l = 0; l < order; l++) {
+        const sh_real *x = in + (size_t)l * l;
+        sh_real *y = out + (size_t)l * l;
+        SH_R(sh__rot_halfpi_band)(l, 0, 1, &cs, order - 1, &x, &y, work, mults);
+    }
+}
+
+/* The (2l+1)² block of band l: the band applied to its unit vectors, HP_JB
+ * at a time.  cs: the angle table (M ≥ l); e, col: HP_JB vectors of stride
+ * W ≥ 2l+1 each; bw: band work for HP_JB jobs. */
+#define HP_JB 16
+static void SH_R(hp_block)(int l, const sh_real *cs, int M, sh_real *B, sh_real *e, sh_real *col,
+                           int W, void *bw, uint64_t *mults)
+{
+    const int w = 2 * l + 1;
+    const sh_real *csj[HP_JB], *inj[HP_JB];
+    sh_real *outj[HP_JB];
+    for (int j0 = 0; j0 < w; j0 += HP_JB) {
+        const int nj = w - j0 < HP_JB ? w - j0 : HP_JB;
+        for (int j = 0; j < nj; j++) {
+            sh_real *u = e + (size_t)j * W;
+            for (int i = 0; i < w; i++) u[i] = 0;
+            u[j0 + j] = 1;
+            csj[j] = cs, inj[j] = u, outj[j] = col + (size_t)j * W;
+        }
+        SH_R(sh__rot_halfpi_band)(l, 0, nj, csj, M, inj, outj, bw, mults);
+        for (int j = 0; j < nj; j++)
+            for (int i = 0; i < w; i++) B[(size_t)i * w + j0 + j] = outj[j][i];
+    }
+}
+
+/* work of the blocks: the angles (room for set_f's double table), e, col,
+ * then the band work, 64-byte aligned */
+static void *SH_R(hp_block_work)(int order, void *work, sh_real **cs, sh_real **e, sh_real **col)
+{
+    const size_t W = 2 * (size_t)order + 1;
+    *cs = work, *e = *cs + 4 * hp_state_n(order), *col = *e + HP_JB * W;
+    return (void *)(((uintptr_t)(*col + HP_JB * W) + 63) & ~(uintptr_t)63);
+}
+
+int SH_R(sh__rot_halfpi_blocks)(int order, const sh_rotation *rot, const void *tables,
+                                sh_real *blocks, void *work, uint64_t *mults)
+{
+    sh_real *cs, *e, *col;
+    void *bw = SH_R(hp_block_work)(order, work, &cs, &e, &col);
+    SH_R(sh__rot_halfpi_set)(order, rot, NULL, cs, mults);
+    for (int l = 0; l < order; l++)
+        SH_R(hp_block)(l, cs, order - 1, blocks + sh_rot_block_offset(l), e, col, 2 * order + 1, bw, mults);
+    return SH_OK;
+}
+
+#ifndef SH_REAL_FLOAT
+static size_t hp_blocks_work(int order)
+{
+    const size_t W = 2 * (size_t)order + 1;
+    return (4 * hp_state_n(order) + 2 * HP_JB * W) * sizeof(double) + 128 +
+           sh__rot_halfpi_work_bytes(order - 1, HP_JB);
+}
+static size_t hp_work(int order) { return hp_blocks_work(order); }
+static size_t hp_state(int order) { return 3 * hp_state_n(order) * sizeof(double) + 16; }
+
+/* One band alone (the band iterator): the block of band l, O(l³). */
+static size_t hp_band_work(int l) { return hp_blocks_work(l + 1); }
+static int hp_band_d(int l, const sh_rotation *rot, double *block, void *work)
+{
+    double *cs, *e, *col;
+    void *bw = hp_block_work_d(l + 1, work, &cs, &e, &col);
+    sh__rot_halfpi_set_angles(rot, 0, l, cs);
+    hp_block_d(l, cs, l, block, e, col, 2 * l + 3, bw, NULL);
+    return SH_OK;
+}
+
+const sh__rot_ops sh__rot_halfpi_ops = {
+    .name = "halfpi",
+    .max_order = SHLAB_MAX_ORDER,
+    .work_bytes = hp_work,
+    .state_bytes = hp_state,
+    .set_d = sh__rot_halfpi_set_d,
+    .set_f = sh__rot_halfpi_set_f,
+    .blocks_d = sh__rot_halfpi_blocks_d,
+    .blocks_f = sh__rot_halfpi_blocks_f,
+    .apply_d = sh__rot_halfpi_apply_d,
+    .apply_f = sh__rot_halfpi_apply_f,
+    .band_d = hp_band_d,
+    .band_work_bytes = hp_band_work,
+};
+#endif

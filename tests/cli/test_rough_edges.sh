@@ -1,0 +1,85 @@
+#!/bin/sh
+# test_rough_edges.sh — what a newcomer ran into: help texts that point inside
+# the repository, one wording for a bad order, fixtures that check their
+# outputs before computing and write all or nothing, verify's messages for a
+# missing file and for --diagnose, --simulate's exit status, the
+# orthonormality check, experiment binaries that answer --help.
+. "$(dirname "$0")/lib.inc"
+BUILD=${BUILD:-build}
+FX=data/fixtures/rotation
+
+# ---- every help text points at the conventions document in the repository
+cmds=$("$SHLAB" --help | awk '/^Commands:/ { on = 1; next } on && /^  [a-z]/ { print $1 } on && /^$/ { on = 0 }')
+bad=""
+for c in $cmds; do
+    "$SHLAB" "$c" --help >"$TMP/h" 2>&1 || bad="$bad $c(exit)"
+    grep -q 'docs/CONVENTIONS.md' "$TMP/h" || bad="$bad $c"
+    grep -Eq '\.\./shared|READING\.md|issue [0-9]' "$TMP/h" && bad="$bad $c(outside)"
+done
+[ -n "$cmds" ] && [ -z "$bad" ] && ok "every --help names docs/CONVENTIONS.md, nothing outside the repository" || notok "help texts:$bad"
+[ -f docs/CONVENTIONS.md ] && ok "docs/CONVENTIONS.md exists" || notok "docs/CONVENTIONS.md missing"
+
+# ---- one wording for an order out of range, lists included
+"$SHLAB" rotmat --order 0 --euler 0,0,0 2>"$TMP/a" >/dev/null
+for c in "bench --order 0" "bench --order 2,0" "plan --order 0 --max-beta 0 --tolerance 1"; do
+    "$SHLAB" $c 2>"$TMP/b" >/dev/null
+    cmp -s "$TMP/a" "$TMP/b" && ok "'$c' words the error as rotmat --order 0" || notok "$c: $(cat "$TMP/b") vs $(cat "$TMP/a")"
+done
+expect_usage_error "bench --order x" bench --order 2,x
+
+# ---- fixtures: outputs checked before computing, all or nothing
+expect_usage_error "fixtures --out /nonexistent/dir" fixtures --out "$TMP/nonexistent/dir"
+grep -q "nonexistent/dir/orders_1_10.json" "$TMP/err" && ok "fixtures names the target it cannot write" || notok "$(cat "$TMP/err")"
+mkdir -p "$TMP/D/bands_50_200.json"
+echo old >"$TMP/D/orders_1_10.json"
+expect_usage_error "fixtures --out D with D/bands_50_200.json a directory" fixtures --out "$TMP/D"
+[ "$(cat "$TMP/D/orders_1_10.json")" = old ] && [ "$(ls "$TMP/D" | wc -l)" = 2 ] \
+    && ok "nothing written or left behind (orders_1_10.json untouched, no temporary file)" || notok "D holds: $(ls -a "$TMP/D")"
+touch "$TMP/file"
+expect_usage_error "fixtures --out a regular file" fixtures --out "$TMP/file" --method taylor1.5
+
+# ---- verify: a missing file, --diagnose's two tolerances, --simulate
+expect_usage_error "verify missing fixture" verify --fixture "$TMP/none.json" --method zxzxz
+grep -q "^shlab: error: cannot open fixture '.*none.json': No such file or directory$" "$TMP/err" \
+    && ok "missing fixture: 'cannot open fixture', no '(line -1)'" || notok "$(cat "$TMP/err")"
+expect_usage_error "verify missing candidate" verify --fixture $FX/orders_1_10.json --candidate "$TMP/none.json"
+grep -q "cannot open candidate" "$TMP/err" && ! grep -q 'line -1' "$TMP/err" && ok "missing candidate: 'cannot open candidate'" || notok "$(cat "$TMP/err")"
+expect_usage_error "verify fixture is a directory" verify --fixture "$TMP" --method zxzxz
+"$SHLAB" verify --fixture $FX/orders_1_10.json --method zxzxz --emit-candidate "$TMP/inv.json" --simulate inverse --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+[ $rc = 0 ] && [ -s "$TMP/inv.json" ] && grep -q '"simulated":"inverse"' "$TMP/out" && grep -q '"pass":false' "$TMP/out" \
+    && ok "--simulate inverse: exit 0, candidate written, the simulated kernel's verdict printed" || notok "simulate: rc $rc $(cat "$TMP/err")"
+"$SHLAB" verify --fixture $FX/orders_1_10.json --candidate "$TMP/inv.json" --diagnose --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+f=$(sed -n 's/.*"failed":\([0-9]*\).*/\1/p' "$TMP/out"); c=$(sed -n 's/.*"diagnosis_checked":\([0-9]*\).*/\1/p' "$TMP/out")
+[ $rc = 1 ] && grep -q '"diagnosis":"inverse rotation' "$TMP/out" && grep -q '"diagnosis_tolerance":"float32"' "$TMP/out" \
+    && grep -q "the diagnosis compares at each case's float32 tolerance: diagnosis_checked = the $c cases" "$TMP/err" \
+    && grep -q "of the $f failed cases are within their float32 tolerance" "$TMP/err" \
+    && ok "--diagnose says what failed ($f) and diagnosis_checked ($c) count" || notok "diagnose: rc $rc $(cat "$TMP/err")"
+
+# ---- orthonormality: Gauss-Legendre with S θ nodes is exact up to order S
+expect_success "orthonormality --help" orthonormality --help
+"$SHLAB" orthonormality --order 6 --rule quad --samples 6 --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+[ $rc = 0 ] && grep -q '"orthonormal":true' "$TMP/out" && grep -q '"exact_to_order":6' "$TMP/out" \
+    && ok "quad S = 6 is orthonormal at order 6 (exit 0)" || notok "quad 6: rc $rc $(head -c 300 "$TMP/out")"
+"$SHLAB" orthonormality --order 6 --rule quad --samples 5 --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+[ $rc = 1 ] && grep -q '"orthonormal":false' "$TMP/out" && grep -q '"exact_to_order":5' "$TMP/out" \
+    && ok "quad S = 5 fails at order 6, exact to order 5 (exit 1)" || notok "quad 5: rc $rc $(head -c 300 "$TMP/out")"
+"$SHLAB" orthonormality --order 4 --rule random --samples 1000 --seed 3 --format csv >"$TMP/out" 2>"$TMP/err"; rc=$?
+e=$(awk -F, 'NR == 5 { print $NF }' "$TMP/out")
+[ $rc = 1 ] && awk -v e="$e" 'BEGIN { exit !(e > 1e-3 && e < 0.5) }' && ok "random rule, 1000 nodes: order-4 error $e (1/√N scale)" \
+    || notok "random: rc $rc $(cat "$TMP/out")"
+expect_usage_error "orthonormality order 65" orthonormality --order 65
+expect_usage_error "orthonormality bad rule" orthonormality --order 4 --rule simpson
+expect_usage_error "orthonormality too many nodes" orthonormality --order 4 --samples 5000
+
+# ---- experiment binaries answer --help without running
+if make -s "$BUILD/experiments/orthonormality" >"$TMP/log" 2>&1; then
+    mkdir -p "$TMP/exp"; cd "$TMP/exp" || exit 1
+    "$OLDPWD/$BUILD/experiments/orthonormality" --help >"$TMP/out" 2>"$TMP/err"; rc=$?
+    [ $rc = 0 ] && grep -q '^Usage: orthonormality OUTDIR' "$TMP/out" && [ -z "$(ls -A "$TMP/exp")" ] \
+        && ok "experiment --help: usage, exit 0, nothing written" || notok "experiment --help: rc $rc, $(ls -A "$TMP/exp")"
+    "$OLDPWD/$BUILD/experiments/orthonormality" --bogus >"$TMP/out" 2>"$TMP/err"; rc=$?
+    [ $rc = 2 ] && [ -z "$(ls -A "$TMP/exp")" ] && ok "experiment with an unknown option: exit 2, nothing written" || notok "rc $rc"
+    cd "$OLDPWD" || exit 1
+else
+    notok "cannot build $BUILD/experiments/orthonormality: $(tail -3 "$TMP/log")"
+fi

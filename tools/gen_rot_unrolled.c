@@ -1,0 +1,503 @@
+/* gen_rot_unrolled.c — writes src/rotate/rot_unrolled_gen.h, the straight-line
+ * (unrolled) SH rotation kernels: ZXZXZ and the Taylor approximations 1, 1.5
+ * and 2, one function per method and order 1..N.  Built and run by make:
+ *
+ *   make regen          rewrites src/rotate/rot_unrolled_gen.h
+ *   make check          regenerates into build/ and fails if the committed
+ *                       file differs (tests/cli/test_unrolled.sh)
+ *
+ * The kernels are the loop kernels of rot_zxzxz.c and rot_taylor.c laid out
+ * straight, with every table value folded into the code as a literal:
+ *   - the same operations in the same order as the loops (so without FMA
+ *     contraction the results are the same bit for bit, a test checks it);
+ *   - products with a table entry that is exactly 0 are left out, and
+ *     products with ±1 become a copy or a negation (this changes no value:
+ *     x·1 = x, a + 0·x = a in IEEE arithmetic, up to the sign of a zero);
+ *   - the +π of ZXZXZ (X₋₉₀ = Z(π)·X₊₉₀·Z(π), rot_zxzxz.c) is a sign flip of
+ *     the odd-m z rotations, emitted as a negation of the pair's results.
+ * The code is written for a value type `shk_t` (rot_simd.h): one real (one
+ * rotation, one vector) or a SIMD vector whose lanes are independent
+ * rotations or vectors (structure of arrays, lane stride K).  Literals are
+ * written as SHK_C(x) with x printed to 17 significant digits, so that the
+ * double a table holds is reproduced exactly and a float kernel gets
+ * (float) of it, as the float tables do.
+ *
+ * Every multiplication is emitted as " * " (spaces around the star, and no
+ * other star in a function body), so counting the multiplications of the
+ * source is counting " * "; the banner and the table sh__unrolled_mults
+ * record that count per function, and tests/test_unrolled.c compares it with
+ * the source text and with what the plan reports.
+ */
+#include "shlab.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* rot_zxzxz.c (internal): the dense X₊₉₀ block of band l as the plan builds it */
+int sh__rot_zxzxz_xplus_band(int l, double *X);
+/* rot_ivanic.c (internal): the u, v', w tables of band l, 3(2l+1)² values */
+void sh__rot_ivanic_coeffs(int l, double *t);
+
+#define MAXN 16
+enum { M_ZXZXZ, M_TAYLOR1, M_TAYLOR15, M_TAYLOR2, M_IVANIC, M_N };
+static const char *const mname[M_N] = {"zxzxz", "taylor1", "taylor15", "taylor2", "ivanic"};
+static const char *const mlabel[M_N] = {"zxzxz", "taylor1", "taylor1.5", "taylor2", "ivanic"};
+
+/* ---- output: a growing buffer per function, so the count can be taken from
+ * the text itself ---------------------------------------------------------- */
+static char *buf;
+static size_t blen, bcap;
+static void out(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static void out(const char *fmt, ...)
+{
+    va_list ap;
+    for (;;) {
+        va_start(ap, fmt);
+        const int n = vsnprintf(buf + blen, bcap - blen, fmt, ap);
+        va_end(ap);
+        if (n < 0) { fprintf(stderr, "gen_rot_unrolled: output error\n"); exit(2); }
+        if (blen + (size_t)n < bcap) { blen += (size_t)n; return; }
+        bcap = 2 * bcap + (size_t)n + 1024;
+        buf = realloc(buf, bcap);
+        if (!buf) { fprintf(stderr, "gen_rot_unrolled: out of memory\n"); exit(2); }
+    }
+}
+static unsigned long count_mults(const char *s)
+{
+    unsigned long k = 0;
+    for (const char *p = s; (p = strstr(p, " * ")); p += 3) k++;
+    return k;
+}
+
+/* a literal: 17 significant digits reproduce the double exactly */
+static const char *lit(double v)
+{
+    static char b[8][40];
+    static int i;
+    i = (i + 1) & 7;
+    snprintf(b[i], sizeof b[i], "SHK_C(%.17g)", v);
+    return b[i];
+}
+
+/* names: x<l>_<m> (input of band l), u, t, v, w (intermediates of the band
+ * in hand) of coefficient m; n for a negative m */
+static const char *nmx(int l, int m)
+{
+    static char b[8][32];
+    static int i;
+    i = (i + 1) & 7;
+    snprintf(b[i], sizeof b[i], m < 0 ? "x%d_n%d" : "x%d_%d", l, m < 0 ? -m : m);
+    return b[i];
+}
+static const char *nm(char v, int m)
+{
+    static char b[16][16];
+    static int i;
+    i = (i + 1) & 15;
+    if (m < 0) snprintf(b[i], sizeof b[i], "%c_n%d", v, -m);
+    else snprintf(b[i], sizeof b[i], "%c_%d", v, m);
+    return b[i];
+}
+
+/* the multiple angles: c<a>m, s<a>m for m = 1..mmax by the Chebyshev
+ * recurrence of sh__rot_multiple_angles (c₀ = 1, s₀ = 0, 2c₁ exact as c₁ + c₁):
+ *   c_m = 2c₁·c_{m−1} − c_{m−2},  s_m = 2c₁·s_{m−1} − s_{m−2} */
+static void emit_angles(char a, int mmax)
+{
+    if (mmax < 2) return;
+    out("    const shk_t t%c = c%c1 + c%c1;\n", a, a, a);
+    out("    const shk_t c%c2 = t%c * c%c1 - SHK_C(1), s%c2 = t%c * s%c1;\n", a, a, a, a, a, a);
+    for (int m = 3; m <= mmax; m++)
+        out("    const shk_t c%c%d = t%c * c%c%d - c%c%d, s%c%d = t%c * s%c%d - s%c%d;\n", a, m, a, a,
+            m - 1, a, m - 2, a, m, a, a, m - 1, a, m - 2);
+}
+
+/* one z rotation of the pair (m, −m) of src into dst (declared const):
+ *   dst_m = c·a − s·b,  dst_{−m} = s·a + c·b   (a = src_m, b = src_{−m}),
+ * negated when flip (the (−1)^m of θ + π).  store: write to out[i] instead. */
+static void emit_zpair(char a, int m, int flip, const char *am, const char *bm, char dst, int store,
+                       int l)
+{
+    const char *ng = flip ? "-" : "";
+    if (store) {
+        const int ip = l * (l + 1) + m, in = l * (l + 1) - m;
+        out("        SHK_ST(out, %d, K, %s(c%c%d * %s - s%c%d * %s));\n", ip, ng, a, m, am, a, m, bm);
+        out("        SHK_ST(out, %d, K, %s(s%c%d * %s + c%c%d * %s));\n", in, ng, a, m, am, a, m, bm);
+    } else {
+        out("        const shk_t %s = %s(c%c%d * %s - s%c%d * %s);\n", nm(dst, m), ng, a, m, am, a, m, bm);
+        out("        const shk_t %s = %s(s%c%d * %s + c%c%d * %s);\n", nm(dst, -m), ng, a, m, am, a, m,
+            bm);
+    }
+}
+
+/* u = Z(γ) x for band l (the first stage of zxzxz and the Taylor kernels) */
+static void emit_zgamma(int l)
+{
+    char xp[32], xm[32];
+    out("        const shk_t u_0 = %s;\n", nmx(l, 0));
+    for (int m = 1; m <= l; m++) {
+        snprintf(xp, sizeof xp, "%s", nmx(l, m));
+        snprintf(xm, sizeof xm, "%s", nmx(l, -m));
+        emit_zpair('g', m, 0, xp, xm, 'u', 0, l);
+    }
+}
+
+/* dst = X₊₉₀ src for band l: each row's non-zeros in ascending |m|, summed
+ * left to right (rot_zxzxz.c's zx_mv) */
+static void emit_xmul(int l, const double *X, char src, char dst)
+{
+    const int w = 2 * l + 1;
+    for (int mp = -l; mp <= l; mp++) {
+        int cols[2 * MAXN + 1], nc = 0;
+        for (int am = 0; am <= l; am++)
+            for (int sg = 1; sg >= -1; sg -= 2) {
+                const int m = sg * am;
+                if (am == 0 && sg < 0) continue;
+                if (X[(size_t)(mp + l) * w + (size_t)(m + l)] != 0) cols[nc++] = m;
+            }
+        /* the zero pattern (rot_zxzxz.c): each row reads one class of m, so |m| is unique */
+        for (int i = 1; i < nc; i++)
+            if (abs(cols[i]) == abs(cols[i - 1])) {
+                fprintf(stderr, "gen_rot_unrolled: band %d row %d: both m and -m non-zero\n", l, mp);
+                exit(2);
+            }
+        out("        const shk_t %s = ", nm(dst, mp));
+        if (nc == 0) { fprintf(stderr, "gen_rot_unrolled: band %d row %d is zero\n", l, mp); exit(2); }
+        for (int i = 0; i < nc; i++) {
+            const double v = X[(size_t)(mp + l) * w + (size_t)(cols[i] + l)];
+            const char *s = nm(src, cols[i]);
+            if (i == 0) {
+                if (v == 1) out("%s", s);
+                else if (v == -1) out("-%s", s);
+                else out("%s * %s", lit(v), s);
+            } else {
+                if (v == 1) out(" + %s", s);
+                else if (v == -1) out(" - %s", s);
+                else out(" + %s * %s", lit(v), s);
+            }
+        }
+        out(";\n");
+    }
+}
+
+static void emit_head(int meth, int n)
+{
+    out("/* %s, order %d (bands 0..%d) */\n", mlabel[meth], n, n - 1);
+    out("static void %s_%d(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)\n{\n",
+        mname[meth], n);
+}
+
+/* the inputs of band l, loaded when the band starts: every store of a band
+ * comes after all loads of that band, so in == out is safe */
+static void emit_loads(int l)
+{
+    for (int m = -l; m <= l; m++) out("        const shk_t %s = SHK_LD(in, %d, K);\n", nmx(l, m), l * (l + 1) + m);
+}
+
+/* ZXZXZ of one vector: out = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ) in, band by band */
+static void gen_zxzxz(int n, double *X)
+{
+    emit_head(M_ZXZXZ, n);
+    out("    (void)KP;\n");
+    if (n > 1) {
+        out("    const shk_t ca1 = SHK_LD(par, 0, KP), sa1 = SHK_LD(par, 1, KP);\n");
+        out("    const shk_t cb1 = SHK_LD(par, 2, KP), sb1 = SHK_LD(par, 3, KP);\n");
+        out("    const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);\n");
+        emit_angles('a', n - 1);
+        emit_angles('b', n - 1);
+        emit_angles('g', n - 1);
+    }
+    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
+    for (int l = 1; l < n; l++) {
+        if (sh__rot_zxzxz_xplus_band(l, X)) { fprintf(stderr, "gen_rot_unrolled: X+90 band %d\n", l); exit(2); }
+        char xm[32], xp[32];
+        out("    { /* band %d */\n", l);
+        emit_loads(l);
+        /* Z(γ): x → u */
+        emit_zgamma(l);
+        emit_xmul(l, X, 'u', 't'); /* X₊₉₀ */
+        /* Z(β+π): t → v */
+        out("        const shk_t v_0 = t_0;\n");
+        for (int m = 1; m <= l; m++) {
+            snprintf(xp, sizeof xp, "%s", nm('t', m));
+            snprintf(xm, sizeof xm, "%s", nm('t', -m));
+            emit_zpair('b', m, m & 1, xp, xm, 'v', 0, l);
+        }
+        emit_xmul(l, X, 'v', 'w'); /* X₊₉₀ */
+        /* Z(α+π): w → out */
+        out("        SHK_ST(out, %d, K, w_0);\n", l * (l + 1));
+        for (int m = 1; m <= l; m++) {
+            snprintf(xp, sizeof xp, "%s", nm('w', m));
+            snprintf(xm, sizeof xm, "%s", nm('w', -m));
+            emit_zpair('a', m, m & 1, xp, xm, 0, 1, l);
+        }
+        out("    }\n");
+    }
+    out("}\n\n");
+}
+
+/* Taylor of one vector (rot_taylor.c, per band with positions j = m + l):
+ *   y_j = x_j + β (s_j x_{j−1} − s_{j+1} x_{j+1})                          (1)
+ *   y_j = x_j (1 + bb·J²_jj) + β (s_j x_{j−1} − s_{j+1} x_{j+1})          (1.5)
+ *   y_j = (1.5) + bb (q_j x_{j−2} + q_{j+2} x_{j+2})                       (2)
+ * between Z(γ) and Z(α); bb = ½β²; s, J²_jj, q from the closed form of J. */
+static void gen_taylor(int meth, int n)
+{
+    emit_head(meth, n);
+    out("    (void)KP;\n");
+    if (n > 1) {
+        out("    const shk_t ca1 = SHK_LD(par, 0, KP), sa1 = SHK_LD(par, 1, KP);\n");
+        out("    const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);\n");
+        out("    const shk_t beta = SHK_LD(par, 6, KP);\n");
+        if (meth != M_TAYLOR1) out("    const shk_t bb = SHK_C(0.5) * beta * beta;\n");
+        emit_angles('a', n - 1);
+        emit_angles('g', n - 1);
+    }
+    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
+    double sd[2 * MAXN + 3];
+    for (int l = 1; l < n; l++) {
+        const int w = 2 * l + 1;
+        sh_rot_deriv_J_subdiag(l, sd); /* s_0 .. s_{w−1}, s_0 = 0 */
+        sd[w] = 0;
+        char xm[32], xp[32];
+        out("    { /* band %d */\n", l);
+        emit_loads(l);
+        emit_zgamma(l);
+        for (int j = 0; j < w; j++) {
+            const int m = j - l;
+            const double s0 = sd[j], s1 = sd[j + 1];
+            const double d = -sd[j] * sd[j] - sd[j + 1] * sd[j + 1];
+            const double q0 = j >= 2 ? sd[j] * sd[j - 1] : 0;
+            const double q2 = j + 2 < w ? sd[j + 2] * sd[j + 1] : 0;
+            out("        const shk_t %s = ", nm('t', m));
+            if (meth == M_TAYLOR1) out("%s", nm('u', m));
+            else out("%s * (SHK_C(1) + bb * %s)", nm('u', m), lit(d));
+            /* β (s_j x_{j−1} − s_{j+1} x_{j+1}), zero products left out */
+            const int h0 = j > 0 && s0 != 0, h1 = j + 1 < w && s1 != 0;
+            if (h0 && h1)
+                out(" + beta * (%s * %s - %s * %s)", lit(s0), nm('u', m - 1), lit(s1), nm('u', m + 1));
+            else if (h0) out(" + beta * (%s * %s)", lit(s0), nm('u', m - 1));
+            else if (h1) out(" + beta * -(%s * %s)", lit(s1), nm('u', m + 1));
+            if (meth == M_TAYLOR2) {
+                const int g0 = q0 != 0, g2 = q2 != 0;
+                if (g0 && g2)
+                    out(" + bb * (%s * %s + %s * %s)", lit(q0), nm('u', m - 2), lit(q2), nm('u', m + 2));
+                else if (g0) out(" + bb * (%s * %s)", lit(q0), nm('u', m - 2));
+                else if (g2) out(" + bb * (%s * %s)", lit(q2), nm('u', m + 2));
+            }
+            out(";\n");
+        }
+        out("        SHK_ST(out, %d, K, t_0);\n", l * (l + 1));
+        for (int m = 1; m <= l; m++) {
+            snprintf(xp, sizeof xp, "%s", nm('t', m));
+            snprintf(xm, sizeof xm, "%s", nm('t', -m));
+            emit_zpair('a', m, 0, xp, xm, 0, 1, l);
+        }
+        out("    }\n");
+    }
+    out("}\n\n");
+}
+
+/* Ivanic-Ruedenberg of one vector (rot_ivanic.c): the blocks M^l band by
+ * band from band 1 (the matrix, CS signs) by the recursion, every entry a
+ * local, then out_l = M^l x_l (rows summed left to right as
+ * sh__rot_blocks_apply).  par = R (row-major, 9 values).  The same products
+ * and sums as ivanic_step; coefficients that are exactly ±1 or 0 become a
+ * copy, a negation or nothing. */
+static const char *nmb(int l, int m, int n)
+{
+    static char b[16][48];
+    static int i;
+    i = (i + 1) & 15;
+    snprintf(b[i], sizeof b[i], "b%d_%s%d_%s%d", l, m < 0 ? "n" : "", m < 0 ? -m : m, n < 0 ? "n" : "",
+             n < 0 ? -n : n);
+    return b[i];
+}
+static const char *nmp(int l, int s, int a, int n)
+{
+    static char b[16][48];
+    static int i;
+    i = (i + 1) & 15;
+    snprintf(b[i], sizeof b[i], "P%d%c_%s%d_%s%d", l, s ? 'm' : 'p', a < 0 ? "n" : "", a < 0 ? -a : a,
+             n < 0 ? "n" : "", n < 0 ? -n : n);
+    return b[i];
+}
+/* c·(expr) with the literal c; 1 and −1 without a product; 0: nothing (returns 0) */
+static int term(int first, double c, const char *expr)
+{
+    if (c == 0) return 0;
+    if (c == 1) out(first ? "%s" : " + %s", expr);
+    else if (c == -1) out(first ? "-%s" : " - %s", expr);
+    else out(first ? "%s * %s" : " + %s * %s", lit(c), expr);
+    return 1;
+}
+static void gen_ivanic(int n)
+{
+    emit_head(M_IVANIC, n);
+    out("    (void)KP;\n");
+    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
+    if (n < 2) { out("}\n\n"); return; }
+    /* band 1: M1[i][j] = (−1)^{i+j} R[π(i)][π(j)], π(−1, 0, 1) = (y, z, x) */
+    static const int perm[3] = {1, 2, 0};
+    for (int i = -1; i <= 1; i++)
+        for (int j = -1; j <= 1; j++)
+            out("    const shk_t %s = %sSHK_LD(par, %d, KP);\n", nmb(1, i, j), ((i + j) & 1) ? "-" : "",
+                perm[i + 1] * 3 + perm[j + 1]);
+    double *t = malloc(3 * (size_t)(2 * n + 1) * (2 * n + 1) * sizeof *t);
+    char e1[128], e2[128], e3[256];
+    for (int l = 2; l < n; l++) {
+        const int w = 2 * l + 1, lp = l - 1;
+        const size_t ww = (size_t)w * w;
+        sh__rot_ivanic_coeffs(l, t);
+        out("    /* band %d */\n", l);
+        /* _iP_{an}, i = ±1: |n| < l: R_{i0} M_{an}; n = ±l: the edge formulas */
+        for (int sgn = 0; sgn < 2; sgn++) {
+            const int i = sgn ? -1 : 1;
+            for (int a = -lp; a <= lp; a++) {
+                out("    const shk_t %s = %s * %s + %s * %s;\n", nmp(l, sgn, a, -l), nmb(1, i, 1), nmb(lp, a, -lp),
+                    nmb(1, i, -1), nmb(lp, a, lp));
+                for (int nn = -lp; nn <= lp; nn++)
+                    out("    const shk_t %s = %s * %s;\n", nmp(l, sgn, a, nn), nmb(1, i, 0), nmb(lp, a, nn));
+                out("    const shk_t %s = %s * %s - %s * %s;\n", nmp(l, sgn, a, l), nmb(1, i, 1), nmb(lp, a, lp),
+                    nmb(1, i, -1), nmb(lp, a, -lp));
+            }
+        }
+        for (int m = -l; m <= l; m++) {
+            const int am = m < 0 ? -m : m;
+            for (int nn = -l; nn <= l; nn++) {
+                const size_t ix = (size_t)(m + l) * w + (size_t)(nn + l);
+                const double cu = t[ix], cv = t[ww + ix], cw = t[2 * ww + ix];
+                out("    const shk_t %s = ", nmb(l, m, nn));
+                int any = 0;
+                if (am < l) { /* u·U, U = _0P_{mn} */
+                    if (nn == -l)
+                        snprintf(e1, sizeof e1, "(%s * %s + %s * %s)", nmb(1, 0, 1), nmb(lp, m, -lp), nmb(1, 0, -1), nmb(lp, m, lp));
+                    else if (nn == l)
+                        snprintf(e1, sizeof e1, "(%s * %s - %s * %s)", nmb(1, 0, 1), nmb(lp, m, lp), nmb(1, 0, -1), nmb(lp, m, -lp));
+                    else
+                        snprintf(e1, sizeof e1, "(%s * %s)", nmb(1, 0, 0), nmb(lp, m, nn));
+                    any |= term(!any, cu, e1);
+                }
+                /* v·V */
+                if (m == 0) snprintf(e2, sizeof e2, "(%s + %s)", nmp(l, 0, 1, nn), nmp(l, 1, -1, nn));
+                else if (m == 1) snprintf(e2, sizeof e2, "%s", nmp(l, 0, 0, nn));
+                else if (m == -1) snprintf(e2, sizeof e2, "%s", nmp(l, 1, 0, nn));
+                else if (m > 1) snprintf(e2, sizeof e2, "(%s - %s)", nmp(l, 0, m - 1, nn), nmp(l, 1, -m + 1, nn));
+                else snprintf(e2, sizeof e2, "(%s + %s)", nmp(l, 0, m + 1, nn), nmp(l, 1, -m - 1, nn));
+                any |= term(!any, cv, e2);
+                /* w·W */
+                if (m != 0 && am < l - 1) {
+                    if (m > 0) snprintf(e3, sizeof e3, "(%s + %s)", nmp(l, 0, m + 1, nn), nmp(l, 1, -m - 1, nn));
+                    else snprintf(e3, sizeof e3, "(%s - %s)", nmp(l, 0, m - 1, nn), nmp(l, 1, -m + 1, nn));
+                    any |= term(!any, cw, e3);
+                }
+                if (!any) out("SHK_C(0)");
+                out(";\n");
+            }
+        }
+    }
+    free(t);
+    /* out_l = M^l x_l */
+    for (int l = 1; l < n; l++) {
+        out("    { /* band %d */\n", l);
+        emit_loads(l);
+        for (int m = -l; m <= l; m++) {
+            out("        SHK_ST(out, %d, K, ", l * (l + 1) + m);
+            for (int nn = -l; nn <= l; nn++) out("%s%s * %s", nn > -l ? " + " : "", nmb(l, m, nn), nmx(l, nn));
+            out(");\n");
+        }
+        out("    }\n");
+    }
+    out("}\n\n");
+}
+
+int main(int argc, char **argv)
+{
+    /* --max-order N: zxzxz and the Taylor kernels; --ivanic-max-order NI
+     * (≤ N): ivanic, whose straight-line code grows like n⁴ and is slower
+     * than the loop kernel once it outgrows the instruction cache (measured:
+     * README "Rotation speed") */
+    int N = 10, NI = 6;
+    for (int i = 1; i < argc; i++) {
+        if (i + 1 < argc && !strcmp(argv[i], "--max-order")) N = atoi(argv[++i]);
+        else if (i + 1 < argc && !strcmp(argv[i], "--ivanic-max-order")) NI = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "usage: gen_rot_unrolled [--max-order N] [--ivanic-max-order NI]   (1 <= NI <= N <= %d)\n", MAXN);
+            return 2;
+        }
+    }
+    if (N < 1 || N > MAXN || NI < 1 || NI > N) {
+        fprintf(stderr, "gen_rot_unrolled: need 1 <= --ivanic-max-order <= --max-order <= %d\n", MAXN);
+        return 2;
+    }
+    double *X = malloc((size_t)(2 * N + 1) * (2 * N + 1) * sizeof *X);
+    char **body = calloc((size_t)M_N * (N + 1), sizeof *body);
+    unsigned long mults[M_N][MAXN + 1] = {{0}};
+    if (!X || !body) return 2;
+    for (int meth = 0; meth < M_N; meth++)
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) {
+            blen = 0;
+            bcap = 0;
+            buf = NULL;
+            out("%s", "");
+            if (meth == M_ZXZXZ) gen_zxzxz(n, X);
+            else if (meth == M_IVANIC) gen_ivanic(n);
+            else gen_taylor(meth, n);
+            body[meth * (N + 1) + n] = buf;
+            mults[meth][n] = count_mults(buf);
+        }
+    char cmd[96];
+    snprintf(cmd, sizeof cmd, "gen_rot_unrolled --max-order %d --ivanic-max-order %d", N, NI);
+    printf("/* rot_unrolled_gen.h — GENERATED FILE, DO NOT EDIT.\n"
+           " *\n"
+           " * Written by tools/gen_rot_unrolled.c:\n"
+           " *   build/tools/%s > src/rotate/rot_unrolled_gen.h\n"
+           " * (`make regen`; `make check` fails if this file differs from the output).\n"
+           " *\n"
+           " * Straight-line SH rotation kernels, one per method and order, for one\n"
+           " * rotation and one vector, or for SIMD lanes of rotations/vectors\n"
+           " * (shk_t, rot_simd.h).  par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β)\n"
+           " * (ivanic: the matrix R, row-major) with lane stride KP; in, out: order²\n"
+           " * coefficients with lane stride K.\n"
+           " * The multiple angles are computed inside (Chebyshev); see the generator\n"
+           " * for how the code relates to the loop kernels.\n"
+           " *\n"
+           " * Multiplications per call (counted \" * \" in each function):\n",
+           cmd);
+    for (int meth = 0; meth < M_N; meth++) {
+        printf(" *   %-10s", mlabel[meth]);
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) printf(" %d:%lu", n, mults[meth][n]);
+        printf("\n");
+    }
+    printf(" */\n\n#define SH_UNROLLED_MAX_ORDER %d\n\n", N);
+    for (int meth = 0; meth < M_N; meth++)
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) {
+            fputs(body[meth * (N + 1) + n], stdout);
+            free(body[meth * (N + 1) + n]);
+        }
+    /* the table of counts and of functions, per method and order (the
+     * including file defines SHK_FN_T, the function pointer type, and
+     * SH__FAST_MAXO ≥ N) */
+    printf("/* multiplications per call (the banner's numbers) */\n"
+           "static const unsigned unrolled_mults[%d][SH__FAST_MAXO + 1] = {\n",
+           M_N);
+    for (int meth = 0; meth < M_N; meth++) {
+        printf("    {0");
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) printf(", %lu", mults[meth][n]);
+        printf("}, /* %s */\n", mlabel[meth]);
+    }
+    printf("};\n\n");
+    printf("static const SHK_FN_T unrolled_table[%d][SH__FAST_MAXO + 1] = {\n", M_N);
+    for (int meth = 0; meth < M_N; meth++) {
+        printf("    {0");
+        for (int n = 1; n <= (meth == M_IVANIC ? NI : N); n++) printf(", %s_%d", mname[meth], n);
+        printf("},\n");
+    }
+    printf("};\n");
+    free(body);
+    free(X);
+    return 0;
+}
