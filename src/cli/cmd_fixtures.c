@@ -65,9 +65,11 @@ static json_t *case_json(sh_rot_method method, const char *id, int order, int ba
     if (!B) { *st = SH_ENOMEM; goto fail; }
     if (method != SH_ROT_REFERENCE) {
         /* expected = what method M computes (in double): fixtures for a kernel
-         * that implements an approximation (taylor1.5) or a given method */
+         * that implements an approximation (taylor1.5) or a given method.
+         * The scalar loop kernel: the same bytes on every CPU (the unrolled
+         * and SIMD kernels fuse multiply-adds where the CPU has FMA). */
         sh_rot_plan *p;
-        if ((*st = sh_rot_plan_create(order, method, SH_PREC_DOUBLE, conv, &p))) goto fail;
+        if ((*st = sh_rot_plan_create_kernel(order, method, SH_PREC_DOUBLE, conv, SH_KERNEL_SCALAR, &p))) goto fail;
         if (!(*st = sh_rot_plan_set(p, rot))) *st = sh_rot_plan_apply(p, in, exp);
         sh_rot_plan_free(p);
         if (*st) goto fail;
