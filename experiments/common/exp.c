@@ -13,7 +13,8 @@ static const char *outdir = ".";
 static char partdir[4096] = ".";
 static char command[2048];
 static const char *revision = "unknown";
-static void exp_shard_setup(int argc, char **argv);
+static const char *requested; /* --part NAME */
+static void exp_shard_setup(int argc, char **argv, int first);
 
 void exp_init(int argc, char **argv)
 {
@@ -22,19 +23,31 @@ void exp_init(int argc, char **argv)
     const char *name = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
     for (int i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("Usage: %s OUTDIR\n\n"
+            printf("Usage: %s OUTDIR [--part NAME] [--shard I/N | --merge FILE...]\n\n"
                    "Run the experiment %s (experiments/%s/%s.c: the comment at its top says\n"
                    "what it measures) and write its data files and its fragments of the report\n"
                    "(index.md, claims.tsv; timings under OUTDIR/timing/) into OUTDIR.  The plots\n"
                    "come from experiments/%s/*.gp.  `make report` runs every experiment into\n"
                    "reports/NAME and assembles the report.  Environment: REV (the revision\n"
                    "stamped into the files), SHLAB (the shlab binary, for experiments that call\n"
-                   "it), PROBES_DIR (default data/probes).\n",
+                   "it), PROBES_DIR (default data/probes).\n"
+                   "  --part NAME    run only the part NAME that the experiment computes on\n"
+                   "                 request (into OUTDIR/NAME; OUTDIR's own files untouched)\n"
+                   "  --shard I/N    compute only shard I's items, into OUTDIR/shard-I-of-N.items\n"
+                   "  --merge FILE.. the N shard files: write what the unsharded run writes\n",
                    name, name, name, name, name);
             exit(fflush(stdout) == 0 && !ferror(stdout) ? 0 : 2);
         }
-    if (argc != 2 || argv[1][0] == '-' || !argv[1][0]) {
-        fprintf(stderr, "%s: error: usage: %s OUTDIR (or --help)\n", name, name);
+    /* OUTDIR [--part NAME] [--shard I/N | --merge FILE...] */
+    int first = 2;
+    if (argc >= 4 && !strcmp(argv[2], "--part")) {
+        requested = argv[3];
+        first = 4;
+    }
+    if (argc < 2 || argv[1][0] == '-' || !argv[1][0] || (requested && (!*requested || strchr(requested, '/'))) ||
+        (argc > first && strcmp(argv[first], "--shard") && strcmp(argv[first], "--merge"))) {
+        fprintf(stderr, "%s: error: usage: %s OUTDIR [--part NAME] [--shard I/N | --merge FILE...] (or --help)\n",
+                name, name);
         exit(2);
     }
     outdir = argv[1];
@@ -47,14 +60,16 @@ void exp_init(int argc, char **argv)
         const char *a = i == 0 ? (strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0]) : argv[i];
         n += snprintf(command + n, sizeof command - n, "%s%s", i ? " " : "", a);
     }
-    /* fresh fragments for this run */
+    /* fresh fragments for this run (a requested part leaves OUTDIR's own) */
     char p[4096];
     snprintf(p, sizeof p, "%s/index.md", outdir);
-    remove(p);
+    if (!requested) remove(p);
     snprintf(p, sizeof p, "%s/claims.tsv", outdir);
-    remove(p);
-    exp_shard_setup(argc, argv); /* --shard I/N, --merge FILE... */
+    if (!requested) remove(p);
+    exp_shard_setup(argc - (first - 2), argv, first); /* --shard I/N, --merge FILE... */
 }
+
+const char *exp_requested_part(void) { return requested; }
 
 const char *exp_outdir(void) { return partdir; }
 
@@ -285,11 +300,17 @@ static void shard_load(char **files, int nf)
         if (recs[i].item == recs[i - 1].item) shard_fail("--merge: item %ld given twice", recs[i].item);
 }
 
-static void exp_shard_setup(int argc, char **argv)
+/* argc counts the arguments from argv[first - 2] on (OUTDIR, --part NAME skipped) */
+static void exp_shard_setup(int argc, char **argv, int first)
 {
     if (argc < 3) return;
-    /* the run's identity: the experiment (its OUTDIR may differ per shard) */
-    program = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
+    /* the run's identity: the experiment and its part (its OUTDIR may
+     * differ per shard) */
+    static char ident[256];
+    const char *prog = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
+    snprintf(ident, sizeof ident, "%s%s%s", prog, requested ? " --part " : "", requested ? requested : "");
+    program = ident;
+    argv += first - 2;
     /* the options are not part of the run's identity: drop them from the
      * command every data header prints */
     char *cut = strstr(command, !strcmp(argv[2], "--shard") ? " --shard" : " --merge");
@@ -308,7 +329,7 @@ static void exp_shard_setup(int argc, char **argv)
         run_mode = RUN_MERGE;
         shard_load(argv + 3, argc - 3);
     } else {
-        shard_fail("usage: %s OUTDIR [--shard I/N | --merge FILE...]", argv[0]);
+        shard_fail("usage: %s OUTDIR [--part NAME] [--shard I/N | --merge FILE...]", prog);
     }
 }
 

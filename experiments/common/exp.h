@@ -35,6 +35,11 @@ const char *exp_outdir(void);
 /* Select a part: NULL = OUTDIR; "timing" or a kept part's name = OUTDIR/PART
  * (created; its index.md and claims.tsv are reset the first time). */
 void exp_part(const char *part);
+/* The part asked for by `--part NAME` (NULL: none).  A part that is costly
+ * (e.g. a sweep to a high band) is computed only on request: the experiment
+ * then runs only that part (exp_part(NAME)) and leaves OUTDIR's own files
+ * as they are; without the option it leaves the part as it is (kept). */
+const char *exp_requested_part(void);
 /* The code revision given by `make report` (env REV), or "unknown". */
 const char *exp_revision(void);
 /* Open OUTDIR/name for writing and print the header:
