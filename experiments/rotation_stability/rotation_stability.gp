@@ -14,7 +14,7 @@ set xrange [1:1000]
 # below the exact maximum at the same band (dashed, open markers): the step
 # is the change of measure, not an improvement
 set arrow 1 from 128, graph 0 to 128, graph 1 nohead dt 3 lc rgb "#666666"
-set label 1 "exact ← | → two-probe estimate\n(5–10× below exact: not an improvement)" at 134, 1e-16 font ",9" tc rgb "#444444"
+set label 1 "exact ← | → two-probe estimate\n(5–10× below exact:\nthe step is not an improvement)" at 134, 3e-16 font ",9" tc rgb "#444444"
 ms = "zxzxz blanco halfpi ivanic choi wigner"
 plot for [m in ms] outdir.'/'.m.'_double.dat' using ($1+0):($5 == 1 ? ($2>0?$2:1e-17) : 1/0) with linespoints \
         lw 1.5 pt mpt(m) ps 0.5 lc rgb mcol(m) title m, \
