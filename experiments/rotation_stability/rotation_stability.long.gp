@@ -1,6 +1,6 @@
 # The long part (reports/rotation_stability/long): the stable methods to
 # l = 4000.  orth is exact up to l = 500 (solid lines, filled markers); above,
-# the two-probe estimate (dashed, open markers), which runs 5-10x below the
+# the two-probe estimate (dashed, open markers), which runs about 10x below the
 # exact value at the same band: the dotted line marks the change of measure.
 load 'experiments/common/style.gp'
 set terminal pngcairo size 1000,560 enhanced font ",11"
@@ -15,7 +15,7 @@ set output outdir.'/stability_long.png'
 set title "Stable rotation methods to l = 4000, double (0 drawn at 10^{-17})"
 sw = 500
 set arrow 1 from sw, graph 0 to sw, graph 1 nohead dt 3 lw 1.5 lc rgb "#444444"
-set label 1 "exact ← | → two-probe estimate\n(5–10× below exact:\nthe step is not an improvement)" at sw*1.06, 3e-11 font ",9" tc rgb "#444444"
+set label 1 "exact ← | → two-probe estimate\n(about 10× below exact:\nthe step is not an improvement)" at sw*1.06, 3e-11 font ",9" tc rgb "#444444"
 ms = "halfpi blanco zxzxz"
 plot for [m in ms] outdir.'/'.m.'_double.dat' using ($1+0):($5 == 1 ? ($2>0?$2:1e-17) : 1/0) with linespoints \
         lw 1.5 pt mpt(m) ps 0.6 lc rgb mcol(m) title m, \
