@@ -135,6 +135,24 @@ expect_usage_error "merge: not a shard file" merge "$TMP/x2"
 expect_usage_error "merge: unreadable file" merge "$TMP/nonexistent"
 expect_usage_error "merge: mixed sweeps" merge "$TMP/t0" "$TMP/s1" "$TMP/t2" "$TMP/t3"
 
+# --- an experiment's --part / --shard / --merge are taken (errors only: a run is long)
+BUILD=${BUILD:-build}
+if make -s "$BUILD/experiments/rotation_stability" >"$TMP/log" 2>&1; then
+    X="$BUILD/experiments/rotation_stability"
+    "$X" "$TMP/xo" --merge "$TMP/none.items" >/dev/null 2>"$TMP/err"; rc=$?
+    [ $rc = 2 ] && grep -q 'cannot open' "$TMP/err" && ok "experiment OUTDIR --merge FILE is parsed" || notok "experiment --merge: rc $rc, $(head -c 200 "$TMP/err")"
+    "$X" "$TMP/xo" --part long --merge "$TMP/none.items" >/dev/null 2>"$TMP/err"; rc=$?
+    [ $rc = 2 ] && grep -q 'cannot open' "$TMP/err" && ok "experiment OUTDIR --part long --merge FILE is parsed" || notok "experiment --part --merge: rc $rc, $(head -c 200 "$TMP/err")"
+    "$X" "$TMP/xo" --shard 2/2 >/dev/null 2>"$TMP/err"; rc=$?
+    [ $rc = 2 ] && grep -q -- '--shard' "$TMP/err" && ok "experiment --shard 2/2 refused" || notok "experiment --shard 2/2: rc $rc"
+    "$X" "$TMP/xo" --part nosuch >/dev/null 2>"$TMP/err"; rc=$?
+    [ $rc = 2 ] && grep -q "no part 'nosuch'" "$TMP/err" && ok "experiment --part of no such part refused" || notok "experiment --part nosuch: rc $rc"
+    "$X" "$TMP/xo" --shard 0/2 --bogus >/dev/null 2>"$TMP/err"; rc=$?
+    [ $rc = 2 ] && ok "experiment --shard with an extra argument refused" || notok "experiment --shard --bogus: rc $rc"
+else
+    notok "cannot build $BUILD/experiments/rotation_stability: $(tail -3 "$TMP/log")"
+fi
+
 # --- --shard values ----------------------------------------------------------
 for bad in 2/2 -1/2 1/0 a/b 1 1/2/3 " 0/2" 0/100001; do
     expect_usage_error "--shard '$bad' refused" $TE --shard "$bad"
