@@ -10,9 +10,9 @@
 extern const cli_command cmd_stability;
 extern const cli_sweep_kind sweep_stability;
 
-/* Largest band: memory is 20 blocks of (2L+1)² doubles (2.6 GB at 2000,
- * 10 GB at 4000), time depends on the method (and no method may go
- * beyond its own largest order). */
+/* Largest band: memory is 11 blocks of (2L+1)² doubles (1.4 GB at 2000,
+ * 5.6 GB at 4000; halfpi needs none above --exact-max and --ref-max), time
+ * depends on the method (and no method may go beyond its own largest order). */
 #define STABILITY_MAX_BAND 4000
 
 static const char help[] =
@@ -28,8 +28,9 @@ static const char help[] =
     "  ref    max|R - R_reference| (MPFR, ≥30 digits) up to --ref-max, else empty\n"
     "  broken true if the method overflowed (its numbers are then empty)\n"
     "\n"
-    "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | reference\n"
-    "                       | taylor1 | taylor1.5 | taylor2\n"
+    "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | halfpi\n"
+    "                       | reference | taylor1 | taylor1.5 | taylor2 (halfpi forms\n"
+    "                       no block above --exact-max and --ref-max: O(l²) a band)\n"
     "  --lmax L             every band 0..L (L <= 4000 and below the method's limit)\n"
     "  --bands L1,L2,...    only these bands (increasing, <= 4000); single-band\n"
     "                       methods then compute nothing else\n"
