@@ -23,6 +23,7 @@ for s in tests/cli/*.sh; do
     [ -f "$s" ] || continue
     out=$(sh "$s" 2>&1); rc=$?
     printf '%s\n' "$out" | grep -E '^(FAIL|not ok)' | head -50
+    printf '%s\n' "$out" | grep -E '^SKIP ' | head -5
     p=$(printf '%s\n' "$out" | grep -c '^ok ')
     f=$(printf '%s\n' "$out" | grep -c '^not ok ')
     echo "$(basename "$s"): $p ok, $f not ok"

@@ -11,6 +11,7 @@ PKGS="build-essential pkg-config libgsl-dev libopenexr-dev libjansson-dev libmpf
 PKGS="$PKGS libfftw3-dev"  # fast transforms (FFTW3 in φ)
 # scenes: meshes (assimp), ray casting (Embree 3), PNG pictures
 PKGS="$PKGS libassimp-dev libembree-dev libpng-dev"
+PKGS="$PKGS parallel" # GNU parallel: sweeps run as shards on one machine (README, make check)
 # peers: HEALPix C++ (rotation oracle), libsharp (transform oracle)
 OPT_PKGS="libhealpix-cxx-dev libsharp-dev"
 OPT_PKGS="$OPT_PKGS valgrind" # bench --instructions (make bench-count) and its test

@@ -13,6 +13,8 @@ static const char *outdir = ".";
 static char partdir[4096] = ".";
 static char command[2048];
 static const char *revision = "unknown";
+static const char *requested; /* --part NAME */
+static void exp_shard_setup(int argc, char **argv, int first);
 
 void exp_init(int argc, char **argv)
 {
@@ -21,19 +23,31 @@ void exp_init(int argc, char **argv)
     const char *name = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
     for (int i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("Usage: %s OUTDIR\n\n"
+            printf("Usage: %s OUTDIR [--part NAME] [--shard I/N | --merge FILE...]\n\n"
                    "Run the experiment %s (experiments/%s/%s.c: the comment at its top says\n"
                    "what it measures) and write its data files and its fragments of the report\n"
                    "(index.md, claims.tsv; timings under OUTDIR/timing/) into OUTDIR.  The plots\n"
                    "come from experiments/%s/*.gp.  `make report` runs every experiment into\n"
                    "reports/NAME and assembles the report.  Environment: REV (the revision\n"
                    "stamped into the files), SHLAB (the shlab binary, for experiments that call\n"
-                   "it), PROBES_DIR (default data/probes).\n",
+                   "it), PROBES_DIR (default data/probes).\n"
+                   "  --part NAME    run only the part NAME that the experiment computes on\n"
+                   "                 request (into OUTDIR/NAME; OUTDIR's own files untouched)\n"
+                   "  --shard I/N    compute only shard I's items, into OUTDIR/shard-I-of-N.items\n"
+                   "  --merge FILE.. the N shard files: write what the unsharded run writes\n",
                    name, name, name, name, name);
             exit(fflush(stdout) == 0 && !ferror(stdout) ? 0 : 2);
         }
-    if (argc != 2 || argv[1][0] == '-' || !argv[1][0]) {
-        fprintf(stderr, "%s: error: usage: %s OUTDIR (or --help)\n", name, name);
+    /* OUTDIR [--part NAME] [--shard I/N | --merge FILE...] */
+    int first = 2;
+    if (argc >= 4 && !strcmp(argv[2], "--part")) {
+        requested = argv[3];
+        first = 4;
+    }
+    if (argc < 2 || argv[1][0] == '-' || !argv[1][0] || (requested && (!*requested || strchr(requested, '/'))) ||
+        (argc > first && strcmp(argv[first], "--shard") && strcmp(argv[first], "--merge"))) {
+        fprintf(stderr, "%s: error: usage: %s OUTDIR [--part NAME] [--shard I/N | --merge FILE...] (or --help)\n",
+                name, name);
         exit(2);
     }
     outdir = argv[1];
@@ -46,13 +60,16 @@ void exp_init(int argc, char **argv)
         const char *a = i == 0 ? (strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0]) : argv[i];
         n += snprintf(command + n, sizeof command - n, "%s%s", i ? " " : "", a);
     }
-    /* fresh fragments for this run */
+    /* fresh fragments for this run (a requested part leaves OUTDIR's own) */
     char p[4096];
     snprintf(p, sizeof p, "%s/index.md", outdir);
-    remove(p);
+    if (!requested) remove(p);
     snprintf(p, sizeof p, "%s/claims.tsv", outdir);
-    remove(p);
+    if (!requested) remove(p);
+    exp_shard_setup(argc - (first - 2), argv, first); /* --shard I/N, --merge FILE... */
 }
+
+const char *exp_requested_part(void) { return requested; }
 
 const char *exp_outdir(void) { return partdir; }
 
@@ -204,4 +221,178 @@ int exp_scene_envs(const char *dflt, const char *fallback, sh_env **envs, char n
         n++;
     }
     return n;
+}
+
+/* ---- shards (exp.h) ------------------------------------------------------- */
+
+static enum { RUN_WHOLE, RUN_SHARD, RUN_MERGE } run_mode = RUN_WHOLE;
+static sh_shard shard = SH_SHARD_ALL;
+static FILE *shard_out;
+static char shard_path[4200];
+static long shard_rows;
+typedef struct {
+    long item;
+    int n;
+    double *v;
+} shard_rec;
+static shard_rec *recs;
+static size_t nrecs;
+static const char *program = "";
+
+static void shard_fail(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
+static void shard_fail(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("experiment: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    exit(2);
+}
+
+/* --shard: the file is complete (end line, renamed into place) only when
+ * the experiment exits with status 0 */
+static void shard_finish(int status, void *arg)
+{
+    (void)arg;
+    if (!shard_out) return;
+    char tmp[4300];
+    snprintf(tmp, sizeof tmp, "%s.tmp", shard_path);
+    if (status == 0) fprintf(shard_out, "# end rows %ld\n", shard_rows);
+    if (fclose(shard_out) != 0 || status != 0 || rename(tmp, shard_path) != 0) remove(tmp);
+    shard_out = NULL;
+}
+
+static int rec_cmp(const void *a, const void *b)
+{
+    const shard_rec *x = a, *y = b;
+    return (x->item > y->item) - (x->item < y->item);
+}
+
+/* --merge: read every file; they must be the N shards of this run */
+static void shard_load(char **files, int nf)
+{
+    int N = 0, *seen = NULL;
+    char want[3000];
+    snprintf(want, sizeof want, "# shlab experiment shard: revision %s: %s", revision, program);
+    for (int q = 0; q < nf; q++) {
+        FILE *f = fopen(files[q], "r");
+        if (!f) shard_fail("--merge: cannot open %s: %s", files[q], strerror(errno));
+        char *line = NULL;
+        size_t cap = 0;
+        ssize_t len;
+        long lineno = 0, rows = 0, ended = -1;
+        int I = -1, n = -1;
+        while ((len = getline(&line, &cap, f)) >= 0) {
+            lineno++;
+            if (len > 0 && line[len - 1] == '\n') line[--len] = '\0';
+            if (lineno == 1) {
+                /* "# shard I of N" then the run's identity */
+                int off = 0;
+                if (sscanf(line, "# shard %d of %d%n", &I, &n, &off) != 2 || I < 0 || I >= n || n > SH_SHARD_MAX)
+                    shard_fail("--merge: %s is not a shard file of an experiment", files[q]);
+                if (strcmp(line + off, want + 1))
+                    shard_fail("--merge: %s is a shard of another run (%.200s)", files[q], line + off);
+                if (!N) {
+                    N = n;
+                    if (!(seen = calloc((size_t)N, sizeof *seen))) shard_fail("out of memory");
+                } else if (n != N) {
+                    shard_fail("--merge: %s is one of %d shards, the others of %d", files[q], n, N);
+                }
+                if (seen[I]++) shard_fail("--merge: shard %d of %d given twice (%s)", I, N, files[q]);
+                continue;
+            }
+            if (ended >= 0) shard_fail("--merge: %s: text after the end line", files[q]);
+            if (sscanf(line, "# end rows %ld", &ended) == 1) {
+                if (ended != rows) shard_fail("--merge: %s: %ld rows, the end line says %ld", files[q], rows, ended);
+                continue;
+            }
+            shard_rec r;
+            char *p = line, *e;
+            r.item = strtol(p, &e, 10);
+            r.n = (int)strtol(e, &p, 10);
+            const sh_shard s = {I, N};
+            if (e == line || p == e || r.n < 0 || r.n > 1000 || !sh_shard_owns(&s, r.item))
+                shard_fail("--merge: %s line %ld: not an item of shard %d of %d", files[q], lineno, I, N);
+            if (!(r.v = malloc(sizeof *r.v * (size_t)(r.n ? r.n : 1)))) shard_fail("out of memory");
+            for (int k = 0; k < r.n; k++) {
+                r.v[k] = strtod(p, &e); /* hexadecimal: exact */
+                if (e == p) shard_fail("--merge: %s line %ld: value %d missing", files[q], lineno, k + 1);
+                p = e;
+            }
+            shard_rec *nr = realloc(recs, sizeof *recs * (nrecs + 1));
+            if (!nr) shard_fail("out of memory");
+            recs = nr;
+            recs[nrecs++] = r;
+            rows++;
+        }
+        free(line);
+        fclose(f);
+        if (lineno == 0) shard_fail("--merge: %s is empty", files[q]);
+        if (ended < 0) shard_fail("--merge: %s has no end line (the shard did not finish)", files[q]);
+    }
+    for (int i = 0; i < N; i++)
+        if (!seen[i]) shard_fail("--merge: shard %d of %d is missing", i, N);
+    free(seen);
+    qsort(recs, nrecs, sizeof *recs, rec_cmp);
+    for (size_t i = 1; i < nrecs; i++)
+        if (recs[i].item == recs[i - 1].item) shard_fail("--merge: item %ld given twice", recs[i].item);
+}
+
+/* argc counts the arguments from argv[first - 2] on (OUTDIR, --part NAME skipped) */
+static void exp_shard_setup(int argc, char **argv, int first)
+{
+    if (argc < 3) return;
+    /* the run's identity: the experiment and its part (its OUTDIR may
+     * differ per shard) */
+    static char ident[256];
+    const char *prog = strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0];
+    snprintf(ident, sizeof ident, "%s%s%s", prog, requested ? " --part " : "", requested ? requested : "");
+    program = ident;
+    argv += first - 2;
+    /* the options are not part of the run's identity: drop them from the
+     * command every data header prints */
+    char *cut = strstr(command, !strcmp(argv[2], "--shard") ? " --shard" : " --merge");
+    if (cut) *cut = '\0';
+    if (!strcmp(argv[2], "--shard") && argc == 4) {
+        if (sh_shard_parse(argv[3], &shard)) shard_fail("--shard: %s", sh_last_error());
+        run_mode = RUN_SHARD;
+        snprintf(shard_path, sizeof shard_path, "%s/shard-%d-of-%d.items", outdir, shard.index, shard.count);
+        char tmp[4300];
+        snprintf(tmp, sizeof tmp, "%s.tmp", shard_path);
+        if (!(shard_out = fopen(tmp, "w"))) shard_fail("cannot write %s: %s", tmp, strerror(errno));
+        fprintf(shard_out, "# shard %d of %d shlab experiment shard: revision %s: %s\n", shard.index, shard.count,
+                revision, program);
+        on_exit(shard_finish, NULL);
+    } else if (!strcmp(argv[2], "--merge") && argc >= 4) {
+        run_mode = RUN_MERGE;
+        shard_load(argv + 3, argc - 3);
+    } else {
+        shard_fail("usage: %s OUTDIR [--part NAME] [--shard I/N | --merge FILE...]", prog);
+    }
+}
+
+int exp_computes(long item)
+{
+    return run_mode == RUN_WHOLE || (run_mode == RUN_SHARD && sh_shard_owns(&shard, item));
+}
+
+int exp_item(long item, int n, double *v)
+{
+    if (run_mode == RUN_WHOLE) return 1;
+    if (run_mode == RUN_SHARD) {
+        if (!sh_shard_owns(&shard, item)) return 0;
+        fprintf(shard_out, "%ld %d", item, n);
+        for (int k = 0; k < n; k++) fprintf(shard_out, " %a", v[k]);
+        fputc('\n', shard_out);
+        shard_rows++;
+        return 1;
+    }
+    const shard_rec key = {item, 0, NULL};
+    const shard_rec *r = bsearch(&key, recs, nrecs, sizeof *recs, rec_cmp);
+    if (!r) shard_fail("--merge: item %ld is in none of the shard files", item);
+    if (r->n != n) shard_fail("--merge: item %ld has %d values, the experiment wants %d", item, r->n, n);
+    memcpy(v, r->v, sizeof *v * (size_t)n);
+    return 1;
 }

@@ -35,6 +35,11 @@ const char *exp_outdir(void);
 /* Select a part: NULL = OUTDIR; "timing" or a kept part's name = OUTDIR/PART
  * (created; its index.md and claims.tsv are reset the first time). */
 void exp_part(const char *part);
+/* The part asked for by `--part NAME` (NULL: none).  A part that is costly
+ * (e.g. a sweep to a high band) is computed only on request: the experiment
+ * then runs only that part (exp_part(NAME)) and leaves OUTDIR's own files
+ * as they are; without the option it leaves the part as it is (kept). */
+const char *exp_requested_part(void);
 /* The code revision given by `make report` (env REV), or "unknown". */
 const char *exp_revision(void);
 /* Open OUTDIR/name for writing and print the header:
@@ -77,5 +82,23 @@ void exp_check(int st, const char *what);
  * `max` environments and names; *have_probes says which kind.  Exits the
  * experiment on a bad file. */
 int exp_scene_envs(const char *dflt, const char *fallback, sh_env **envs, char names[][64], int max, int *have_probes);
+/* Shards.  An experiment whose work is a list of items (bands, angles, ...)
+ * can run as N processes (GNU parallel, a Slurm array), then be joined:
+ *   NAME DIR_I --shard I/N   computes only the items shard I owns
+ *       (sh_shard_owns) and writes them to DIR_I/shard-I-of-N.items (on
+ *       success only); its other files in DIR_I are partial;
+ *   NAME OUTDIR --merge FILE...   computes no item, takes every item from
+ *       the N files (checked to be the shards of one run: same experiment,
+ *       revision, arguments, N; each shard once; each item once) and writes
+ *       exactly the output of the unsharded run.
+ * The experiment numbers its items (an index fixed by its parameters) and
+ * for item j with n result values v:
+ *   if (exp_computes(j)) { compute v; }
+ *   if (!exp_item(j, n, v)) continue;   (another shard's item)
+ *   ...use v...
+ * exp_item records v (--shard) or fills it from the files (--merge; an item
+ * missing there ends the run with an error).  Values are kept exactly. */
+int exp_computes(long item);
+int exp_item(long item, int n, double *v);
 
 #endif

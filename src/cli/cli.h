@@ -284,4 +284,66 @@ void cli_warn_approx_rotation(const char *cmd, sh_rot_method m, int order, const
 int cli_light_has_angles(const sh_light *L);
 void cli_light_warn(const char *cmd, const sh_light *L, int degrees);
 
+/* ---- sharded sweeps (cli_sweep.c) -----------------------------------------
+ * A sweep computes work items 0..n-1 (bands, angles, ...) in a fixed order.
+ * With --shard I/N a command computes only the items shard I owns
+ * (sh_shard_owns) and prints, instead of its result, a shard file of JSON
+ * lines: a header with the command, the revision, I, N, n, the --format and
+ * every parameter of the whole sweep; one {"item":j,"row":{...}} per item;
+ * an end line with the number of rows.  `shlab merge` checks that the files
+ * belong together (same command, revision, N, n, parameters), that no shard
+ * and no item is missing or duplicated, and prints what the unsharded
+ * command prints, byte for byte: both go through the kind's finish().
+ * A kind may stop the sweep at a row (stops()): the rows after the first
+ * such row are dropped, and a shard stops after its own first one. */
+typedef struct {
+    const char *command;
+    /* The command's result from its parameters and its rows (in item order,
+     * up to the first stopping row; stolen).  NULL on failure. */
+    json_t *(*finish)(const json_t *params, json_t *rows);
+    /* Non-zero if this row ends the sweep (NULL: no row does). */
+    int (*stops)(const json_t *params, const json_t *row);
+    /* The exit status of a result (NULL: 0), e.g. CLI_EXIT_CHECK when plan
+     * finds no method. */
+    int (*exit_code)(const json_t *result);
+} cli_sweep_kind;
+
+enum { CLI_OPT_SHARD = 0x1c1 };
+#define CLI_LONGOPT_SHARD {"shard", required_argument, 0, CLI_OPT_SHARD}
+#define CLI_SHARD_HELP                                                                         \
+    "  --shard I/N          compute only shard I of N (I = 0..N-1) and print a shard\n"        \
+    "                       file (JSON lines); `shlab merge` joins the N files into\n"         \
+    "                       exactly this command's output\n"
+/* Parse --shard's value (one error line and CLI_EXIT_USAGE if bad). */
+int cli_shard(const char *opt, const char *s, sh_shard *out);
+
+typedef struct {
+    const cli_sweep_kind *kind;
+    json_t *params, *rows;
+    long nitems, owned, done, last;
+    sh_shard shard;
+    int sharded, stopped; /* sharded: --shard was given (even 0/1) */
+    cli_format fmt;
+    cli_progress prog;
+    const char *what;
+    char label[64]; /* "command" or "command (shard I/N)" for progress lines */
+} cli_sweep;
+/* Start a sweep of nitems items; params (stolen) must hold everything the
+ * result depends on.  shard NULL (no --shard): the whole sweep, printed as
+ * the command's result; else a shard file, also for 0/1.  what names
+ * the items in progress lines ("bands"). */
+void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, long nitems,
+                     const sh_shard *shard, cli_format fmt, int quiet, const char *what);
+/* Non-zero if this run computes item j (its shard owns it, the sweep has not stopped). */
+int cli_sweep_owns(const cli_sweep *s, long j);
+/* Record item j's row (stolen; items in increasing order).  Returns 0 to go
+ * on, 1 if the sweep stops at this row, CLI_EXIT_USAGE after printing the
+ * error (then call cli_sweep_free). */
+int cli_sweep_add(cli_sweep *s, long j, json_t *row);
+/* Print the result (or the shard file) and release s; returns the exit code. */
+int cli_sweep_end(cli_sweep *s);
+/* Render a kind's result (from finish) in fmt; the exit code of the result. */
+int cli_sweep_emit(const cli_sweep_kind *kind, json_t *result, cli_format fmt);
+void cli_sweep_free(cli_sweep *s);
+
 #endif

@@ -10,6 +10,7 @@
 #include <string.h>
 
 extern const cli_command cmd_plan;
+extern const cli_sweep_kind sweep_plan;
 
 static const char help[] =
     "Usage: shlab plan --order N --max-beta B --tolerance E [OPTIONS]\n"
@@ -45,6 +46,8 @@ static const char help[] =
     "  --layout L           latlong (default) | probe\n"
     "  --max-order M        largest order tried by auto (default 32)\n"
     "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
+    CLI_SHARD_HELP
+    "                       (the β grid; the merge times the methods)\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -78,6 +81,64 @@ static json_t *cand_json(const sh_rot_candidate *c, int full, int degrees)
     return o;
 }
 
+/* The choice from the errors on the β grid (rows in step order); the
+ * methods are timed here, by the process that prints the result. */
+static json_t *finish(const json_t *params, json_t *rows)
+{
+    sh_rot_choose_opts co = {0};
+    const json_t *mj = json_object_get(params, "methods");
+    const int degrees = json_is_true(json_object_get(params, "degrees"));
+    co.order = (int)json_integer_value(json_object_get(params, "order"));
+    co.max_beta = json_real_value(json_object_get(params, "max_beta"));
+    co.tolerance = json_real_value(json_object_get(params, "tolerance"));
+    co.lobe_exp = json_real_value(json_object_get(params, "lobe_exp"));
+    co.beta_step = json_real_value(json_object_get(params, "beta_step"));
+    sh_rot_method ms[SH_ROT_NMETHODS];
+    int nm = 0, nsteps = 0, bad = 0;
+    bad |= sh_error_measure_parse(json_string_value(json_object_get(params, "measure")), &co.measure) != SH_OK;
+    bad |= sh_precision_parse(json_string_value(json_object_get(params, "precision")), &co.prec) != SH_OK;
+    bad |= sh_convention_parse(json_string_value(json_object_get(params, "convention")), &co.conv) != SH_OK;
+    bad |= sh_rot_choose_grid(&co, ms, &nm, &nsteps) != SH_OK;
+    bad |= (size_t)nm != json_array_size(mj) || (size_t)nsteps != json_array_size(rows);
+    for (int k = 0; !bad && k < nm; k++)
+        bad |= strcmp(json_string_value(json_array_get(mj, (size_t)k)), sh_rot_method_name(ms[k])) != 0;
+    double *err = bad ? NULL : malloc(sizeof *err * (size_t)nsteps * (nm ? nm : 1));
+    size_t j;
+    json_t *row;
+    json_array_foreach(rows, j, row) for (int k = 0; err && k < nm; k++)
+        err[j * nm + k] = json_real_value(json_array_get(json_object_get(row, "errors"), (size_t)k));
+    json_decref(rows);
+    if (!err) { sh_error(SH_EINVAL, "plan: the shards' methods or steps do not match this build"); return NULL; }
+    co.grid_errors = err;
+    sh_rot_candidate cand[SH_ROT_NMETHODS];
+    int nc = 0, choice = -1, runner = -1;
+    const int st = sh_rot_choose(&co, cand, &nc, &choice, &runner);
+    free(err);
+    if (st) return NULL;
+    json_t *cj = json_array();
+    for (int k = 0; k < nc && cj; k++)
+        if (json_array_append_new(cj, cand_json(&cand[k], 1, degrees))) { json_decref(cj); cj = NULL; }
+    json_t *root = json_object();
+    static const char *const keys[] = {"order", "convention", "max_beta", "tolerance", "measure", "lobe_exp",
+                                       "precision", "image_tolerance", "order_residual", "image"};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++) {
+        const char *from = strcmp(keys[k], "max_beta") ? keys[k] : "max_beta_shown";
+        if (json_object_get(params, from)) root = cli_put(root, keys[k], json_deep_copy(json_object_get(params, from)));
+        if (!strcmp(keys[k], "max_beta")) root = cli_put(root, "unit", json_string(cli_angle_unit(degrees)));
+    }
+    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0, degrees) : json_null());
+    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0, degrees) : json_null());
+    return cli_put(root, "candidates", cj);
+}
+
+/* no method qualifies: a failed check */
+static int exit_code(const json_t *result)
+{
+    return json_is_null(json_object_get(result, "choice")) ? CLI_EXIT_CHECK : CLI_EXIT_OK;
+}
+
+const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code};
+
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
@@ -95,6 +156,7 @@ static int run(int argc, char **argv)
                                          {"layout", required_argument, 0, 'y'},
                                          {"max-order", required_argument, 0, 'M'},
                                          {"quiet", no_argument, 0, 'q'},
+                                         CLI_LONGOPT_SHARD,
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     sh_rot_choose_opts co = {0};
@@ -105,6 +167,8 @@ static int run(int argc, char **argv)
     int have_beta = 0, have_tol = 0, order_auto = 0, quiet = 0, max_order = 32, have_layout = 0;
     int have_max_order = 0;
     const char *exr = NULL;
+    sh_shard shard = SH_SHARD_ALL;
+    int have_shard = 0;
     sh_layout layout = SH_LAYOUT_LATLONG;
     opterr = 0;
     optind = 1;
@@ -160,6 +224,10 @@ static int run(int argc, char **argv)
             have_max_order = 1;
             break;
         case 'q': quiet = 1; break;
+        case CLI_OPT_SHARD:
+            if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
+            have_shard = 1;
+            break;
         default: {
             const int e = cli_common_opt(&cmd_plan, o, argv, &com);
             if (e >= 0) return e;
@@ -231,37 +299,49 @@ static int run(int argc, char **argv)
         order_resid = resid[order - 1];
         if (rot_tol > 0) co.tolerance = rot_tol;
     }
-    if (!quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
-    cli_progress prog;
-    cli_progress_start(&prog, "plan", quiet);
-    co.progress = cli_progress_step;
-    co.progress_ctx = &prog;
-    sh_rot_candidate cand[SH_ROT_NMETHODS];
-    int nc = 0, choice = -1, runner = -1;
-    int st = sh_rot_choose(&co, cand, &nc, &choice, &runner);
+    /* the sweep: step j of the β grid; everything the result depends on */
+    sh_rot_method ms[SH_ROT_NMETHODS];
+    int nm = 0, nsteps = 0;
+    int st = sh_rot_choose_grid(&co, ms, &nm, &nsteps);
     if (st) { json_decref(img_json); return cli_fail_status(st); }
-    json_t *cj = json_array();
-    for (int k = 0; k < nc && cj; k++)
-        if (json_array_append_new(cj, cand_json(&cand[k], 1, com.degrees))) { json_decref(cj); cj = NULL; }
-    json_t *root = json_object();
-    root = cli_put(root, "order", json_integer(co.order));
-    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    root = cli_put(root, "max_beta", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
-    root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
-    root = cli_put(root, "tolerance", json_real(co.tolerance));
-    root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
-    root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
-    root = cli_put(root, "precision", json_string(sh_precision_name(co.prec)));
+    json_t *params = json_object(), *mj = json_array();
+    for (int k = 0; k < nm && mj; k++)
+        if (json_array_append_new(mj, json_string(sh_rot_method_name(ms[k])))) { json_decref(mj); mj = NULL; }
+    params = cli_put(params, "order", json_integer(co.order));
+    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
+    params = cli_put(params, "max_beta", json_real(co.max_beta));
+    params = cli_put(params, "degrees", json_boolean(com.degrees));
+    params = cli_put(params, "max_beta_shown", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
+    params = cli_put(params, "tolerance", json_real(co.tolerance));
+    params = cli_put(params, "measure", json_string(sh_error_measure_name(co.measure)));
+    params = cli_put(params, "lobe_exp", json_real(co.lobe_exp));
+    params = cli_put(params, "precision", json_string(sh_precision_name(co.prec)));
     if (order_auto) {
-        root = cli_put(root, "image_tolerance", json_real(img_tol));
-        root = cli_put(root, "order_residual", json_real(order_resid));
-        root = cli_put(root, "image", img_json);
+        params = cli_put(params, "image_tolerance", json_real(img_tol));
+        params = cli_put(params, "order_residual", json_real(order_resid));
+        params = cli_put(params, "image", img_json);
     }
-    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0, com.degrees) : json_null());
-    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0, com.degrees) : json_null());
-    root = cli_put(root, "candidates", cj);
-    const int rc = cli_emit(root, com.fmt);
-    return rc == CLI_EXIT_OK && choice < 0 ? CLI_EXIT_CHECK : rc;
+    params = cli_put(params, "beta_step", json_real(co.beta_step));
+    params = cli_put(params, "methods", mj);
+    double *err = malloc(sizeof *err * (size_t)nsteps * (nm ? nm : 1));
+    if (!err) { json_decref(params); return cli_fail("out of memory"); }
+    if (!quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_plan, params, nsteps, have_shard ? &shard : NULL, com.fmt, quiet, "steps");
+    co.progress = cli_progress_step;
+    co.progress_ctx = &sw.prog;
+    st = sh_rot_choose_errors(&co, have_shard ? &shard : NULL, err);
+    sw.prog.quiet = 1; /* the library counted the steps */
+    if (st) { free(err); cli_sweep_free(&sw); return cli_fail_status(st); }
+    for (int j = 0; j < nsteps; j++) {
+        if (!cli_sweep_owns(&sw, j)) continue;
+        json_t *r = json_object();
+        r = cli_put(r, "beta", json_real(nsteps > 1 ? co.max_beta * j / (nsteps - 1) : 0));
+        r = cli_put(r, "errors", cli_json_array(err + (size_t)j * nm, (size_t)nm));
+        if (cli_sweep_add(&sw, j, r) == CLI_EXIT_USAGE) { free(err); cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
+    }
+    free(err);
+    return cli_sweep_end(&sw);
 }
 
 const cli_command cmd_plan = {"plan", run,

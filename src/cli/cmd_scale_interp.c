@@ -8,6 +8,7 @@
 #include <string.h>
 
 extern const cli_command cmd_scale_interp;
+extern const cli_sweep_kind sweep_scale_interp;
 
 #define INTERP_DEFAULT_DENSE 400
 
@@ -32,6 +33,7 @@ static const char help[] =
     "  --degrees            --cone-angle and the printed cone_angle in degrees\n"
     "  --convention cs|nocs tag only (the matrix does not depend on it)\n"
     "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
+    CLI_SHARD_HELP
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
@@ -39,9 +41,37 @@ static const char help[] =
     "       family)],\"samples\",\"spacing\",\"interp\",\n"
     "       \"kmin\",\"kmax\",\"dense\",\"max_error\",\"rms_error\",\"worst_k\"}\n";
 
+/* the sweep: item d is point d of the dense k grid */
+static json_t *finish(const json_t *params, json_t *rows)
+{
+    const size_t n = json_array_size(rows);
+    sh_scale_interp_point *pts = malloc(sizeof *pts * (n ? n : 1));
+    sh_scale_interp_result r;
+    size_t i;
+    json_t *row;
+    json_array_foreach(rows, i, row) if (pts) {
+        pts[i].k = json_real_value(json_object_get(row, "k"));
+        pts[i].max_error = json_real_value(json_object_get(row, "max_error"));
+        pts[i].sum_sq = json_real_value(json_object_get(row, "sum_sq"));
+        pts[i].weight = json_real_value(json_object_get(row, "weight"));
+    }
+    const int st = pts && n ? sh_scale_interp_reduce(pts, (int)n, &r) : SH_ENOMEM;
+    free(pts);
+    json_decref(rows);
+    if (st) return NULL;
+    json_t *root = json_deep_copy(params);
+    root = cli_put(root, "max_error", json_real(r.max_error));
+    root = cli_put(root, "rms_error", json_real(r.rms_error));
+    return cli_put(root, "worst_k", json_real(r.worst_k));
+}
+
+const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL, NULL};
+
 static int run(int argc, char **argv)
 {
     enum { O_FAMILY = 0x201, O_SAMPLES, O_SPACING, O_KMIN, O_KMAX, O_INTERP, O_DENSE, O_ENERGY, O_CONE, O_QUIET };
+    sh_shard shard = SH_SHARD_ALL;
+    int have_shard = 0;
     static const struct option opts[] = {
         CLI_LONGOPTS_BASE,
         CLI_LONGOPT_ORDER,
@@ -55,6 +85,7 @@ static int run(int argc, char **argv)
         {"energy", no_argument, 0, O_ENERGY},
         {"cone-angle", required_argument, 0, O_CONE},
         {"quiet", no_argument, 0, O_QUIET},
+        CLI_LONGOPT_SHARD,
         CLI_LONGOPT_DEGREES,
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
@@ -77,6 +108,10 @@ static int run(int argc, char **argv)
         case O_DENSE: if (cli_int("--dense", optarg, &dense)) return CLI_EXIT_USAGE; break;
         case O_ENERGY: s.energy = 1; break;
         case O_QUIET: quiet = 1; break;
+        case CLI_OPT_SHARD:
+            if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
+            have_shard = 1;
+            break;
         case O_CONE: if (cli_double("--cone-angle", optarg, &cone)) return CLI_EXIT_USAGE; have_cone = 1; break;
         default: {
             const int r = cli_common_opt(&cmd_scale_interp, o, argv, &com);
@@ -103,36 +138,56 @@ static int run(int argc, char **argv)
         if (!(s.cone_angle > 0.0 && s.cone_angle < M_PI))
             return cli_fail("--cone-angle: %g is outside (0, %s)", cone, com.degrees ? "180" : "pi");
     }
-    sh_scale_interp_result r;
+    /* everything the result depends on: the whole sweep, whichever shard runs */
+    json_t *params = json_object();
+    params = cli_put(params, "order", json_integer(order));
+    params = cli_put(params, "family", json_string(sh_scale_family_name(s.family)));
+    params = cli_put(params, "energy", json_boolean(s.energy));
+    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
+    if (s.family == SH_SCALE_CONE) {
+        params = cli_put(params, "cone_angle",
+                         json_real(cli_angle_out(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0, com.degrees)));
+        params = cli_put(params, "unit", json_string(cli_angle_unit(com.degrees)));
+    }
+    params = cli_put(params, "samples", json_integer(samples));
+    params = cli_put(params, "spacing", json_string(sh_scale_spacing_name(sp)));
+    params = cli_put(params, "interp", json_string(sh_scale_interp_name(ik)));
+    params = cli_put(params, "kmin", json_real(kmin));
+    params = cli_put(params, "kmax", json_real(kmax));
+    params = cli_put(params, "dense", json_integer(dense));
+    if (dense < 2 || dense > 100000) {
+        json_decref(params);
+        return cli_fail("scale-interp: dense grid of %d points (2..100000)", dense);
+    }
+    sh_scale_interp_point *pts = malloc(sizeof *pts * (size_t)dense);
+    if (!pts) { json_decref(params); return cli_fail("out of memory"); }
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_scale_interp, params, dense, have_shard ? &shard : NULL, com.fmt, quiet,
+                    "points");
+    /* progress from the library: every shard also tabulates all the samples */
     cli_progress prog;
-    cli_progress_start(&prog, "scale-interp", quiet);
-    const int st = sh_scale_interp_error_progress(order, &s, samples, sp, kmin, kmax, ik, dense, &r,
-                                                  cli_progress_step, &prog);
+    cli_progress_start(&prog, sw.label, quiet);
+    sw.prog.quiet = 1;
+    const int st = sh_scale_interp_points(order, &s, samples, sp, kmin, kmax, ik, dense,
+                                          have_shard ? &shard : NULL, pts, cli_progress_step, &prog);
     if (st) { /* the library's message may already name the command */
+        free(pts);
+        cli_sweep_free(&sw);
         const char *why = sh_last_error();
         if (!why || !*why) why = sh_strerror(st);
         return cli_fail(strncmp(why, "scale-interp: ", 14) ? "scale-interp: %s" : "%s", why);
     }
-    json_t *root = json_object();
-    root = cli_put(root, "order", json_integer(order));
-    root = cli_put(root, "family", json_string(sh_scale_family_name(s.family)));
-    root = cli_put(root, "energy", json_boolean(s.energy));
-    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    if (s.family == SH_SCALE_CONE) {
-        root = cli_put(root, "cone_angle", json_real(cli_angle_out(s.cone_angle > 0 ? s.cone_angle : M_PI / 4.0, com.degrees)));
-        root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
+    for (int d = 0; d < dense; d++) {
+        if (!cli_sweep_owns(&sw, d)) continue;
+        json_t *r = json_object();
+        r = cli_put(r, "k", json_real(pts[d].k));
+        r = cli_put(r, "max_error", json_real(pts[d].max_error));
+        r = cli_put(r, "sum_sq", json_real(pts[d].sum_sq));
+        r = cli_put(r, "weight", json_real(pts[d].weight));
+        if (cli_sweep_add(&sw, d, r) == CLI_EXIT_USAGE) { free(pts); cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
     }
-    root = cli_put(root, "samples", json_integer(samples));
-    root = cli_put(root, "spacing", json_string(sh_scale_spacing_name(sp)));
-    root = cli_put(root, "interp", json_string(sh_scale_interp_name(ik)));
-    root = cli_put(root, "kmin", json_real(kmin));
-    root = cli_put(root, "kmax", json_real(kmax));
-    root = cli_put(root, "dense", json_integer(dense));
-    root = cli_put(root, "max_error", json_real(r.max_error));
-    root = cli_put(root, "rms_error", json_real(r.rms_error));
-    root = cli_put(root, "worst_k", json_real(r.worst_k));
-    return cli_emit(root, com.fmt);
+    free(pts);
+    return cli_sweep_end(&sw);
 }
-
 const cli_command cmd_scale_interp = {"scale-interp", run,
                                       "error of interpolating the scaling matrix over k (Wang Sec. 2.2)", help};

@@ -9,6 +9,7 @@
 #include <string.h>
 
 extern const cli_command cmd_taylor_error;
+extern const cli_sweep_kind sweep_taylor_error;
 
 #define TE_MAX_ORDER 128
 #define TE_MAX_STEPS 100000
@@ -33,11 +34,23 @@ static const char help[] =
     "  --degrees            angles in degrees (in and out)\n"
     "  --convention cs|nocs only reported (the errors do not depend on it)\n"
     "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
+    CLI_SHARD_HELP
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
     "JSON: {\"order\",\"taylor\",\"method\",\"convention\",\"lobe_exp\",\"unit\",\n"
     "       \"rows\":[{\"beta\",\"max\",\"mean\",\"lobe\"}]}  (beta in \"unit\")\n";
+
+/* the sweep: item i is the angle i·B/S (or the one --beta) */
+static json_t *finish(const json_t *params, json_t *rows)
+{
+    json_t *root = json_object();
+    static const char *const keys[] = {"order", "taylor", "method", "convention", "lobe_exp", "unit"};
+    for (int k = 0; k < 6; k++) root = cli_put(root, keys[k], json_incref(json_object_get(params, keys[k])));
+    return cli_put(root, "rows", rows);
+}
+
+const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL};
 
 static int run(int argc, char **argv)
 {
@@ -51,12 +64,15 @@ static int run(int argc, char **argv)
                                          {"steps", required_argument, 0, 's'},
                                          {"lobe-exp", required_argument, 0, 'e'},
                                          {"quiet", no_argument, 0, 'q'},
+                                         CLI_LONGOPT_SHARD,
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     sh_rot_method m = SH_ROT_NMETHODS;
     const char *tname = NULL;
     double beta = -1, beta_max = -1, lobe_exp = 7;
     int steps = -1, have_beta = 0, have_max = 0, quiet = 0;
+    sh_shard shard = SH_SHARD_ALL;
+    int have_shard = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -86,6 +102,10 @@ static int run(int argc, char **argv)
             if (lobe_exp < 0 || lobe_exp > 1e4) return cli_fail("--lobe-exp: %g out of range 0..1e4", lobe_exp);
             break;
         case 'q': quiet = 1; break;
+        case CLI_OPT_SHARD:
+            if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
+            have_shard = 1;
+            break;
         default: {
             const int e = cli_common_opt(&cmd_taylor_error, o, argv, &com);
             if (e >= 0) return e;
@@ -105,31 +125,32 @@ static int run(int argc, char **argv)
         return cli_fail("taylor-error: %s %g outside [0, %s", have_beta ? "--beta" : "--beta-max", top,
                         com.degrees ? "180] degrees" : "pi] radians (--degrees for degrees)");
     const int nrow = have_beta ? 1 : steps + 1;
-    json_t *rows = json_array();
-    cli_progress prog;
-    cli_progress_start(&prog, "taylor-error", quiet);
+    /* everything the rows depend on: the whole sweep, whichever shard runs */
+    json_t *params = json_object();
+    params = cli_put(params, "order", json_integer(com.order));
+    params = cli_put(params, "taylor", json_string(tname));
+    params = cli_put(params, "method", json_string(sh_rot_method_name(m)));
+    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
+    params = cli_put(params, "lobe_exp", json_real(lobe_exp));
+    params = cli_put(params, "unit", json_string(com.degrees ? "degrees" : "radians"));
+    params = cli_put(params, have_beta ? "beta" : "beta_max", json_real(top));
+    if (!have_beta) params = cli_put(params, "steps", json_integer(steps));
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_taylor_error, params, nrow, have_shard ? &shard : NULL, com.fmt, quiet, "angles");
     for (int i = 0; i < nrow; i++) {
+        if (!cli_sweep_owns(&sw, i)) continue;
         const double b = have_beta ? beta : beta_max * i / steps;
         sh_taylor_err e;
         int st = sh_taylor_error(com.order, m, fmin(b * unit, M_PI), lobe_exp, &e);
-        if (st) { json_decref(rows); return cli_fail_status(st); }
+        if (st) { cli_sweep_free(&sw); return cli_fail_status(st); }
         json_t *r = json_object();
         r = cli_put(r, "beta", json_real(b));
         r = cli_put(r, "max", json_real(e.max));
         r = cli_put(r, "mean", json_real(e.mean));
         r = cli_put(r, "lobe", json_real(e.lobe));
-        if (!r || json_array_append_new(rows, r)) { json_decref(rows); return cli_fail("out of memory or non-finite result"); }
-        cli_progress_step(&prog, i + 1, nrow, "angles");
+        if (cli_sweep_add(&sw, i, r) == CLI_EXIT_USAGE) { cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
     }
-    json_t *root = json_object();
-    root = cli_put(root, "order", json_integer(com.order));
-    root = cli_put(root, "taylor", json_string(tname));
-    root = cli_put(root, "method", json_string(sh_rot_method_name(m)));
-    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    root = cli_put(root, "lobe_exp", json_real(lobe_exp));
-    root = cli_put(root, "unit", json_string(com.degrees ? "degrees" : "radians"));
-    root = cli_put(root, "rows", rows);
-    return cli_emit(root, com.fmt);
+    return cli_sweep_end(&sw);
 }
 
 const cli_command cmd_taylor_error = {"taylor-error", run,

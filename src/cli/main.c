@@ -9,6 +9,7 @@ extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability, cmd_f
 extern const cli_command cmd_scale, cmd_scale_interp, cmd_scale_scene;
 extern const cli_command cmd_deriv, cmd_taylor_error;
 extern const cli_command cmd_bench, cmd_plan;
+extern const cli_command cmd_merge;
 extern const cli_command cmd_orthonormality;
 extern const cli_command cmd_transfer, cmd_scene_plan, cmd_render;
 extern const cli_command cmd_cache, cmd_shadow_field;
@@ -19,6 +20,7 @@ static const cli_command *const table[] = {
     &cmd_verify, &cmd_scale, &cmd_scale_interp, &cmd_scale_scene,
     &cmd_deriv, &cmd_taylor_error,
     &cmd_bench, &cmd_plan,
+    &cmd_merge,
     &cmd_orthonormality,
     &cmd_transfer, &cmd_scene_plan, &cmd_render,
     &cmd_cache, &cmd_shadow_field,

@@ -179,11 +179,8 @@ static int cand_cmp(const void *a, const void *b)
     return (x->max_error > y->max_error) - (x->max_error < y->max_error);
 }
 
-int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
-                  int *runner_up)
+static int choose_check(const sh_rot_choose_opts *o)
 {
-    *ncand = 0;
-    *choice = *runner_up = -1;
     int st = sh_check_order(o->order);
     if (st) return st;
     if (o->order > 64) return sh_error(SH_EINVAL, "plan: order %d > 64", o->order);
@@ -191,23 +188,41 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
         return sh_error(SH_EINVAL, "plan: max beta must be in [0, pi]");
     if (!(o->tolerance > 0) || !isfinite(o->tolerance)) return sh_error(SH_EINVAL, "plan: tolerance must be > 0");
     if (!(o->beta_step > 0)) return sh_error(SH_EINVAL, "plan: beta step must be > 0");
-    int nm = 0;
-    sh_rot_method ms[SH_ROT_NMETHODS];
+    return SH_OK;
+}
+
+int sh_rot_choose_grid(const sh_rot_choose_opts *o, sh_rot_method ms[SH_ROT_NMETHODS], int *nm, int *nsteps)
+{
+    *nm = *nsteps = 0;
+    const int st = choose_check(o);
+    if (st) return st;
     for (int m = 0; m < SH_ROT_NMETHODS; m++) {
         if (m == SH_ROT_REFERENCE || sh_rot_method_max_order((sh_rot_method)m) < o->order) continue;
         if (m == SH_ROT_Z && o->max_beta > 0) continue; /* z only rotates about z */
-        ms[nm++] = (sh_rot_method)m;
+        ms[(*nm)++] = (sh_rot_method)m;
     }
+    *nsteps = 1 + (o->max_beta > 0 ? (int)ceil(o->max_beta / o->beta_step - 1e-9) : 0);
+    return SH_OK;
+}
+
+int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_shard *shard, double *err)
+{
+    sh_rot_method ms[SH_ROT_NMETHODS];
+    int nm, nsteps;
+    int st = sh_rot_choose_grid(o, ms, &nm, &nsteps);
+    if (st) return st;
+    const int nbeta = nsteps - 1;
+    int mine = 0, done = 0;
+    for (int j = 0; j < nsteps; j++) mine += sh_shard_owns(shard, j) != 0;
     /* truth: the MPFR reference (every exact method is then measured, not
      * taken as the truth) up to order 32, zxzxz above */
     sh_rot_errws *w;
     if ((st = sh_rot_errws_create_conv(o->order, o->lobe_exp, o->order <= 32, o->conv, &w))) return st;
-    const int nbeta = o->max_beta > 0 ? (int)ceil(o->max_beta / o->beta_step - 1e-9) : 0;
-    for (int k = 0; k < nm; k++) {
-        cand[k] = (sh_rot_candidate){ms[k], sh_rot_method_is_exact(ms[k]), 0, 0, 0, 0, 0};
-    }
-    uint64_t seed = 0x9E3779B97F4A7C15ULL;
-    for (int j = 0; j <= nbeta && !st; j++) {
+    for (int j = 0; j < nsteps && !st; j++) {
+        if (!sh_shard_owns(shard, j)) continue;
+        /* α, γ seeded by the step, so a step's errors do not depend on
+         * which other steps are measured (shards) */
+        uint64_t seed = 0x9E3779B97F4A7C15ULL * (uint64_t)(j + 1);
         const double beta = nbeta ? o->max_beta * j / nbeta : 0;
         const double a = M_PI * ((double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 2 - 1);
         const double g = M_PI * ((double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 2 - 1);
@@ -216,16 +231,46 @@ int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncan
         for (int k = 0; k < nm && !st; k++) {
             sh_rot_error e;
             if ((st = sh_rot_errws_eval(w, ms[k], o->prec, &e))) break;
-            const double v = o->measure == SH_MEASURE_MAX ? e.max : e.lobe;
-            if (j == 0 || v > cand[k].max_error) {
-                cand[k].max_error = v;
-                cand[k].worst_beta = beta;
-            }
+            err[(size_t)j * nm + k] = o->measure == SH_MEASURE_MAX ? e.max : e.lobe;
         }
-        if (o->progress && !st) o->progress(o->progress_ctx, j + 1, nbeta + 1 + nm, "steps (measuring on the β grid)");
+        /* unsharded, the steps count on into sh_rot_choose's timing */
+        if (o->progress && !st)
+            o->progress(o->progress_ctx, ++done, shard ? mine : nsteps + nm, "steps (measuring on the β grid)");
     }
     sh_rot_errws_free(w);
+    return st;
+}
+
+int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
+                  int *runner_up)
+{
+    *ncand = 0;
+    *choice = *runner_up = -1;
+    sh_rot_method ms[SH_ROT_NMETHODS];
+    int nm, nsteps;
+    int st = sh_rot_choose_grid(o, ms, &nm, &nsteps);
     if (st) return st;
+    const int nbeta = nsteps - 1;
+    /* the errors on the β grid: given (measured by shards), or measured now */
+    double *own = NULL;
+    const double *err = o->grid_errors;
+    if (!err) {
+        if (!(own = malloc(sizeof *own * (size_t)nsteps * (nm ? nm : 1))))
+            return sh_error(SH_ENOMEM, "plan: out of memory");
+        if ((st = sh_rot_choose_errors(o, NULL, own))) { free(own); return st; }
+        err = own;
+    }
+    for (int k = 0; k < nm; k++) {
+        cand[k] = (sh_rot_candidate){ms[k], sh_rot_method_is_exact(ms[k]), 0, 0, 0, 0, 0};
+        for (int j = 0; j < nsteps; j++) {
+            const double v = err[(size_t)j * nm + k];
+            if (j == 0 || v > cand[k].max_error) {
+                cand[k].max_error = v;
+                cand[k].worst_beta = nbeta ? o->max_beta * j / nbeta : 0;
+            }
+        }
+    }
+    free(own);
     sh_bench_opts bo = SH_BENCH_OPTS_DEFAULT;
     bo.max_beta = o->max_beta; /* rotations of the scene's range */
     bo.conv = o->conv;

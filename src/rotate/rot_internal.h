@@ -225,4 +225,10 @@ void sh__rot_halfpi_set_angles(const sh_rotation *rot, int inverse, int M, doubl
 /* d^l_{m'm}(π/2), m', m = 0..l, into d[m'(l+1) + m]; work as for nj = 0. */
 void sh__rot_halfpi_delta_d(int l, void *work, double *d);
 
+/* rotation_plan.c: non-zero if the band iterator computes each band alone
+ * (a single-band routine with a per-band workspace): dropping it and asking
+ * sh_rot_band for the next band costs nothing more and holds one workspace
+ * instead of one per iterator. */
+int sh__rot_bands_single(const sh_rot_bands *it);
+
 #endif

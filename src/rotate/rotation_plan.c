@@ -970,3 +970,5 @@ void sh_rot_bands_free(sh_rot_bands *it)
     free(it->fblock);
     free(it);
 }
+
+int sh__rot_bands_single(const sh_rot_bands *it) { return it && it->kind == IT_BAND; }

@@ -45,6 +45,68 @@ static void matvec(int w, const double *B, const double *x, double *y, int trans
     }
 }
 
+/* The orthogonality probes: unit vectors from a fixed-seed LCG, the same
+ * for the block estimate and the matrix-free one (below). */
+#define ORTH_PROBE_SEED 0x9E3779B97F4A7C15ULL
+static void orth_probe(int w, uint64_t *x, double *v)
+{
+    double nn = 0;
+    for (int i = 0; i < w; i++) {
+        *x = *x * 6364136223846793005ULL + 1442695040888963407ULL;
+        v[i] = (double)(*x >> 11) / 9007199254740992.0 - 0.5;
+        nn += v[i] * v[i];
+    }
+    nn = sqrt(nn);
+    for (int i = 0; i < w; i++) v[i] /= nn;
+}
+
+static double max_diff(size_t n, const double *a, const double *b)
+{
+    double worst = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double e = fabs(a[i] - b[i]);
+        if (!(e <= worst)) worst = isnan(e) ? INFINITY : e;
+    }
+    return worst;
+}
+
+/* A row without blocks, for a method that applies one band to vectors in
+ * O(l²) (halfpi, sh_rot_band_apply): the probe estimate of orth and hom from
+ * band applications only, O(l²) per band and rotation instead of the O(l³)
+ * of forming 2n blocks.  Rᵀ is applied as the inverse rotation through the
+ * same factors (Z(θ)ᵀ = Z(−θ), the same generated d(π/2), rot_halfpi.c), so
+ * max|Rᵀ(R v) − v| is the block estimate's quantity, over the same probes;
+ * the hom probes are drawn from rng as in the block path.  x: 8·w doubles. */
+static int row_matrix_free(int l, sh_convention conv, int n, const sh_rotation *set,
+                           const sh_rotation *ab, gsl_rng *rng, double *x, sh_rot_stability_row *row)
+{
+    const size_t w = 2 * (size_t)l + 1;
+    double *p = x, *y = x + 2 * w, *z = x + 4 * w, *u = x + 6 * w;
+    uint64_t seed = ORTH_PROBE_SEED;
+    orth_probe((int)w, &seed, p);
+    orth_probe((int)w, &seed, p + w);
+    int st = SH_OK;
+    for (int k = 0; k < n && !st; k++) {
+        /* orth: Rᵀ(R v) − v, the two probes in one call each */
+        if ((st = sh_rot_band_apply(l, conv, &set[k], 0, 2, p, y))) break;
+        if ((st = sh_rot_band_apply(l, conv, &set[k], 1, 2, y, z))) break;
+        row->orth = fmax(row->orth, max_diff(2 * w, z, p));
+        /* hom: R(a)(R(b) v) − R(ab) v, b = set[(k+3) mod n] */
+        for (int probe = 0; probe < 2; probe++) {
+            double nn = 0, *q = y + probe * w;
+            for (size_t i = 0; i < w; i++) { q[i] = gsl_rng_uniform(rng) - 0.5; nn += q[i] * q[i]; }
+            nn = sqrt(nn);
+            for (size_t i = 0; i < w; i++) q[i] /= nn;
+        }
+        if ((st = sh_rot_band_apply(l, conv, &set[(k + 3) % n], 0, 2, y, z))) break;
+        if ((st = sh_rot_band_apply(l, conv, &set[k], 0, 2, z, z))) break;
+        if ((st = sh_rot_band_apply(l, conv, &ab[k], 0, 2, y, u))) break;
+        row->hom = fmax(row->hom, max_diff(2 * w, z, u));
+    }
+    if (!st && (isinf(row->orth) || isinf(row->hom))) row->broken = 1;
+    return st;
+}
+
 double sh_rot_block_orthogonality(const double *B, int w, int exact)
 {
     double worst = 0;
@@ -61,16 +123,9 @@ double sh_rot_block_orthogonality(const double *B, int w, int exact)
     double *v = malloc(3 * (size_t)w * sizeof *v);
     if (!v) return INFINITY;
     double *y = v + w, *z = v + 2 * w;
-    uint64_t x = 0x9E3779B97F4A7C15ULL; /* fixed seed: the estimate is reproducible */
+    uint64_t x = ORTH_PROBE_SEED;
     for (int probe = 0; probe < 2; probe++) {
-        double nn = 0;
-        for (int i = 0; i < w; i++) {
-            x = x * 6364136223846793005ULL + 1442695040888963407ULL;
-            v[i] = (double)(x >> 11) / 9007199254740992.0 - 0.5;
-            nn += v[i] * v[i];
-        }
-        nn = sqrt(nn);
-        for (int i = 0; i < w; i++) v[i] /= nn;
+        orth_probe(w, &x, v);
         matvec(w, B, v, y, 0);
         matvec(w, B, y, z, 1);
         for (int i = 0; i < w; i++) {
@@ -99,28 +154,66 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         if (bands[q] < 0 || bands[q] > lmax || (q && bands[q] <= bands[q - 1]))
             return sh_error(SH_EINVAL, "stability: bands must increase within 0..%d", lmax);
 
-    const size_t W = 2 * (size_t)lmax + 1;
+    /* bands above exact_max and ref_max of a method that applies a band to
+     * vectors (halfpi, in double) need no block: row_matrix_free */
+    const int mfree = method == SH_ROT_HALFPI && prec == SH_PREC_DOUBLE;
+    int lblk = lmax; /* the largest band that needs blocks */
+    if (mfree) {
+        lblk = 0;
+        for (int q = 0; q < nbands; q++) {
+            const int l = bands ? bands[q] : q;
+            if (l <= exact_max || l <= ref_max) lblk = l;
+        }
+    }
+    /* the n blocks of the set and one block of a product (n + 1 blocks of
+     * W² doubles: 5.6 GB at band 4000) */
+    const size_t W = 2 * (size_t)lblk + 1, WV = 2 * (size_t)lmax + 1;
     sh_rot_bands **it = calloc(2 * (size_t)n, sizeof *it);
-    double *blk = malloc(2 * (size_t)n * W * W * sizeof *blk);
-    double *ref = malloc(W * W * sizeof *ref), *v = malloc(6 * W * sizeof *v);
+    double *blk = malloc(((size_t)n + 1) * W * W * sizeof *blk);
+    const size_t WR = 2 * (size_t)(ref_max < 0 ? 0 : ref_max < lmax ? ref_max : lmax) + 1; /* bands with ref */
+    double *ref = malloc(WR * WR * sizeof *ref), *v = malloc(8 * WV * sizeof *v);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!it || !blk || !ref || !v || !rng) {
         st = sh_error(SH_ENOMEM, "stability: out of memory (lmax %d)", lmax);
         goto done;
     }
-    gsl_rng_set(rng, 7);
     for (int k = 0; k < 2 * n && !st; k++)
-        st = sh_rot_bands_create(method, prec, conv, lmax, k < n ? &set[k] : &ab[k - n], &it[k]);
+        st = sh_rot_bands_create(method, prec, conv, lblk, k < n ? &set[k] : &ab[k - n], &it[k]);
+    /* a method that computes each band alone gets each block from
+     * sh_rot_band (one workspace at a time: 2n of them, each sized for lmax,
+     * would be 20 GB at band 4000 for blanco); the others keep their
+     * iterators (streams, stored plans) */
+    const int single = !st && sh__rot_bands_single(it[0]);
+    for (int k = 0; single && k < 2 * n; k++) {
+        sh_rot_bands_free(it[k]);
+        it[k] = NULL;
+    }
+#define GET_BLOCK(k, l, out)                                                                   \
+    (single ? sh_rot_band((l), method, prec, conv, (k) < n ? &set[k] : &ab[(k) - n], (out))   \
+            : sh_rot_bands_get(it[k], (l), (out)))
     for (int q = 0; q < nbands && !st; q++) {
         const int l = bands ? bands[q] : q;
         const int w = 2 * l + 1;
-        for (int k = 0; k < 2 * n && !st; k++) st = sh_rot_bands_get(it[k], l, blk + (size_t)k * W * W);
-        if (st) break;
         sh_rot_stability_row row = {.band = l, .orth_exact = l <= exact_max, .have_ref = l <= ref_max};
+        /* the probes are seeded by the band, so a band's row is the same
+         * whichever other bands are computed (--bands, shards) */
+        gsl_rng_set(rng, 7 + (unsigned long)l);
+        if (l > lblk) {
+            if ((st = row_matrix_free(l, conv, n, set, ab, rng, v, &row))) break;
+            if (cb && (st = cb(&row, ctx))) break;
+            if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
+            continue;
+        }
+        for (int k = 0; k < n && !st; k++) st = GET_BLOCK(k, l, blk + (size_t)k * W * W);
+        if (st) break;
         double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
         for (int k = 0; k < n; k++) {
             const double *A = blk + (size_t)k * W * W;
-            const double *B = blk + (size_t)((k + 3) % n) * W * W, *C = blk + (size_t)(n + k) * W * W;
+            const double *B = blk + (size_t)((k + 3) % n) * W * W;
+            double *C = blk + (size_t)n * W * W;
+            if ((st = GET_BLOCK(n + k, l, C))) break;
+            for (int i = 0; i < w * w && !row.broken; i++)
+                if (!isfinite(C[i])) row.broken = 1;
             row.orth = fmax(row.orth, sh_rot_block_orthogonality(A, w, row.orth_exact));
             for (int probe = 0; probe < 2; probe++) {
                 double nn = 0;
@@ -139,11 +232,12 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
         }
         if (st) break;
         /* fmax drops NaN, so look at the blocks themselves */
-        for (size_t i = 0; i < 2 * (size_t)n * W * W && !row.broken; i += 1)
+        for (size_t i = 0; i < (size_t)n * W * W && !row.broken; i += 1)
             if ((i % (W * W)) < (size_t)w * w && !isfinite(blk[i])) row.broken = 1;
         if (cb && (st = cb(&row, ctx))) break;
         if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
     }
+#undef GET_BLOCK
 done:
     if (it)
         for (int k = 0; k < 2 * n; k++) sh_rot_bands_free(it[k]);

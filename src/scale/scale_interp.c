@@ -65,10 +65,44 @@ int sh_scale_interp_error_progress(int order, const sh_scaling *base, int sample
                                    sh_scale_interp_kind interp, int dense,
                                    sh_scale_interp_result *res, sh_progress_fn fn, void *ctx)
 {
+    if (!res) return sh_error(SH_EINVAL, "scale-interp: missing argument");
+    if (dense < 2 || dense > 100000) return sh_error(SH_EINVAL, "scale-interp: dense grid of %d points (2..100000)", dense);
+    sh_scale_interp_point *pts = malloc(sizeof *pts * (size_t)dense);
+    if (!pts) return sh_error(SH_ENOMEM, "scale-interp: out of memory");
+    int st = sh_scale_interp_points(order, base, samples, spacing, kmin, kmax, interp, dense, NULL, pts, fn, ctx);
+    if (!st) st = sh_scale_interp_reduce(pts, dense, res);
+    free(pts);
+    return st;
+}
+
+int sh_scale_interp_reduce(const sh_scale_interp_point *pts, int dense, sh_scale_interp_result *res)
+{
+    if (!pts || !res || dense < 1) return sh_error(SH_EINVAL, "scale-interp: missing argument");
+    /* the first point with the largest error, and the sums in grid order
+     * (so that shards joined by item reproduce the one-process result) */
+    double emax = 0.0, esum = 0.0, wsum = 0.0, kworst = pts[0].k;
+    for (int d = 0; d < dense; d++) {
+        if (pts[d].max_error > emax) { emax = pts[d].max_error; kworst = pts[d].k; }
+        esum += pts[d].sum_sq;
+        wsum += pts[d].weight;
+    }
+    res->max_error = emax;
+    res->rms_error = sqrt(esum / wsum);
+    res->worst_k = kworst;
+    if (!isfinite(res->max_error) || !isfinite(res->rms_error))
+        return sh_error(SH_ENUM, "scale-interp: error is not finite");
+    return SH_OK;
+}
+
+int sh_scale_interp_points(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
+                           double kmin, double kmax, sh_scale_interp_kind interp, int dense,
+                           const sh_shard *shard, sh_scale_interp_point *pts, sh_progress_fn fn,
+                           void *ctx)
+{
     int st = sh_check_order(order);
     if (st) return st;
     if (order > SH_SCALE_MAX_ORDER) return sh_error(SH_EINVAL, "scale-interp: order %d is above %d", order, SH_SCALE_MAX_ORDER);
-    if (!base || !res) return sh_error(SH_EINVAL, "scale-interp: missing argument");
+    if (!base || !pts) return sh_error(SH_EINVAL, "scale-interp: missing argument");
     if (spacing != SH_SPACING_GEOMETRIC && spacing != SH_SPACING_UNIFORM)
         return sh_error(SH_EINVAL, "scale-interp: unknown spacing");
     if (interp != SH_INTERP_LINEAR && interp != SH_INTERP_CUBIC)
@@ -87,6 +121,8 @@ int sh_scale_interp_error_progress(int order, const sh_scaling *base, int sample
     if ((st = sh_scaling_check(&s))) return st;
     s.k = kmax;
     if ((st = sh_scaling_check(&s))) return st;
+    int mine = 0, done = 0;
+    for (int d = 0; d < dense; d++) mine += sh_shard_owns(shard, d) != 0;
 
     const size_t P = sh_scale_integrals_n(order);
     double *ks = malloc(sizeof(double) * (size_t)samples);
@@ -101,23 +137,25 @@ int sh_scale_interp_error_progress(int order, const sh_scaling *base, int sample
         goto done;
     }
     double br[SH_SCALE_MAX_BREAKS];
-    /* table of the distinct θ integrals (M_ij = 2π I) at the sampled k */
+    /* table of the distinct θ integrals (M_ij = 2π I) at the sampled k
+     * (every shard needs all of it) */
     for (int q = 0; q < samples && !st; q++) {
         s.k = ks[q] = sh_scale_grid_point(spacing, kmin, kmax, q, samples);
         const int nb = sh_scale_breaks(&s, br);
         st = sh_scale_integrals_tau(order, sh_scale_family_tau, &s, s.energy, br, nb, I, work);
         for (size_t p = 0; p < P; p++) tab[p * samples + q] = 2.0 * M_PI * I[p];
-        if (fn && !st) fn(ctx, q + 1, samples + dense, "steps (tabulating the sampled k)");
+        if (fn && !st) fn(ctx, q + 1, samples + mine, "steps (tabulating the sampled k)");
     }
     if (st) goto done;
-    /* error on the dense grid: each integral of block m > 0 stands for the
+    /* error at each dense point: each integral of block m > 0 stands for the
      * two entries (m, −m), so it counts twice in the RMS. */
-    double emax = 0.0, esum = 0.0, wsum = 0.0, kworst = kmin;
     gsl_error_handler_t *old = gsl_set_error_handler_off();
     for (int d = 0; d < dense && !st; d++) {
+        if (!sh_shard_owns(shard, d)) continue;
         s.k = sh_scale_grid_point(spacing, kmin, kmax, d, dense);
         const int nb = sh_scale_breaks(&s, br);
         st = sh_scale_integrals_tau(order, sh_scale_family_tau, &s, s.energy, br, nb, I, work);
+        sh_scale_interp_point pt = {s.k, 0.0, 0.0, 0.0};
         size_t p = 0;
         for (int m = 0; m < order && !st; m++) {
             const size_t nbm = (size_t)(order - m) * (order - m);
@@ -134,21 +172,15 @@ int sh_scale_interp_error_progress(int order, const sh_scaling *base, int sample
                     break;
                 }
                 const double err = fabs(v - 2.0 * M_PI * I[p]);
-                if (err > emax) { emax = err; kworst = s.k; }
-                esum += wgt * err * err;
-                wsum += wgt;
+                if (!(err <= pt.max_error)) pt.max_error = err; /* NaN propagates */
+                pt.sum_sq += wgt * err * err;
+                pt.weight += wgt;
             }
         }
-        if (fn && !st) fn(ctx, samples + d + 1, samples + dense, "steps (checking the dense k grid)");
+        pts[d] = pt;
+        if (fn && !st) fn(ctx, samples + ++done, samples + mine, "steps (checking the dense k grid)");
     }
     gsl_set_error_handler(old);
-    if (!st) {
-        res->max_error = emax;
-        res->rms_error = sqrt(esum / wsum);
-        res->worst_k = kworst;
-        if (!isfinite(res->max_error) || !isfinite(res->rms_error))
-            st = sh_error(SH_ENUM, "scale-interp: error is not finite");
-    }
 done:
     if (gi) gsl_interp_free(gi);
     if (acc) gsl_interp_accel_free(acc);

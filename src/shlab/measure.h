@@ -216,12 +216,22 @@ typedef struct {
      * tests use it to be deterministic); mults are then not counted (0) */
     double (*cost)(void *ctx, sh_rot_method m, int order);
     void *cost_ctx;
+    /* optional: the errors on the β grid, as sh_rot_choose_errors writes them
+     * for every step (measured by shards of a sweep), instead of measuring */
+    const double *grid_errors;
 } sh_rot_choose_opts;
 /* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
  * time first, then the others by error); *ncand their count; *choice and
  * *runner_up index cand (−1 when none). */
 int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
                   int *runner_up);
+/* The β grid of sh_rot_choose as a sweep: the candidate methods (ms, *nm)
+ * and the steps j = 0..nsteps−1 (β_j = max_beta·j/(nsteps−1); α, γ seeded by
+ * j).  sh_rot_choose_errors writes err[j·nm + k], the error of ms[k] at step
+ * j, for the steps shard owns (NULL: all; the others are left untouched);
+ * progress counts those steps. */
+int sh_rot_choose_grid(const sh_rot_choose_opts *o, sh_rot_method ms[SH_ROT_NMETHODS], int *nm, int *nsteps);
+int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_shard *shard, double *err);
 /* The smallest order ≤ max_order whose projection of the image (luminance:
  * Y, or 0.2126R + 0.7152G + 0.0722B) has relative L2 residual ≤ tol on the
  * sphere, by Parseval: ε² = (‖f‖² − Σc²)/‖f‖², ‖f‖² by the same pixel

@@ -245,9 +245,13 @@ int sh_rot_reference_band(int band, sh_convention conv, const sh_rotation *rot, 
  *   orth  max|R Rᵀ − I| (exactly for l ≤ exact_max; above, the probe
  *         estimate max|Rᵀ(R v) − v| over two seeded unit vectors v),
  *   hom   max|R(a)(R(b) v) − R(ab) v| over two unit probes, pairs (a, b) of
- *         the set (b three places after a, cyclically),
+ *         the set (b three places after a, cyclically); the probes are
+ *         seeded by the band, so a row does not depend on the other bands,
  *   ref   max|R − R_reference| (MPFR) for l ≤ ref_max, else not computed.
- * Rotations a method refuses (z: β ≠ 0) are left out of its set. */
+ * Rotations a method refuses (z: β ≠ 0) are left out of its set.  halfpi
+ * (double) forms no block for a band above exact_max and ref_max: orth and
+ * hom then come from band applications to the probes (sh_rot_band_apply,
+ * Rᵀ applied as the inverse rotation), O(l²) per band and rotation. */
 typedef struct {
     int band;
     double orth, hom, ref;

@@ -1,0 +1,149 @@
+/* cli_sweep.c — sweeps that can be split into shards (see cli.h): the
+ * runner every sweep command uses, and the shard file it writes with
+ * --shard.  `shlab merge` (cmd_merge.c) reads the files back.
+ *
+ * The unsharded run and the merge build the result the same way — the
+ * rows in item order through the kind's finish() — and a row survives the
+ * shard file exactly (reals written with 17 significant digits and read
+ * back by strtod), so the merge prints the unsharded output byte for byte. */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef SHLAB_REVISION
+#define SHLAB_REVISION "unknown"
+#endif
+
+static const char *const format_names[] = {"table", "csv", "json"};
+
+int cli_shard(const char *opt, const char *s, sh_shard *out)
+{
+    if (sh_shard_parse(s, out)) return cli_fail("%s: %s", opt, sh_last_error());
+    return 0;
+}
+
+void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, long nitems,
+                     const sh_shard *shard, cli_format fmt, int quiet, const char *what)
+{
+    memset(s, 0, sizeof *s);
+    s->kind = kind;
+    s->params = params;
+    s->rows = json_array();
+    s->nitems = nitems;
+    s->shard = shard ? *shard : (sh_shard)SH_SHARD_ALL;
+    s->sharded = shard != NULL;
+    s->fmt = fmt;
+    s->last = -1;
+    s->what = what;
+    for (long j = 0; j < nitems; j++) s->owned += sh_shard_owns(&s->shard, j);
+    if (s->sharded)
+        snprintf(s->label, sizeof s->label, "%s (shard %d/%d)", kind->command, s->shard.index, s->shard.count);
+    else
+        snprintf(s->label, sizeof s->label, "%s", kind->command);
+    cli_progress_start(&s->prog, s->label, quiet);
+}
+
+int cli_sweep_owns(const cli_sweep *s, long j)
+{
+    return !s->stopped && j >= 0 && j < s->nitems && sh_shard_owns(&s->shard, j);
+}
+
+int cli_sweep_add(cli_sweep *s, long j, json_t *row)
+{
+    if (!row || !s->rows || !s->params) {
+        json_decref(row);
+        return cli_fail("%s: out of memory or a non-finite value in a row", s->kind->command);
+    }
+    if (!cli_sweep_owns(s, j) || j <= s->last) { /* a bug in the command, not the user's */
+        json_decref(row);
+        return cli_fail("%s: internal error: item %ld out of turn", s->kind->command, j);
+    }
+    const int stop = s->kind->stops && s->kind->stops(s->params, row);
+    json_t *rec = row;
+    if (s->sharded) {
+        rec = json_object();
+        rec = cli_put(rec, "item", json_integer(j));
+        rec = cli_put(rec, "row", row);
+    }
+    if (!rec || json_array_append_new(s->rows, rec)) return cli_fail("out of memory");
+    s->last = j;
+    s->done++;
+    s->stopped = stop;
+    cli_progress_step(&s->prog, stop ? s->owned : s->done, s->owned, s->what);
+    return stop;
+}
+
+void cli_sweep_free(cli_sweep *s)
+{
+    json_decref(s->params);
+    json_decref(s->rows);
+    s->params = s->rows = NULL;
+}
+
+static int put_line(FILE *m, json_t *v)
+{
+    if (!v) return -1;
+    char *t = json_dumps(v, JSON_COMPACT | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17));
+    json_decref(v);
+    if (!t) return -1;
+    fputs(t, m);
+    fputc('\n', m);
+    free(t);
+    return 0;
+}
+
+/* The shard file: header, one line per row, end line; written in one go. */
+static int write_shard(cli_sweep *s)
+{
+    if (cli_json_bad(s->rows)) return cli_fail("%s: a row has a non-finite value; nothing printed", s->kind->command);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&buf, &len);
+    if (!m) return cli_fail("out of memory");
+    json_t *h = json_object();
+    h = cli_put(h, "command", json_string(s->kind->command));
+    h = cli_put(h, "revision", json_string(SHLAB_REVISION));
+    h = cli_put(h, "shard", json_integer(s->shard.index));
+    h = cli_put(h, "shards", json_integer(s->shard.count));
+    h = cli_put(h, "items", json_integer(s->nitems));
+    h = cli_put(h, "format", json_string(format_names[s->fmt]));
+    json_t *head = cli_put(json_object(), "shlab_shard", h);
+    head = cli_put(head, "params", json_incref(s->params));
+    int bad = put_line(m, head);
+    size_t i;
+    json_t *r;
+    json_array_foreach(s->rows, i, r) if (!bad) bad = put_line(m, json_incref(r));
+    json_t *end = json_object();
+    end = cli_put(end, "rows", json_integer((json_int_t)json_array_size(s->rows)));
+    end = cli_put(end, "stopped", json_boolean(s->stopped));
+    if (!bad) bad = put_line(m, cli_put(json_object(), "end", end));
+    else json_decref(end);
+    fclose(m);
+    if (bad || !buf) { free(buf); return cli_fail("out of memory"); }
+    const size_t w = fwrite(buf, 1, len, stdout);
+    free(buf);
+    if (w != len || fflush(stdout) != 0) return cli_fail("cannot write to standard output");
+    return CLI_EXIT_OK;
+}
+
+int cli_sweep_emit(const cli_sweep_kind *kind, json_t *result, cli_format fmt)
+{
+    const int code = result && kind->exit_code ? kind->exit_code(result) : CLI_EXIT_OK;
+    const int rc = cli_emit(result, fmt);
+    return rc == CLI_EXIT_OK ? code : rc;
+}
+
+int cli_sweep_end(cli_sweep *s)
+{
+    int rc;
+    if (!s->rows || !s->params) rc = cli_fail("out of memory");
+    else if (s->sharded) rc = write_shard(s);
+    else {
+        json_t *rows = s->rows;
+        s->rows = NULL;
+        rc = cli_sweep_emit(s->kind, s->kind->finish(s->params, rows), s->fmt);
+    }
+    cli_sweep_free(s);
+    return rc;
+}
