@@ -243,7 +243,8 @@ check: $(GEN_UNROLLED)
 EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
-               rotation_extremes rotation_cost rotation_kernels
+               rotation_extremes rotation_cost rotation_kernels \
+               highband_peers
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
@@ -321,6 +322,8 @@ $(BUILD)/peers/peer_healpix_bench: tests/peers/peer_healpix_bench.cc tests/peers
 	$(CXX) $(PEER_HEALPIX_FLAGS) -o $@ $< $(PEER_HEALPIX_LIBS)
 bench-peers:: $(BUILD)/peers/peer_healpix_bench
 	$(BUILD)/peers/peer_healpix_bench $(PEER_ARGS)
+# experiments/highband_peers runs it (peer_healpix_bench --tsv)
+report: $(BUILD)/peers/peer_healpix_bench
 else
 check: check-peer-healpix
 check-peer-healpix:
