@@ -15,6 +15,7 @@ set grid
 set xlabel "lmax (bands 0..lmax)"
 set ylabel "shlab time / peer time"
 set key left bottom Left reverse samplen 2.5 spacing 1.1 font ",10" box opaque
+set key right top Left reverse samplen 2.5 spacing 1.1 font ",10" box opaque
 set title "all-band rotation vs HEALPix C++ rotate\\_alm"
 set xrange [80:1250]
 set xtics (100, 300, 1000)
@@ -30,6 +31,7 @@ plot h index 0 using ($1*0.97):3:4:5 with yerrorlines lw 1.8 pt 7 lc rgb "#E1575
      h index 1 using 1:3:4:5 with yerrorlines lw 1.8 pt 5 lc rgb "#4E79A7" title "stream kept, one rotation", \
      h index 2 using ($1*1.03):3:4:5 with yerrorlines lw 1.8 pt 9 lc rgb "#59A14F" title "batch of 8, per rotation"
 unset arrow; unset label 1; unset label 2; unset label 3
+set key left bottom
 if (noisy eq "y") {
     set label 99 at graph 0.5, graph 0.88
 }
