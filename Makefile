@@ -250,7 +250,8 @@ check: $(GEN_UNROLLED)
 EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
-               rotation_extremes rotation_cost rotation_kernels
+               rotation_extremes rotation_cost rotation_kernels \
+               highband_peers
 # ---- scenes: experiments of src/scene/ -------------------
 EXPERIMENTS += scene_transfer scene_shading
 # ---- end scenes ---------------------------------------------------------------
@@ -338,6 +339,8 @@ $(BUILD)/peers/peer_healpix_bench: tests/peers/peer_healpix_bench.cc tests/peers
 	$(CXX) $(PEER_HEALPIX_FLAGS) -o $@ $< $(PEER_HEALPIX_LIBS)
 bench-peers:: $(BUILD)/peers/peer_healpix_bench
 	$(BUILD)/peers/peer_healpix_bench $(PEER_ARGS)
+# experiments/highband_peers runs it (peer_healpix_bench --tsv)
+report: $(BUILD)/peers/peer_healpix_bench
 else
 check: check-peer-healpix
 check-peer-healpix:

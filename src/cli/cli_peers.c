@@ -26,8 +26,8 @@ static const char help[] =
     "3 channels; libsharp: 3 calls; libsharp gets θ = acos(cosθ) and recomputes\n"
     "cosθ, so its rings differ from shlab's by an ulp).  Each repeat times the calls once,\n"
     "alternating which library goes first; ms are medians over the repeats,\n"
-    "ratio = shlab / libsharp per repeat (median, min, max), so that a load\n"
-    "shared by both sides cancels; min_ratio = the ratio of the fastest runs.\n"
+    "ratio = shlab / libsharp per repeat (median, quartiles, min, max), so that\n"
+    "a load shared by both sides cancels; min_ratio = the ratio of the fastest runs.\n"
     "With --threads 1 the clock is the thread's CPU time (both libraries run on\n"
     "the calling thread; time spent descheduled by other processes does not\n"
     "count), otherwise wall time.  agreement = ‖shlab − libsharp‖₂ / ‖libsharp‖₂\n"
@@ -46,7 +46,7 @@ static const char help[] =
     "\n"
     "JSON: {\"peer\",\"threads\",\"repeat\",\"clock\",\"kernel\",\"rows\":[{\"lmax\",\"grid\",\n"
     "       \"channels\",\"transform\",\"shlab_ms\",\"peer_ms\",\"ratio\",\"ratio_min\",\n"
-    "       \"ratio_max\",\"min_ratio\",\"agreement\",\"max_rel\"}]}\n";
+    "       \"ratio_max\",\"ratio_q1\",\"ratio_q3\",\"min_ratio\",\"agreement\",\"max_rel\"}]}\n";
 
 /* With one thread both libraries run on the calling thread, so its CPU time
  * is what each call cost, whatever else the machine runs; with more, wall time. */
@@ -72,7 +72,7 @@ static double median(double *v, int n)
 }
 
 typedef struct {
-    double shlab_ms, peer_ms, ratio, ratio_min, ratio_max, min_ratio, agree, max_rel;
+    double shlab_ms, peer_ms, ratio, ratio_min, ratio_max, ratio_q1, ratio_q3, min_ratio, agree, max_rel;
 } peer_row;
 
 /* One case: libsharp's Gauss grid (width 0) or a lat-long width × width/2
@@ -191,7 +191,11 @@ static int time_case(const peer_case *pc, int repeat, int threads, sht_isa isa, 
     }
     for (int k = 0; k < 2; k++) {
         double *num = k ? us : ts, *den = k ? up : tp, *rat = k ? rs : ra;
+        sh_bench_ratio q; /* quartiles of the per-repeat ratios (the engine's rule) */
+        if (sh_bench_paired_ratio(num, den, repeat, 0, &q)) q.q1 = q.q3 = NAN;
         qsort(rat, (size_t)repeat, sizeof *rat, cmp_d);
+        rows[k].ratio_q1 = isnan(q.q1) ? rat[0] : q.q1;
+        rows[k].ratio_q3 = isnan(q.q3) ? rat[repeat - 1] : q.q3;
         rows[k].ratio_min = rat[0];
         rows[k].ratio_max = rat[repeat - 1];
         rows[k].ratio = median(rat, repeat);
@@ -303,6 +307,8 @@ int cli_bench_peers(const cli_command *bench, int argc, char **argv)
             row = cli_put(row, "ratio", json_real(pr[t].ratio));
             row = cli_put(row, "ratio_min", json_real(pr[t].ratio_min));
             row = cli_put(row, "ratio_max", json_real(pr[t].ratio_max));
+            row = cli_put(row, "ratio_q1", json_real(pr[t].ratio_q1));
+            row = cli_put(row, "ratio_q3", json_real(pr[t].ratio_q3));
             row = cli_put(row, "min_ratio", json_real(pr[t].min_ratio));
             row = cli_put(row, "agreement", json_real(pr[t].agree));
             row = cli_put(row, "max_rel", json_real(pr[t].max_rel));

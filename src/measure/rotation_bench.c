@@ -103,7 +103,7 @@ static double quantile(const double *x, int n, double q)
 
 /* CPU time used by the whole machine (busy jiffies of /proc/stat's "cpu"
  * line, steal included) and by this process, in seconds; < 0 if unknown. */
-static double machine_busy_s(void)
+double sh_machine_busy_s(void)
 {
     FILE *f = fopen("/proc/stat", "r");
     if (!f) return -1;
@@ -189,7 +189,7 @@ int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cf
         rc = sh_error(SH_ENOMEM, "bench: out of memory");
         goto done;
     }
-    const double busy0 = machine_busy_s(), self0 = self_cpu_s(), t_start = now_ns();
+    const double busy0 = sh_machine_busy_s(), self0 = self_cpu_s(), t_start = now_ns();
     const double target = c.min_sample_ms * 1e6;
     for (int i = 0; i < ne && !rc; i++) {
         if (c.count > 0) count[i] = c.count;
@@ -219,7 +219,7 @@ int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cf
         if (sh_last_error()[0] == '\0') sh_error(rc, "bench: %s failed", e[0].name ? e[0].name : "entry");
         goto done;
     }
-    const double seconds = (now_ns() - t_start) * 1e-9, busy1 = machine_busy_s(), self1 = self_cpu_s();
+    const double seconds = (now_ns() - t_start) * 1e-9, busy1 = sh_machine_busy_s(), self1 = self_cpu_s();
     double off_all = 0, wall_all = 0, worst = 0;
     int worst_i = 0;
     for (int i = 0; i < ne; i++) {

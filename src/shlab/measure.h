@@ -140,6 +140,11 @@ int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cf
  * noisy when spread > noise_spread (0 → 0.05). */
 typedef struct { double median, q1, q3, spread; int noisy; } sh_bench_ratio;
 int sh_bench_paired_ratio(const double *a, const double *b, int n, double noise_spread, sh_bench_ratio *r);
+/* CPU seconds the whole machine has been busy (/proc/stat: all but idle and
+ * iowait, steal included); < 0 where unknown.  Its increase over an interval,
+ * minus the CPU time of one's own process (and children), divided by the
+ * interval, is the load of other processes (the criterion's "load"). */
+double sh_machine_busy_s(void);
 /* An entry that times one rotation method as sh_rot_bench does (per rotation
  * or batched; units = vectors rotated per iteration; mults counted).  Free
  * it with sh_bench_entry_free. */
