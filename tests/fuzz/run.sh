@@ -8,7 +8,8 @@
 # input), leak or sanitizer report stops it, saves the input as
 # BUILD/fuzz/artifacts/<h>-crash-*, and makes this script fail.  Prints one
 # line per harness (executions, wall time, executions per second, coverage
-# as libFuzzer's cov/ft, corpus size) and a total.
+# as libFuzzer's cov/ft, corpus size) and a total; after a failure, the
+# harness's contract message (replaying the saved input).
 set -u
 B=$1; T=$2; shift 2
 runs_opt=; [ -n "${FUZZ_RUNS:-}" ] && runs_opt="-runs=$FUZZ_RUNS"
@@ -34,6 +35,10 @@ for h in "$@"; do
         failed=$((failed + 1))
         echo "fuzz $h: FAILED after $runs executions in $secs s (exit $rc); see $log"
         grep -E 'ERROR|SUMMARY|fuzz contract|Test unit written' "$log" | head -8
+        # -close_fd_mask hid the harness's own message: replay the input once
+        for a in $(sed -n "s/.*Test unit written to \(.*\)$/\1/p" "$log"); do
+            "$B/fuzz/fuzz_$h" "$a" 2>&1 | grep -E '^fuzz contract' | head -1
+        done
     fi
 done
 echo "fuzz: $total executions in total, $failed harness(es) failed"
