@@ -203,8 +203,10 @@ check: deps-quiet $(BUILD)/shlab $(TEST_BIN) $(FUZZ_REPLAY)
 # One harness per input kind: tests/fuzz/fuzz_<h>.c.  make check links each to
 # a corpus-replay main and replays tests/fuzz/corpus/<h>/ (tests/cli/
 # test_fuzz_corpus.sh; with ASan/UBSan under SANITIZE=1).  make fuzz builds
-# them with clang's libFuzzer and runs each for FUZZ_TIME seconds.
+# them with clang's libFuzzer and runs each for FUZZ_TIME seconds (0: no
+# limit) or, with FUZZ_RUNS=N, until N executions, whichever comes first.
 FUZZ_TIME    ?= 60
+FUZZ_RUNS    ?=
 CLI_LIB_OBJ  := $(filter-out $(BUILD)/obj/cli/main.o,$(CLI_OBJ))
 FUZZ_SRC     := tests/fuzz/fuzz.h tests/fuzz/stubs.c
 
@@ -227,7 +229,7 @@ fuzz-build: $(FUZZ_HARNESS:%=$(BUILD)/fuzz/fuzz_%)
 fuzz:
 	@tools/deps.sh --fuzz --quiet
 	@$(MAKE) --no-print-directory SANITIZE=fuzz fuzz-build
-	@tests/fuzz/run.sh build/libfuzzer $(FUZZ_TIME) $(FUZZ_HARNESS)
+	@FUZZ_RUNS=$(FUZZ_RUNS) tests/fuzz/run.sh build/libfuzzer $(FUZZ_TIME) $(FUZZ_HARNESS)
 
 # ---- generated code ---------------------------------------------------------
 # src/rotate/rot_unrolled_gen.h is written by tools/gen_rot_unrolled.c (its

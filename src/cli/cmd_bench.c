@@ -613,7 +613,7 @@ static int run(int argc, char **argv)
         root = cli_put(root, "noise", json_string(why));
         root = cli_put(root, "offcpu", json_real(offcpu));
         root = cli_put(root, "load", json_real(load));
-        if (noisy) fprintf(stderr, "bench: warning: noisy run (%s); do not draw conclusions from it\n", why);
+        if (noisy) cli_warn("bench: noisy run (%s); do not draw conclusions from it", why);
     }
     root = cli_put(root, "rows", rows);
     return cli_emit(root, com.fmt);

@@ -307,7 +307,7 @@ int SH_R(sh__rot_blanco_blocks_par)(int order, const sh_real *par, const void *t
  * crosses (at most) the evanescent zone above m+, where it is the dominant
  * solution, and then the oscillatory zone.  The rest follows from (S).
  * Scaling: the row is computed with the seed set to 1 and rescaled by
- * 2^−300 whenever it exceeds 2^300; the seed itself is kept as a mantissa
+ * 2^−300 (as often as needed) whenever it exceeds 2^300; the seed itself is kept as a mantissa
  * and a power of two (a ratio recurrence along m', started at the larger
  * corner c^{2l} or s^{2l}) so that nothing underflows before the end.
  * β > π/2 is reflected to π − β (not needed for stability — see above —
@@ -383,8 +383,12 @@ int sh__rot_blanco_band_d(int l, const sh_rotation *rot, double *block, void *wo
                 double xn = (((double)m * two_c - (double)mp * two_i) * x - A[m + 1 + l] * xp) / A[m + l];
                 xp = x;
                 x = xn;
+                /* a loop, not one step: near β = 0 one step can grow x by more
+                 * than 2^300 (about 4l/sinβ: 1e150 at β = 1e-150), and x must be
+                 * back under 2^300 before the next step or it overflows */
                 if (fabs(x) > BIG) {
-                    x *= IBIG, xp *= IBIG, k++;
+                    do x *= IBIG, xp *= IBIG, k++;
+                    while (fabs(x) > BIG);
                     f = ldexp(sm[mp + l], se[mp + l] + 300 * k);
                 }
                 GG(mp, m - 1) = x * f;

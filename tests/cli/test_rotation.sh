@@ -72,3 +72,13 @@ if close "$b" 180 1e-15; then ok "euler beta = pi for a half turn about x"; else
 expect_success "rotmat band z" rotmat --band 3 --method z --euler 0.25,0,0 --format csv
 v=$(awk -F, 'NR == 2 { print $(NF-6) }' "$TMP/out")
 if close "$v" "$(awk 'BEGIN { printf "%.17g", cos(0.75) }')" 1e-15; then ok "z band 3: R[-3,-3] = cos 3θ"; else notok "R[-3,-3] = $v"; fi
+
+# found by fuzzing: an axis 1e-150 away from z (β ≈ 1e-150) made blanco's
+# single-band recurrence overflow ("non-finite value", exit 2); it must agree
+# with the MPFR reference entry by entry
+expect_success "rotmat blanco band 7, beta 1e-150" rotmat --band 7 --method blanco --axis 0,1e-150,1 --angle 0.5 --format csv
+cut -d, -f7- "$TMP/out" >"$TMP/blanco"
+"$SHLAB" rotmat --band 7 --method reference --axis 0,1e-150,1 --angle 0.5 --format csv | cut -d, -f7- >"$TMP/ref"
+if [ "$(wc -l <"$TMP/ref")" = 16 ] && paste -d, "$TMP/blanco" "$TMP/ref" | awk -F, 'NR > 1 { h = NF / 2; for (i = 2; i <= h; i++) { d = $i - $(i + h); if (d < 0) d = -d; if (!(d <= 1e-13)) exit 1 } }'; then
+    ok "blanco band 7 at beta 1e-150 = reference"
+else notok "blanco band 7 at beta 1e-150: $(head -c 300 "$TMP/blanco")"; fi

@@ -10,7 +10,9 @@
 #   - exit status 0, 1 or 2 (a signal, i.e. a crash, is a violation; a run
 #     stopped by the timeout is counted as slow, not as a violation);
 #   - exit 2: nothing on stdout and exactly one line on stderr, starting
-#     "shlab: error: ";
+#     "shlab: error: " (with stdout on /dev/full, whose failure shows only
+#     when the result is written, the run's progress and warning lines may
+#     precede it: the error line is then the last);
 #   - no sanitizer report on stderr (run it with the SANITIZE=1 build);
 #   - no temporary file (*.tmp.*) left; after an exit 2, no new file and the
 #     pre-existing files (used as --out / --emit-candidate targets) unchanged.
@@ -151,7 +153,7 @@ sub gen_command {
 }
 
 # ---- running and judging one command ---------------------------------------------
-my ($runs, $viol, $slow) = (0, 0, 0);
+my ($runs, $viol, $slow, $cur_full) = (0, 0, 0, 0);
 my %kinds;
 
 sub listing {
@@ -170,12 +172,14 @@ sub report {
     $kinds{$why}++;
     my $cmd = join(' ', map { my $s = $_; $s =~ s/([^\x20-\x7e])/sprintf('\\x%02x', ord $1)/ge;
                               length($s) > 80 ? substr($s, 0, 80) . '...' : $s } @$args);
+    $cmd .= ' >/dev/full' if $cur_full;
     print "VIOLATION ($why): shlab $cmd\n";
     print $LOG "VIOLATION ($why): shlab $cmd\n" if $LOG;
 }
 
 sub run_one {
     my ($args, $full) = @_;
+    $cur_full = $full;
     $runs++;
     my $before = listing();
     my $pid = fork();
@@ -217,7 +221,13 @@ sub run_one {
         my @lines = split /\n/, $err, -1;
         pop @lines if @lines && $lines[-1] eq '';
         report('stdout not empty on exit 2', $args) if length $out;
-        report('not exactly one error line', $args) unless @lines == 1 && $lines[0] =~ /^shlab: error: /;
+        # stdout on /dev/full fails only when the result is written, after the
+        # work: the progress and warning lines of that work ("bench: ...") may
+        # precede the one error line, which must then be the last line
+        my $one = @lines == 1 && $lines[0] =~ /^shlab: error: /;
+        $one ||= $full && @lines > 1 && $lines[-1] =~ /^shlab: error: /
+                 && !grep { !/^[a-z][a-z-]*: / || /^shlab: error: / } @lines[0 .. $#lines - 1];
+        report('not exactly one error line', $args) unless $one;
     } elsif ($full && $code == 0) {
         report('exit 0 with stdout on /dev/full', $args);
     }

@@ -64,4 +64,7 @@ printf 'a0,0,1\nA1.5\nO6\nMblanco\nPfloat\n' > $C/rotation/axis_angle
 printf 'e0,0,0.7\nO3\nMz\n' > $C/rotation/z
 printf 'e0.1,0.05,0.2\nO4\nMtaylor1.5\n' > $C/rotation/taylor
 printf 'n1,2,3 4 [5]\nn1e-400\n' > $C/rotation/numbers
+# found by fuzzing: an axis 1e-150 away from z (β ≈ 1e-150), band 7 by blanco's
+# single-band recurrence was NaN
+printf 'a0,1e-150,1\nA.5\nO8\nMblanco\n' > $C/rotation/blanco_tiny_beta
 echo "make_seeds: $(find $C -type f | wc -l) files in $C"
