@@ -142,7 +142,7 @@ typedef struct {
     double ratio[2][NM][3];
     sh_bench_ratio tpr[2]; /* per-round TPR_zxzxz / TPR_taylor1.5 */
     int noisy[2];
-    char why[2][200];
+    char why[2][320];
     double uses[2];
     double us_direct[2], us_records[2];
     double frac_diffuse, p99_diffuse, frac_phong[3], p99_phong[3];
