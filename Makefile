@@ -6,6 +6,7 @@
 #   make bench-count  instructions per rotation of every method (valgrind)
 #   make probes     extract Blender's eight CC0 HDR world probes into data/probes/
 #   make models     copy the real test meshes (assimp-testmodels) into data/models/
+#   make report SCENES=full   also the scene experiments' full study (kept parts full/)
 #   make install PREFIX=/usr/local
 #   make deps       install missing Debian packages (as root) or print the command
 
@@ -270,8 +271,10 @@ experiments: $(EXP_BIN)
 
 # The report's revision stamp names the code, not the state of reports/: the
 # last commit that changed code or data (experiments/common/code_rev.sh).
+# SCENES=full: the scene experiments' full study too (their kept parts full/;
+# needs `make probes` and `make models`; about an hour on 2 cores).
 report: all $(EXP_BIN)
-	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
+	@SCENES=$(SCENES) SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
 
 # Instructions per rotated vector of every method, counted under valgrind's
 # callgrind (independent of the machine's load; `shlab bench --instructions`).

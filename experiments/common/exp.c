@@ -210,9 +210,16 @@ int exp_scene_envs(const char *dflt, const char *fallback, sh_env **envs, char n
         n++;
     }
     *have_probes = n > 0;
-    if (n) return n;
+    if (n || !fallback) return n;
     fprintf(stderr, "no probes (%s) in %s (run `make probes`): analytic lights instead\n", list ? list : "", pdir);
-    snprintf(buf, sizeof buf, "%s", fallback);
+    return exp_scene_lights(fallback, envs, names, max);
+}
+
+int exp_scene_lights(const char *specs, sh_env **envs, char names[][64], int max)
+{
+    char buf[1024];
+    int n = 0;
+    snprintf(buf, sizeof buf, "%s", specs);
     for (char *tok = strtok(buf, ";"); tok && n < max; tok = strtok(NULL, ";")) {
         sh_light L;
         exp_check(sh_light_parse(tok, 0, &L), tok);
@@ -395,4 +402,32 @@ int exp_item(long item, int n, double *v)
     if (r->n != n) shard_fail("--merge: item %ld has %d values, the experiment wants %d", item, r->n, n);
     memcpy(v, r->v, sizeof *v * (size_t)n);
     return 1;
+}
+
+int exp_scene_full(void)
+{
+    const char *v = getenv("SCENES");
+    return v && !strcmp(v, "full");
+}
+
+void exp_kept(const char *part, const char *why)
+{
+    const char *name = strrchr(outdir, '/') ? strrchr(outdir, '/') + 1 : outdir;
+    char p[4200];
+    snprintf(p, sizeof p, "%s/%s/index.md", outdir, part);
+    FILE *f = fopen(p, "r");
+    char rev[64] = "";
+    if (f) {
+        /* the revision the kept part names: its first "code revision `X`" */
+        char line[8192];
+        while (!rev[0] && fgets(line, sizeof line, f)) {
+            const char *q = strstr(line, "code revision `");
+            if (q) sscanf(q + 15, "%63[^`]", rev);
+        }
+        fclose(f);
+    }
+    if (f)
+        fprintf(stderr, "%s: %s/ kept as committed (computed at code revision %s): %s\n", name, part, rev[0] ? rev : "unknown", why);
+    else
+        fprintf(stderr, "%s: %s/ not computed (%s)\n", name, part, why);
 }

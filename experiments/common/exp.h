@@ -100,5 +100,15 @@ int exp_scene_envs(const char *dflt, const char *fallback, sh_env **envs, char n
  * missing there ends the run with an error).  Values are kept exactly. */
 int exp_computes(long item);
 int exp_item(long item, int n, double *v);
+/* (fallback NULL: no analytic lights; returns 0 when no probe is there.) */
+/* The analytic lights of specs (;-separated sh_light_parse specs). */
+int exp_scene_lights(const char *specs, sh_env **envs, char names[][64], int max);
+
+/* The scene experiments' full study: `make report SCENES=full` (env SCENES). */
+int exp_scene_full(void);
+/* One line on stderr for a kept part left as it is: "NAME: PART/ kept as
+ * committed (computed at code revision R): WHY" (R read from the part's
+ * index.md), or "NAME: PART/ not computed (WHY)" when there is none. */
+void exp_kept(const char *part, const char *why);
 
 #endif

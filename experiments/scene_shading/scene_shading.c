@@ -5,13 +5,17 @@
  * restated in shading units); the transfer's ray count as the error floor;
  * pictures.
  *
- * Scenes: the procedural sphere-plane, bowl and box-open, and Wuson.ply
- * (`make models`; skipped with a line when absent).  Environments: the
- * probes in data/probes (`make probes`), or, when there are none, two
- * analytic lights (a CIE clear sky and Green's light), said so in the report.
- * Shading: shadowed transfer, 4096 rays per vertex, albedo 1, at 200 seeded
- * vertices per scene; reference: 16384 pixel blocks × 4 replications (the
- * rotation study: 100 vertices, 8192 blocks, its own ref_l2 reported). */
+ * Parts (exp.h).  The deterministic part: the procedural sphere-plane,
+ * bowl and box-open under two analytic lights (a CIE clear sky and Green's
+ * light), short sizes (CFG_SHORT: nothing to download, about a minute).
+ * The kept part full/: `make report SCENES=full` — every probe of
+ * data/probes (`make probes`; SCENE_PROBES=a,b: some) on the procedural
+ * scenes and Wuson.ply (`make models`), full sizes (CFG_FULL: 150 vertices,
+ * references of 16384 blocks × 4 replications, ...); without SCENES=full or
+ * its inputs it is kept as it is, naming the revision that computed it.
+ * Shading: shadowed transfer, 4096 rays per vertex, albedo 1.  Every vertex
+ * draws from its own seeded stream, so the results do not depend on the
+ * threads. */
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +32,22 @@ static const sh_rot_method taylor[3] = {SH_ROT_TAYLOR1, SH_ROT_TAYLOR15, SH_ROT_
 static const double betas_deg[] = {0, 5, 10, 20, 30, 45};
 #define NBETA ((int)(sizeof betas_deg / sizeof *betas_deg))
 static const double ALPHA = 0.7, GAMMA = -0.4;
+
+/* The sizes of one run of the study.  The default (the deterministic part)
+ * is short; the full study (the kept part full/, `make report SCENES=full`)
+ * is the one of the literature-scale numbers. */
+typedef struct {
+    int nverts;      /* vertices of the order study per scene × environment */
+    long ref;        /* reference blocks per replication */
+    int rot_nverts;  /* vertices of the rotation study (reference per β) */
+    int ray_nverts;  /* vertices of the ray-count study */
+    int nrays;       /* ray counts 256·4^k, k < nrays */
+    int fig_nverts;  /* Figure 3: vertices, reference blocks */
+    long fig_ref;
+    long pic_ref;    /* the pictures' reference blocks (every vertex) */
+} config;
+static const config CFG_FULL = {150, 16384, 60, 200, 4, 100, 8192, 4096};
+static const config CFG_SHORT = {60, 8192, 30, 60, 3, 40, 4096, 2048};
 
 static int cmps(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
@@ -57,7 +77,7 @@ static double beta_limit(const double *errors, double budget)
     return lim;
 }
 
-static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_env *env, int order, const double view[3])
+static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_env *env, int order, const double view[3], long pic_ref)
 {
     /* reference | SH order n | error, at every vertex */
     const int nv = m->nvert, n2 = order * order;
@@ -81,7 +101,7 @@ static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_en
         free(B);
     }
     sh_reference_opts ro = {0};
-    ro.samples = 4096;
+    ro.samples = pic_ref;
     ro.replications = 2;
     ro.albedo = 0.8;
     sh_transfer_stats rs;
@@ -135,69 +155,17 @@ static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_en
     free(T); free(L); free(col); free(Y); free(ref); free(se); free(refcol);
 }
 
-int main(int argc, char **argv)
+/* The study (into the current part): scenes × environments with the sizes
+ * of cf; Wuson when have_models; sfx is appended to the claim ids. */
+static void study(const config *cf, envrec *envs, int ne, int have_probes, int have_models, const char *wuson, const char *sfx)
 {
-    exp_init(argc, argv);
-    /* ---- environments */
-    envrec envs[MAXENV];
-    int ne = 0, have_probes = 0;
-    const char *pdir = getenv("PROBES_DIR") ? getenv("PROBES_DIR") : "data/probes";
-    DIR *d = opendir(pdir);
-    char *names[MAXENV];
-    int np = 0;
-    if (d) {
-        struct dirent *e;
-        while ((e = readdir(d)) && np < MAXENV) {
-            const size_t L = strlen(e->d_name);
-            if (L > 4 && !strcmp(e->d_name + L - 4, ".exr")) names[np++] = strdup(e->d_name);
-        }
-        closedir(d);
-    }
-    qsort(names, np, sizeof *names, cmps);
-    /* SCENE_PROBES=a,b: only these probes (names without .exr) */
-    const char *only = getenv("SCENE_PROBES");
-    for (int k = 0; k < np; k++) {
-        if (only) {
-            char want[80];
-            snprintf(want, sizeof want, ",%.*s,", (int)strlen(names[k]) - 4, names[k]);
-            char *list = malloc(strlen(only) + 3);
-            sprintf(list, ",%s,", only);
-            const int keep = strstr(list, want) != NULL;
-            free(list);
-            if (!keep) { free(names[k]); continue; }
-        }
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s", pdir, names[k]);
-        sh_image img;
-        exp_check(sh_exr_read(path, &img, NULL), path);
-        exp_check(sh_env_from_image(&img, &envs[ne].env), path);
-        sh_image_free(&img);
-        snprintf(envs[ne].name, sizeof envs[ne].name, "%.*s", (int)strlen(names[k]) - 4, names[k]);
-        ne++;
-        free(names[k]);
-    }
-    have_probes = ne > 0;
-    if (!have_probes) {
-        fprintf(stderr, "scene_shading: no probes in %s (run `make probes`): analytic lights instead\n", pdir);
-        const char *specs[2] = {"cie-clear:0.6,0.5", "green"};
-        for (int k = 0; k < 2; k++) {
-            sh_light L;
-            exp_check(sh_light_parse(specs[k], 0, &L), "light");
-            exp_check(sh_env_from_light(&L, &envs[ne].env), "light");
-            snprintf(envs[ne].name, sizeof envs[ne].name, "%s", specs[k]);
-            ne++;
-        }
-    }
     /* ---- scenes */
-    const char *mdir = getenv("MODELS_DIR") ? getenv("MODELS_DIR") : "data/models";
-    char wuson[4096];
-    snprintf(wuson, sizeof wuson, "%s/Wuson.ply", mdir);
-    const int have_models = access(wuson, R_OK) == 0;
-    if (!have_models) fprintf(stderr, "scene_shading: Wuson SKIPPED — no %s (run `make models`)\n", wuson);
     const char *scenes[4] = {"sphere-plane", "bowl", "box-open", "Wuson"};
     const int nscenes = have_models ? 4 : 3;
 
-    FILE *fo = exp_data("scene_orders.dat", "relative L2 shading error vs order (shadowed transfer 4096 rays, 150 vertices)",
+    char title[256];
+    snprintf(title, sizeof title, "relative L2 shading error vs order (shadowed transfer 4096 rays, %d vertices)", cf->nverts);
+    FILE *fo = exp_data("scene_orders.dat", title,
                         "order rel_l2 rel_max ref_l2 (one block per scene x environment, in the order of scene_pairs.txt)");
     FILE *fn = exp_data("scene_pairs.txt", "scene x environment of each block of scene_orders.dat", "scene environment");
     FILE *fp = exp_data("scene_plan.dat", "smallest order for 1 % and 5 % and largest β (degrees) per Taylor method",
@@ -226,9 +194,9 @@ int main(int argc, char **argv)
             sh_study_opts so = {0};
             so.max_order = MAXN;
             so.rays = 4096;
-            so.nverts = 150;
+            so.nverts = cf->nverts;
             so.seed = 1;
-            so.ref.samples = 16384;
+            so.ref.samples = cf->ref;
             so.ref.replications = 4;
             sh_study *st;
             exp_check(sh_study_create(s, envs[ei].env, &so, &st), "study");
@@ -266,8 +234,8 @@ int main(int argc, char **argv)
             double lim[2][3] = {{-1, -1, -1}, {-1, -1, -1}}, rot_ref = 0;
             int orot[2] = {-1, -1};
             {
-                so.nverts = 60;
-                so.ref.samples = 16384;
+                so.nverts = cf->rot_nverts;
+                so.ref.samples = cf->ref;
                 exp_check(sh_study_create(s, envs[ei].env, &so, &st), "study");
                 static double e[4][MAXN + 1][NBETA]; /* method (exact, T1, T1.5, T2) × order × β */
                 for (int j = 0; j < NBETA; j++) {
@@ -340,14 +308,14 @@ int main(int argc, char **argv)
     FILE *fr = exp_data("scene_rays.dat", "relative L2 shading error vs order for transfer ray counts (one block per count)",
                         "order rel_l2 rays_per_vertex ref_l2");
     const long rays[4] = {256, 1024, 4096, 16384};
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < cf->nrays; k++) {
         exp_progress("rays %ld", rays[k]);
         sh_study_opts so = {0};
         so.max_order = MAXN;
         so.rays = rays[k];
-        so.nverts = 200;
+        so.nverts = cf->ray_nverts;
         so.seed = 1;
-        so.ref.samples = 16384;
+        so.ref.samples = cf->ref;
         so.ref.replications = 4;
         sh_study *st;
         exp_check(sh_study_create(s, envs[fig_env].env, &so, &st), "study");
@@ -369,9 +337,9 @@ int main(int argc, char **argv)
         sh_study_opts so = {0};
         so.max_order = 8;
         so.rays = 4096;
-        so.nverts = 100;
+        so.nverts = cf->fig_nverts;
         so.seed = 1;
-        so.ref.samples = 8192;
+        so.ref.samples = cf->fig_ref;
         so.ref.replications = 4;
         sh_study *st;
         exp_check(sh_study_create(s, envs[fig_env].env, &so, &st), "study");
@@ -414,21 +382,25 @@ int main(int argc, char **argv)
               "one ray per block of pixels drawn in proportion to the light; independent replications give its "
               "standard error). Measures over the studied vertices: rel_l2 = √Σ(B_n − ref)² / √Σ ref², rel_max = "
               "max |B_n − ref| / RMS(ref); ref_l2 = √Σ se² / √Σ ref² is the reference's own error in the rel_l2 "
-              "measure. %s%s",
-              have_probes ? "Environments: Blender's CC0 world probes (`make probes`)." :
-                            "**No probes** in data/probes (run `make probes`): two analytic lights stand in.",
-              have_models ? "" : " **Wuson skipped:** no data/models/Wuson.ply (run `make models`).");
+              "measure. %s Sizes: %d vertices per scene × environment, references of %ld blocks × 4 replications.",
+              have_probes ? "Environments: Blender's CC0 world probes (`make probes`); scenes: the procedural ones and "
+                            "Wuson (`make models`)." :
+                            "Environments: two analytic lights (a CIE clear sky and Green's light) on the procedural "
+                            "scenes, so that this part needs no download and runs in a few minutes; the full study "
+                            "(Blender's probes, Wuson, more vertices and reference samples) is the part full/ below.",
+              cf->nverts, cf->ref);
     exp_index("![error vs order](scene_orders.png)\n\nRelative L2 shading error against the order, per scene (panel) and "
-              "environment (line); 150 seeded vertices, shadowed transfer with 4096 rays per vertex; the dashed "
-              "lines mark 1 %% and 5 %%. Data: [scene_orders.dat](scene_orders.dat).");
+              "environment (line); %d seeded vertices, shadowed transfer with 4096 rays per vertex; the dashed "
+              "lines mark 1 %% and 5 %%. Data: [scene_orders.dat](scene_orders.dat).",
+              cf->nverts);
     exp_index("**The order each scene needs** (the smallest n ≤ %d with rel_l2 ≤ budget, lighting as captured) and, "
               "**when the lighting turns**, R = Rz(α)Ry(β)Rz(γ) on the β grid %s° (α = 0.7, γ = −0.4 rad; the "
-              "reference recomputed with rays for each rotation at 60 vertices): the order whose exact-rotation "
+              "reference recomputed with rays for each rotation at %d vertices): the order whose exact-rotation "
               "error stays within the budget at every β, and at that order the largest grid β up to which each "
               "Taylor approximation (Křivánek et al. 2005) stays within it. – : none (no order ≤ %d, or the "
               "method fails at the first β). † : the reference's own error exceeds a tenth of the budget, so the "
               "decision is not trustworthy at that budget. Data: [scene_plan.dat](scene_plan.dat).\n\n%s",
-              MAXN, "0, 5, 10, 20, 30, 45", MAXN, table);
+              MAXN, "0, 5, 10, 20, 30, 45", cf->rot_nverts, MAXN, table);
     exp_index("**The reference against what it judges.** Of the %d (scene × environment, budget) decisions above, "
               "%d have a reference whose own error is at most a tenth of the budget; the smallest ratio of budget to "
               "ref_l2 is %.1f×, and of the SH error at the chosen order to ref_l2 %.1f×. The reference is weakest "
@@ -436,17 +408,17 @@ int main(int argc, char **argv)
               "(its error falls only as the number of blocks to the power −3/4).",
               n_decided, n_adequate, worst_budget, worst_ratio);
     exp_index("![ray count](scene_rays.png)\n\nThe transfer's own Monte Carlo error is the floor: error against order "
-              "for 256 … 16384 rays per vertex (%s × %s). The lighting's high bands multiply the transfer's noisy "
+              "for 256 … %ld rays per vertex (%s × %s, %d vertices). The lighting's high bands multiply the transfer's noisy "
               "high coefficients, so with few rays the error stops falling, then rises with the order. Data: "
               "[scene_rays.dat](scene_rays.dat).",
-              scenes[fig_scene], envs[fig_env].name);
+              rays[cf->nrays - 1], scenes[fig_scene], envs[fig_env].name, cf->ray_nverts);
     exp_index("![Figure 3 in shading units](scene_fig3.png)\n\n**Křivánek et al.'s Figure 3 restated in what a viewer "
               "sees**: the shading error (against the reference of the rotated environment) when the lighting is "
               "rotated by R = Rz(α)Ry(β)Rz(γ) with the exact rotation and the three Taylor approximations, orders 4 "
-              "and 8, %s × %s, 100 vertices. The exact rotation's curve is the SH truncation (and transfer) error "
+              "and 8, %s × %s, %d vertices. The exact rotation's curve is the SH truncation (and transfer) error "
               "alone; a Taylor curve leaves it where the approximation's error becomes visible. Data: "
               "[scene_fig3.dat](scene_fig3.dat).",
-              scenes[fig_scene], envs[fig_env].name);
+              scenes[fig_scene], envs[fig_env].name, cf->fig_nverts);
     /* ---- pictures */
     const double view1[3] = {1, -1.4, 0.9};
     int env_pic = 0;
@@ -463,7 +435,7 @@ int main(int argc, char **argv)
         exp_index("**Pictures** (camera rays through Embree, vertex values interpolated barycentrically, the "
                   "environment behind). sphere-plane under %s, order 6:",
                   envs[env_pic].name);
-        render_triplet("sphere_plane", sp, &mp, envs[env_pic].env, 6, view1);
+        render_triplet("sphere_plane", sp, &mp, envs[env_pic].env, 6, view1, cf->pic_ref);
         sh_scene_free(sp);
         sh_mesh_free(&mp);
     }
@@ -471,15 +443,99 @@ int main(int argc, char **argv)
         const double view2[3] = {1.2, -1.0, 0.35};
         exp_progress("pictures: Wuson × %s", envs[fig_env].name);
         exp_index("Wuson under %s, order 6:", envs[fig_env].name);
-        render_triplet("wuson", s, &m, envs[fig_env].env, 6, view2);
+        render_triplet("wuson", s, &m, envs[fig_env].env, 6, view2, cf->pic_ref);
     }
     sh_scene_free(s);
     sh_mesh_free(&m);
     char meas[64];
     snprintf(meas, sizeof meas, "min %.1f; %d of %d decisions >= 10", worst_budget, n_adequate, n_decided);
-    exp_claim("scene-reference-margin", "issue goal", "the reference's own error is >= 10x below the shading error budgets it decides",
-              "10", meas, ">= 10", worst_budget >= 10 ? "reproduced" : "differs", "scene_shading/scene_plan.dat");
-    for (int ei = 0; ei < ne; ei++) sh_env_free(envs[ei].env);
+    char id[96];
+    snprintf(id, sizeof id, "scene-reference-margin%s", sfx);
+    exp_claim(id, "issue goal", "the reference's own error is >= 10x below the shading error budgets it decides",
+              "10", meas, ">= 10", worst_budget >= 10 ? "reproduced" : "differs", have_probes ? "scene_shading/full/scene_plan.dat" : "scene_shading/scene_plan.dat");
     free(table);
+}
+
+
+int main(int argc, char **argv)
+{
+    exp_init(argc, argv);
+    /* ---- the deterministic part: the procedural scenes under two analytic
+     *      lights, short sizes (no download, a few minutes) */
+    {
+        envrec envs[2];
+        sh_env *e[2];
+        char nm[2][64];
+        const int ne = exp_scene_lights("cie-clear:0.6,0.5;green", e, nm, 2);
+        for (int k = 0; k < ne; k++) {
+            envs[k].env = e[k];
+            memcpy(envs[k].name, nm[k], sizeof envs[k].name);
+        }
+        study(&CFG_SHORT, envs, ne, 0, 0, NULL, "");
+        for (int k = 0; k < ne; k++) sh_env_free(envs[k].env);
+    }
+    /* ---- the kept part full/: every probe (SCENE_PROBES: some), the
+     *      procedural scenes and Wuson, full sizes; only with SCENES=full */
+    const char *mdir = getenv("MODELS_DIR") ? getenv("MODELS_DIR") : "data/models";
+    char wuson[4096];
+    snprintf(wuson, sizeof wuson, "%s/Wuson.ply", mdir);
+    if (!exp_scene_full()) {
+        exp_kept("full", "the full study runs with `make report SCENES=full` (needs `make probes` and `make models`)");
+        return 0;
+    }
+    if (access(wuson, R_OK)) {
+        exp_kept("full", "SCENES=full needs data/models/Wuson.ply (run `make models`)");
+        return 0;
+    }
+    /* ---- environments */
+    envrec envs[MAXENV];
+    int ne = 0;
+    const char *pdir = getenv("PROBES_DIR") ? getenv("PROBES_DIR") : "data/probes";
+    DIR *d = opendir(pdir);
+    char *names[MAXENV];
+    int np = 0;
+    if (d) {
+        struct dirent *e;
+        while ((e = readdir(d)) && np < MAXENV) {
+            const size_t L = strlen(e->d_name);
+            if (L > 4 && !strcmp(e->d_name + L - 4, ".exr")) names[np++] = strdup(e->d_name);
+        }
+        closedir(d);
+    }
+    qsort(names, np, sizeof *names, cmps);
+    /* SCENE_PROBES=a,b: only these probes (names without .exr) */
+    const char *only = getenv("SCENE_PROBES");
+    for (int k = 0; k < np; k++) {
+        if (only) {
+            char want[80];
+            snprintf(want, sizeof want, ",%.*s,", (int)strlen(names[k]) - 4, names[k]);
+            char *list = malloc(strlen(only) + 3);
+            sprintf(list, ",%s,", only);
+            const int keep = strstr(list, want) != NULL;
+            free(list);
+            if (!keep) { free(names[k]); continue; }
+        }
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", pdir, names[k]);
+        sh_image img;
+        exp_check(sh_exr_read(path, &img, NULL), path);
+        exp_check(sh_env_from_image(&img, &envs[ne].env), path);
+        sh_image_free(&img);
+        snprintf(envs[ne].name, sizeof envs[ne].name, "%.*s", (int)strlen(names[k]) - 4, names[k]);
+        ne++;
+        free(names[k]);
+    }
+    if (!ne) {
+        exp_kept("full", "SCENES=full needs the probes (run `make probes`)");
+        return 0;
+    }
+    exp_part("full");
+    exp_index("**The full study** (`make report SCENES=full`), computed at code revision `%s` from the probes of "
+              "`make probes` and the meshes of `make models` (kept as they are by a `make report` without "
+              "SCENES=full).",
+              exp_revision());
+    study(&CFG_FULL, envs, ne, 1, 1, wuson, "-full");
+    exp_part(NULL);
+    for (int k = 0; k < ne; k++) sh_env_free(envs[k].env);
     return 0;
 }

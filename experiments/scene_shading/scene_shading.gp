@@ -7,10 +7,12 @@ envs = system("grep -v '^#' ".pairs." | awk '{print $2}' | awk '!s[$0]++' | tr '
 NS = words(scenes)
 NE = words(envs)
 set output outdir.'/scene_orders.png'
-set multiplot layout 2,2 title "Relative L2 shading error vs SH order (shadowed transfer, 4096 rays, 150 vertices)"
+# the title from the data file's (the vertex count is the run's)
+t = system("sed -n '1s/^# relative L2 shading error vs order/Relative L2 shading error vs SH order/p' ".f)
+set multiplot layout 2,2 title t
 set logscale y
 set format y "10^{%T}"
-set yrange [1e-3:2]
+set yrange [3e-4:2]
 set xrange [1:16]
 set grid
 set xlabel "order n (bands 0..n-1)"
@@ -33,9 +35,11 @@ set key inside top right enhanced font ",10"
 unset arrow
 set arrow 1 from graph 0, first 0.01 to graph 1, first 0.01 nohead dt 2
 set arrow 2 from graph 0, first 0.05 to graph 1, first 0.05 nohead dt 2
-plot for [k=0:3] outdir.'/scene_rays.dat' index k using 1:2 with linespoints lw 2 pt 7 ps 0.6 \
+# the number of ray counts (blocks) of this run
+nb = int(system("grep -v '^#' ".outdir."/scene_rays.dat | awk 'NF {print $3}' | sort -u | wc -l"))
+plot for [k=0:nb-1] outdir.'/scene_rays.dat' index k using 1:2 with linespoints lw 2 pt 7 ps 0.6 \
      title sprintf("%d rays per vertex", 256*4**k), \
-     outdir.'/scene_rays.dat' index 3 using 1:4 with lines dt 3 lw 2 lc rgb "#555555" title "reference's own error"
+     outdir.'/scene_rays.dat' index nb-1 using 1:4 with lines dt 3 lw 2 lc rgb "#555555" title "reference's own error"
 
 # scene_fig3.png: Křivánek et al. Figure 3 in shading units
 set terminal pngcairo size 1200,520 enhanced font ",11"
@@ -43,7 +47,7 @@ set output outdir.'/scene_fig3.png'
 set multiplot layout 1,2 title "Shading error when the lighting is rotated (".fig.")" noenhanced
 set xlabel "β (degrees)"
 set xrange [0:90]
-set yrange [1e-3:2]
+set yrange [3e-4:2]
 set key inside top left font ",10"
 do for [b=0:1] {
   set title sprintf("order %d", b ? 8 : 4)

@@ -10,8 +10,11 @@
  * the sampled distance, the number of k samples of the interpolated M, a
  * moving occluder; the samples that meet a shading budget; pictures.
  *
- * Environments: courtyard and sunset (`make probes`; SCENE_PROBES
- * overrides), else two analytic lights.  Luminance shading, albedo 0.8. */
+ * Parts (exp.h): the deterministic results under two analytic lights (a
+ * CIE clear sky and Green's light; nothing to download); the kept part
+ * probes/ the same under courtyard and sunset (`make probes`; SCENE_PROBES
+ * overrides), regenerated only when they are there; the timing part the
+ * field transfers' wall time.  Luminance shading, albedo 0.8. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -119,13 +122,12 @@ static double norm(int n, const double *a)
     return sqrt(s);
 }
 
-int main(int argc, char **argv)
+/* The study under the environments envs (into the current part); sfx is
+ * appended to the claim ids; ksec receives the seconds of the field
+ * transfers of the k-samples study ([order 4/8][samples, last: M at every
+ * vertex][cone45, sphere]: the timing part). */
+static void study(sh_env **envs, char names[][64], int ne, int have_probes, const char *sfx, double ksec[2][10][2])
 {
-    exp_init(argc, argv);
-    sh_env *envs[MAXENV];
-    char names[MAXENV][64];
-    int have_probes;
-    const int ne = exp_scene_envs("courtyard,sunset", "cie-clear:0.6,0.5;green", envs, names, MAXENV, &have_probes);
     plane P;
     plane_make(&P, "sphere-plane");
     const int np = P.np;
@@ -225,7 +227,7 @@ int main(int argc, char **argv)
     const int Ks[9] = {2, 3, 4, 6, 8, 12, 20, 40, 80};
     const int sk[2] = {1, 3}; /* cone45, sphere */
     FILE *fk = exp_data("sf_samples.dat", "k samples of the interpolated scaling matrix (d0 = H)",
-                        "samples interp_rel[cone45 sphere] total_rel_l2[cone45 sphere] seconds[cone45 sphere] "
+                        "samples interp_rel[cone45 sphere] total_rel_l2[cone45 sphere] "
                         "(interp_rel = |B_K − B_direct| / |B_direct|; total vs the closed form; block 0: order 4, "
                         "block 1: order 8; the last row, samples 0, is M at every vertex)");
     double kinterp[2][9][2], ktotal[2][10][2];
@@ -248,10 +250,14 @@ int main(int argc, char **argv)
                 kinterp[b][j][t] = norm_diff(np, B, Bdir[t]) / norm(np, Bdir[t]);
                 ktotal[b][j][t] = norm_diff(np, B, Bc) / norm(np, Bc);
             }
-            fprintf(fk, "%d %.5e %.5e %.5e %.5e %.4e %.4e\n", Ks[j], kinterp[b][j][0], kinterp[b][j][1], ktotal[b][j][0],
-                    ktotal[b][j][1], sec[0], sec[1]);
+            fprintf(fk, "%d %.5e %.5e %.5e %.5e\n", Ks[j], kinterp[b][j][0], kinterp[b][j][1], ktotal[b][j][0],
+                    ktotal[b][j][1]);
+            ksec[b][j][0] = sec[0];
+            ksec[b][j][1] = sec[1];
         }
-        fprintf(fk, "0 0 0 %.5e %.5e %.4e %.4e\n\n\n", ktotal[b][9][0], ktotal[b][9][1], tdir[0], tdir[1]);
+        fprintf(fk, "0 0 0 %.5e %.5e\n\n\n", ktotal[b][9][0], ktotal[b][9][1]);
+        ksec[b][9][0] = tdir[0];
+        ksec[b][9][1] = tdir[1];
         free(Bdir[0]);
         free(Bdir[1]);
     }
@@ -424,7 +430,9 @@ int main(int argc, char **argv)
               "relative to the light the sphere takes away; most of the plane is far from the shadow, so rel_l2 dilutes "
               "it). %s",
               R, H, np, RHO,
-              have_probes ? "Environments: Blender's probes (`make probes`)." : "**No probes** (run `make probes`): analytic lights.");
+              have_probes ? "Environments: Blender's probes." :
+                            "Environments: two analytic lights (a CIE clear sky and Green's light), so that this part "
+                            "needs no download; the same study under Blender's probes is the probes part below.");
     exp_index("![error vs order](sf_orders.png)\n\nshadow_rel against the order, field sampled at d0 = H (the nearest "
               "plane point; every other receiver is farther, so the field is shrunk, k = 1 … 3). Data: "
               "[sf_orders.dat](sf_orders.dat).\n\n**Which fields meet a shading budget** (%s, rel_l2 of the plane's "
@@ -457,20 +465,65 @@ int main(int argc, char **argv)
     char meas[256];
     snprintf(meas, sizeof meas, "order 4: %.2g, order 8: %.2g (|B_40 − B_direct| / |B_direct|, cone 45°, %s)", kinterp[0][7][0],
              kinterp[1][7][0], names[0]);
-    exp_claim("wang-k-samples-scene", "Wang et al. 2006 Sec. 2.2",
+    char id[96];
+    snprintf(id, sizeof id, "wang-k-samples-scene%s", sfx);
+    exp_claim(id, "Wang et al. 2006 Sec. 2.2",
               "40 values of k in an exponential distribution, linearly interpolated, suffice (scene level: the plane's "
               "shading through the sphere's shadow field)",
               "40 samples sufficient", meas, "interpolation adds < 1 % of shading",
-              kinterp[0][7][0] < 0.01 && kinterp[1][7][0] < 0.01 ? "reproduced" : "differs", "scene_shadowfield/sf_samples.dat");
+              kinterp[0][7][0] < 0.01 && kinterp[1][7][0] < 0.01 ? "reproduced" : "differs", have_probes ? "scene_shadowfield/probes/sf_samples.dat" : "scene_shadowfield/sf_samples.dat");
     snprintf(meas, sizeof meas, "order 4: shadow_rel cone45 %.2f, cone_tangent %.2f, sphere %.2f, exact %.2f; rel_l2 cone45 %.1f %%",
              sh_rel[0][2][1], sh_rel[0][2][2], sh_rel[0][2][3], sh_rel[0][2][0], 100 * rl2[0][2][1]);
-    exp_claim("wang-cone-scene", "Wang et al. 2006 Sec. 3.1",
+    snprintf(id, sizeof id, "wang-cone-scene%s", sfx);
+    exp_claim(id, "Wang et al. 2006 Sec. 3.1",
               "the cone approximation is adequate for low-frequency shadowing (a sphere's field sampled at one distance, "
               "scaled to the plane)",
               "adequate (qualitative)", meas, "cone within 5 % shading rel_l2 at order 4",
-              rl2[0][2][1] <= 0.05 ? "reproduced" : "differs", "scene_shadowfield/sf_orders.dat");
-    for (int e = 0; e < ne; e++) sh_env_free(envs[e]);
+              rl2[0][2][1] <= 0.05 ? "reproduced" : "differs", have_probes ? "scene_shadowfield/probes/sf_orders.dat" : "scene_shadowfield/sf_orders.dat");
     free(Bc); free(Bu); free(B); free(B2); free(Lall); free(Tr); free(ref); free(se);
     plane_free(&P);
+}
+
+int main(int argc, char **argv)
+{
+    exp_init(argc, argv);
+    sh_env *envs[MAXENV];
+    char names[MAXENV][64];
+    int have_probes;
+    static double ksec[2][10][2];
+    /* the deterministic part: analytic lights (no download needed) */
+    int ne = exp_scene_lights("cie-clear:0.6,0.5;green", envs, names, MAXENV);
+    study(envs, names, ne, 0, "", ksec);
+    for (int e = 0; e < ne; e++) sh_env_free(envs[e]);
+    /* the kept part: the probes of `make probes` when they are there */
+    ne = exp_scene_envs("courtyard,sunset", NULL, envs, names, MAXENV, &have_probes);
+    if (ne) {
+        static double ks2[2][10][2];
+        exp_part("probes");
+        exp_index("Computed at code revision `%s` from the probes of `make probes` (kept as they are by a `make report` "
+                  "without them). The same study under %s%s%s:",
+                  exp_revision(), names[0], ne > 1 ? " and " : "", ne > 1 ? names[1] : "");
+        study(envs, names, ne, 1, "-probes", ks2);
+        for (int e = 0; e < ne; e++) sh_env_free(envs[e]);
+        exp_part(NULL);
+    } else {
+        exp_kept("probes", "no probes in data/probes (run `make probes`)");
+    }
+    /* the timing part: the field transfers of the k-samples study (the
+     * analytic run; the time does not depend on the light) */
+    exp_part("timing");
+    FILE *ft = exp_data("sf_seconds.dat", "wall time of the plane's field transfer (sphere-plane, d0 = H)",
+                        "samples seconds_cone45 seconds_sphere (block 0: order 4, block 1: order 8; samples 0: M at every vertex)");
+    static const int Ks[9] = {2, 3, 4, 6, 8, 12, 20, 40, 80};
+    for (int b = 0; b < 2; b++) {
+        for (int j = 0; j < 10; j++) fprintf(ft, "%d %.4e %.4e\n", j < 9 ? Ks[j] : 0, ksec[b][j][0], ksec[b][j][1]);
+        fprintf(ft, "\n\n");
+    }
+    fclose(ft);
+    exp_index("Wall time of the plane's shadow-field transfer (every plane vertex, one call each): order 4, cone 45° "
+              "field, 40 k samples %.3g s, M at every vertex %.3g s; order 8: %.3g s and %.3g s. Single runs, not "
+              "interleaved: indicative only. Data: [sf_seconds.dat](sf_seconds.dat).",
+              ksec[0][7][0], ksec[0][9][0], ksec[1][7][0], ksec[1][9][0]);
+    exp_part(NULL);
     return 0;
 }

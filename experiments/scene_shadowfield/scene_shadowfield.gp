@@ -5,7 +5,7 @@ NE = words(envs)
 set output outdir.'/sf_orders.png'
 set multiplot layout 1,NE title "Plane shading through the sphere's shadow field: error against the closed form (d0 = H)"
 set logscale y
-set yrange [0.01:3]
+set yrange [1e-3:3]
 set xrange [1.5:10.5]
 set grid
 set xlabel "order n"
@@ -28,7 +28,7 @@ set key top left font ",9"
 set title "receivers' distance (solid: order 4, dashed: 8)"
 set xlabel "k = d / d0"
 set xrange [1:3]
-set yrange [0.01:3]
+set yrange [1e-3:3]
 plot outdir.'/sf_distance.dat' index 0 using 1:3 with linespoints lw 2 pt 7 lc rgb "#000000" title "exact", \
      '' index 0 using 1:4 with linespoints lw 2 pt 5 lc rgb "#1f77b4" title "cone 45°", \
      '' index 0 using 1:5 with linespoints lw 2 pt 9 lc rgb "#2ca02c" title "cone tangent", \

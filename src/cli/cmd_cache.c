@@ -288,6 +288,12 @@ static int run(int argc, char **argv)
     ro.seed = co.seed;
     co.threads = ro.threads = sa.threads;
     ro.albedo = co.albedo;
+    /* the pictures are written as temporaries beside their targets, renamed
+     * by cli_emit once the result is out: all or none (cli_out_open) */
+    const char *opng = NULL, *odpng = NULL, *oepng = NULL;
+    if ((png && cli_out_open("cache", png, &opng)) || (dpng && cli_out_open("cache", dpng, &odpng)) ||
+        (epng && cli_out_open("cache", epng, &oepng)))
+        return CLI_EXIT_USAGE;
 
     sh_mesh m;
     sh_proc_scene ps;
@@ -417,14 +423,14 @@ static int run(int argc, char **argv)
             const double p99 = tmp[(size_t)(0.99 * (nv - 1))];
             expo = p99 > 0 ? 0.9 / p99 : 1;
         }
-        if (!e && png) e = picture(s, &cam, 3, M[pic].B, env, sa.threads, png, expo, 0);
-        if (!e && dpng) e = picture(s, &cam, 3, Bd, env, sa.threads, dpng, expo, 0);
+        if (!e && png) e = picture(s, &cam, 3, M[pic].B, env, sa.threads, opng, expo, 0);
+        if (!e && dpng) e = picture(s, &cam, 3, Bd, env, sa.threads, odpng, expo, 0);
         if (!e && epng) {
             double r2 = 0;
             for (int v = 0; v < nv; v++) r2 += Yd[v] * Yd[v];
             const double rms = sqrt(r2 / nv);
             for (int v = 0; v < nv; v++) Yc[v] = rms > 0 ? fabs(M[pic].Y[v] - Yd[v]) / rms : 0;
-            e = picture(s, &cam, 1, Yc, NULL, sa.threads, epng, 1, pa.error_max);
+            e = picture(s, &cam, 1, Yc, NULL, sa.threads, oepng, 1, pa.error_max);
         }
         free(Yc);
         free(tmp);

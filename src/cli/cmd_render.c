@@ -35,7 +35,7 @@ static const char help[] =
     "  --euler A,B,G        rotate the lighting, R = Rz(A)Ry(B)Rz(G) (also --quat,\n"
     "                       --matrix, --axis/--angle as `shlab rotate`)\n"
     "  --method M           rotation method for the lighting (default ivanic;\n"
-    "                       taylor1, taylor15, taylor2 the approximations)\n"
+    "                       taylor1, taylor1.5, taylor2 the approximations)\n"
     "  --out FILE           EXR of the shaded scene\n"
     "  --png FILE           PNG of the same\n"
     "  --exposure X         PNG scale (default: 0.9 / the 99th percentile of B_Y)\n"
@@ -193,6 +193,12 @@ static int run(int argc, char **argv)
         return cli_fail("render: the reference is of direct light; error images need --transfer shadowed or unshadowed");
     to.threads = ro.threads = sa.threads;
     ro.albedo = to.albedo;
+    /* every output file is opened (as a temporary beside its target) before
+     * any work, and renamed onto its target by cli_emit once the result is
+     * on stdout: all of them or none, an existing file intact on any error */
+    const char *paths[4] = {out, png, eout, epng}, *tmp[4] = {NULL, NULL, NULL, NULL};
+    for (int k = 0; k < 4; k++)
+        if (paths[k] && cli_out_open("render", paths[k], &tmp[k])) return CLI_EXIT_USAGE;
 
     sh_mesh m;
     sh_proc_scene ps;
@@ -278,10 +284,10 @@ static int run(int argc, char **argv)
         }
     }
     /* files last, so that a failed computation writes none */
-    if (!e) e = sh_exr_write(out, &img);
-    if (!e && png) e = sh_png_write(png, &img, exposure);
-    if (!e && eout) e = sh_exr_write(eout, &eimg);
-    if (!e && epng) e = sh_png_write(epng, &cm, 1);
+    if (!e) e = sh_exr_write(tmp[0], &img);
+    if (!e && png) e = sh_png_write(tmp[1], &img, exposure);
+    if (!e && eout) e = sh_exr_write(tmp[2], &eimg);
+    if (!e && epng) e = sh_png_write(tmp[3], &cm, 1);
     if (!e) {
         root = json_object();
         root = cli_put(root, is_proc ? "scene" : "mesh", desc);

@@ -199,6 +199,12 @@ static int run(int argc, char **argv)
         else cone = cone >= 0 ? cone * deg : M_PI / 4;
         if (!(cone > 0 && cone < M_PI)) return cli_fail("--cone-angle: must be in (0, π)");
     }
+    /* the pictures: temporaries beside their targets, renamed by cli_emit
+     * once the result is out (all or none; cli_out_open) */
+    const char *opng = NULL, *orpng = NULL, *oepng = NULL;
+    if ((png && cli_out_open("shadow-field", png, &opng)) || (rpng && cli_out_open("shadow-field", rpng, &orpng)) ||
+        (epng && cli_out_open("shadow-field", epng, &oepng)))
+        return CLI_EXIT_USAGE;
     sh_mesh m;
     sh_proc_scene ps;
     int is_proc, rc;
@@ -358,18 +364,18 @@ static int run(int argc, char **argv)
         if (ymax > 0) expo = 0.9 / ymax;
         if (!e) e = sh_camera_frame(&m, pa.view, 35, pa.width, pa.height, &cam);
         if (!e && png) {
-            if (!(e = sh_render(s, &cam, 3, col, env, sa.threads, &img))) e = sh_png_write(png, &img, expo);
+            if (!(e = sh_render(s, &cam, 3, col, env, sa.threads, &img))) e = sh_png_write(opng, &img, expo);
             sh_image_free(&img);
         }
         if (!e && rpng) {
-            if (!(e = sh_render(s, &cam, 3, colr, env, sa.threads, &img))) e = sh_png_write(rpng, &img, expo);
+            if (!(e = sh_render(s, &cam, 3, colr, env, sa.threads, &img))) e = sh_png_write(orpng, &img, expo);
             sh_image_free(&img);
         }
         if (!e && epng) {
             const double rms = sqrt(r2 / nv);
             for (int v = 0; v < nv; v++) B[v] = rms > 0 ? fabs(Y[v] - Yr[v]) / rms : 0;
             if (!(e = sh_render(s, &cam, 1, B, NULL, sa.threads, &img)) && !(e = sh_image_colormap(&img, pa.error_max, &cm)))
-                e = sh_png_write(epng, &cm, 1);
+                e = sh_png_write(oepng, &cm, 1);
             sh_image_free(&img);
             sh_image_free(&cm);
         }

@@ -667,11 +667,13 @@ static int rotctx_init(rotctx *r, const sh_cache *c, const sh_cache_rot *rot)
 
 /* The one place the cache rotates: a record's three channels from its
  * frame into the vertex's, out_c = R_sh(R) in_c, R = M_vᵀ M_i, through a
- * rotation plan — per record use: angles from the matrix, plan set, three
- * applies (the per-rotation cost `shlab bench` measures).  Taylor methods
- * hand rotations with β > β_lim to zxzxz ([1]: "the approximated rotation
- * for β < β_lim and the more costly ZXZXZ decomposition otherwise").  A
- * batched rotation API would replace this function. */
+ * rotation plan — per record use: the matrix set into the plan
+ * (sh_rot_plan_set_matrix), three applies.  Taylor methods hand rotations
+ * with β > β_lim to zxzxz ([1]: "the approximated rotation for β < β_lim and
+ * the more costly ZXZXZ decomposition otherwise").  The batch forms do not
+ * pay here: apply_many over the three channels (with the transpositions to
+ * its layout) measured 2-3x slower than three applies, and a vertex uses
+ * about two records, too few rotations for rotate_many. */
 static int cache_rotate(rotctx *r, int n2, const double R[9], double beta, const double *in, double *out, int *fellback)
 {
     sh_rot_plan *p = r->plan;

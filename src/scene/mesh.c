@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 void sh_mesh_free(sh_mesh *m)
 {
@@ -253,7 +254,11 @@ int sh_mesh_load(const char *path, int flags, sh_mesh *out, sh_mesh_report *rep)
     /* our own message for a missing file (assimp's says "Unable to open") */
     FILE *f = fopen(path, "rb");
     if (!f) return sh_error(SH_EIO, "cannot open mesh '%s': %s", path, strerror(errno));
+    struct stat sb;
+    const int regular = fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode);
     fclose(f);
+    /* a directory opens for reading; assimp would call it a scene without meshes */
+    if (!regular) return sh_error(SH_EIO, "cannot read mesh '%s': not a regular file", path);
     const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                       aiProcess_PreTransformVertices | aiProcess_SortByPType |
                                                       aiProcess_ValidateDataStructure);

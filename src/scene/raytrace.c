@@ -342,10 +342,10 @@ void sh__tangent_frame(const double n[3], double M[9])
 
 int sh__rotate_frame(sh_rot_plan *plan, const double M[9], const double *in, double *out)
 {
-    sh_rotation rot;
-    memcpy(rot.R, M, sizeof rot.R);
-    sh_euler_from_matrix(M, &rot.alpha, &rot.beta, &rot.gamma);
-    int st = sh_rot_plan_set(plan, &rot);
+    /* the matrix straight into the plan (sh_rot_plan_set_matrix: no Euler
+     * angles in between; 1.2-1.7x faster per record use than angles + set,
+     * README "Radiance cache") */
+    int st = sh_rot_plan_set_matrix(plan, M);
     if (st) return st;
     return sh_rot_plan_apply(plan, in, out);
 }

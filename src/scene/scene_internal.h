@@ -56,8 +56,8 @@ int sh__embree_status(const sh_scene *s, const char *what);
  * det M = +1 (Duff et al. 2017, "Building an orthonormal basis, revisited"),
  * so that world = M·local. */
 void sh__tangent_frame(const double n[3], double M[9]);
-/* out = R_sh(M)·in through a rotation plan (angles from the matrix, as
- * `shlab bench` does): the one function the scenes rotate with. */
+/* out = R_sh(M)·in through a rotation plan (the matrix set directly,
+ * sh_rot_plan_set_matrix): the one function the scenes rotate with. */
 int sh__rotate_frame(sh_rot_plan *plan, const double M[9], const double *in, double *out);
 
 /* Fast ray queries without error checks (call sh__embree_status after a
