@@ -214,15 +214,27 @@ static int count_instructions(void)
     if (!p) return 0;
     char line[1024];
     int rows = 0;
+    /* the columns by name, from the CSV header */
+    int cm = -1, co = -1, cd = -1, ci = -1;
     while (fgets(line, sizeof line, p)) {
-        char *f[12];
+        char *f[24];
         int nf = 0;
-        for (char *s = line, *t; nf < 12 && (t = strsep(&s, ",\n")); ) f[nf++] = t;
-        if (nf < 10 || !strcmp(f[3], "method")) continue;
+        for (char *s = line, *t; nf < 24 && (t = strsep(&s, ",\n")); ) f[nf++] = t;
+        if (cm < 0) {
+            for (int k = 0; k < nf; k++) {
+                if (!strcmp(f[k], "method")) cm = k;
+                else if (!strcmp(f[k], "order")) co = k;
+                else if (!strcmp(f[k], "mode")) cd = k;
+                else if (!strcmp(f[k], "instructions")) ci = k;
+            }
+            if (cm < 0 || co < 0 || cd < 0 || ci < 0) break;
+            continue;
+        }
+        if (nf <= ci || nf <= cm || nf <= co || nf <= cd) continue;
         sh_rot_method m;
-        const int n = atoi(f[4]);
-        if (sh_rot_method_parse(f[3], &m) || n < 2 || n > NMAX) continue;
-        INS[m][n][strcmp(f[6], "batched") == 0] = strtod(f[7], NULL);
+        const int n = atoi(f[co]);
+        if (sh_rot_method_parse(f[cm], &m) || n < 2 || n > NMAX) continue;
+        INS[m][n][strcmp(f[cd], "batched") == 0] = strtod(f[ci], NULL);
         have_ins[m] = 1;
         rows++;
     }
