@@ -59,6 +59,10 @@ int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
 /* The same from memory (buf[n] must be '\0'; `path` names it in messages). */
 int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,
                         int *nchan, char names[SH_IMAGE_MAX_CHANNELS][8]);
+/* qsort comparison of doubles (ascending), and the median of v[0..n-1]
+ * (sorts v in place; n >= 1). */
+int cli_cmp_double(const void *a, const void *b);
+double cli_median(double *v, int n);
 /* Read a whole file (at most `max` bytes, else an error naming the limit)
  * into a malloc'd, NUL-terminated buffer.  `what` names the kind of file in
  * the messages ("cannot open fixture 'F': ..."). */

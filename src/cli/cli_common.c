@@ -263,6 +263,20 @@ static int json_to_doubles(const json_t *a, double **out, int *len, const char *
     return 0;
 }
 
+/* ---- small statistics ---------------------------------------------------- */
+
+int cli_cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+double cli_median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cli_cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 /* ---- input files -------------------------------------------------------- */
 
 int cli_read_file(const char *what, const char *path, size_t max, char **buf, size_t *n)

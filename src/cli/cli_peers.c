@@ -59,18 +59,6 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static int cmp_d(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_d);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 typedef struct {
     double shlab_ms, peer_ms, ratio, ratio_min, ratio_max, ratio_q1, ratio_q3, min_ratio, agree, max_rel;
 } peer_row;
@@ -193,14 +181,14 @@ static int time_case(const peer_case *pc, int repeat, int threads, sht_isa isa, 
         double *num = k ? us : ts, *den = k ? up : tp, *rat = k ? rs : ra;
         sh_bench_ratio q; /* quartiles of the per-repeat ratios (the engine's rule) */
         if (sh_bench_paired_ratio(num, den, repeat, 0, &q)) q.q1 = q.q3 = NAN;
-        qsort(rat, (size_t)repeat, sizeof *rat, cmp_d);
+        qsort(rat, (size_t)repeat, sizeof *rat, cli_cmp_double);
         rows[k].ratio_q1 = isnan(q.q1) ? rat[0] : q.q1;
         rows[k].ratio_q3 = isnan(q.q3) ? rat[repeat - 1] : q.q3;
         rows[k].ratio_min = rat[0];
         rows[k].ratio_max = rat[repeat - 1];
-        rows[k].ratio = median(rat, repeat);
-        rows[k].shlab_ms = 1e3 * median(num, repeat); /* sorts num, den */
-        rows[k].peer_ms = 1e3 * median(den, repeat);
+        rows[k].ratio = cli_median(rat, repeat);
+        rows[k].shlab_ms = 1e3 * cli_median(num, repeat); /* sorts num, den */
+        rows[k].peer_ms = 1e3 * cli_median(den, repeat);
         rows[k].min_ratio = num[0] / den[0];
     }
 out:

@@ -472,15 +472,20 @@ static int run(int argc, char **argv)
     if (instructions && bo.count == 0) bo.count = 64;
 
     /* every plan once before the first progress line: an order that cannot
-     * be planned (memory) fails before any work is reported */
+     * be planned (memory) fails before any work is reported; the kernel each
+     * plan uses is kept for the rows */
+    sh_rot_kernel *plan_kernel = malloc((size_t)nm * nk * no * sizeof *plan_kernel);
+    if (!plan_kernel) { free(slot); return cli_fail("out of memory"); }
     for (int k = 0; k < nm; k++)
         for (int kk = 0; kk < nk; kk++)
             for (int q = 0; q < no; q++) {
                 sh_rot_plan *p;
                 if (sh_rot_plan_create_kernel(orders[q], ms[k], prec, com.conv, kernels[kk], &p)) {
                     free(slot);
+                    free(plan_kernel);
                     return cli_fail("bench: %s", sh_last_error());
                 }
+                plan_kernel[((size_t)k * nk + kk) * no + q] = sh_rot_plan_kernel(p);
                 sh_rot_plan_free(p);
             }
 
@@ -494,6 +499,7 @@ static int run(int argc, char **argv)
     sh_rot_kernel *used = calloc((size_t)ne * no, sizeof *used);
     if (!ent || !st || !smp || !ins || !rat || !mults || !noisy_order || !used) {
         free(ent); free(st); free(smp); free(ins); free(rat); free(mults); free(noisy_order); free(used); free(slot);
+        free(plan_kernel);
         return cli_fail("out of memory");
     }
     sh_bench_cfg cfg = SH_BENCH_CFG_DEFAULT;
@@ -514,11 +520,7 @@ static int run(int argc, char **argv)
             bo.kernel = kernels[s->kk];
             bo.input = s->in ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
             rc = sh_rot_bench_entry(orders[q], ms[s->k], prec, mode_of[s->md], &bo, &ent[i]);
-            sh_rot_plan *kp = NULL;
-            used[q * ne + i] = SH_KERNEL_SCALAR;
-            if (!rc && !sh_rot_plan_create_kernel(orders[q], ms[s->k], prec, com.conv, kernels[s->kk], &kp))
-                used[q * ne + i] = sh_rot_plan_kernel(kp);
-            sh_rot_plan_free(kp);
+            used[q * ne + i] = plan_kernel[((size_t)s->k * nk + s->kk) * no + q];
         }
         for (int i = 0; i < ne && !rc; i++) mults[q * ne + i] = ent[i].mults;
         if (!rc && instructions) rc = sh_bench_instructions(ent, ne, bo.count, cg_out, ins + (size_t)q * ne);
@@ -597,7 +599,7 @@ static int run(int argc, char **argv)
                 }
                 if (!row || json_array_append_new(rows, row)) { json_decref(rows); rows = NULL; }
             }
-    free(st); free(ins); free(rat); free(mults); free(noisy_order); free(used); free(slot);
+    free(st); free(ins); free(rat); free(mults); free(noisy_order); free(used); free(slot); free(plan_kernel);
     if (rc) return cli_fail_status(rc);
     if (!rows) return cli_fail("out of memory");
     json_t *root = json_object();

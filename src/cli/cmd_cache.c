@@ -92,18 +92,6 @@ static const char help[] =
     "       \"ns_per_point_min\",\"ns_per_point_max\",\"ns_per_use\",\"ratio_zxzxz\",\n"
     "       \"ratio_zxzxz_min\",\"ratio_zxzxz_max\"}]}\n";
 
-static int cmp_d(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_d);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 typedef struct {
     char name[16];
     sh_cache_rot rot;
@@ -419,7 +407,7 @@ static int run(int argc, char **argv)
         double expo = 1;
         if (!e) {
             memcpy(tmp, Yd, sizeof(double) * nv);
-            qsort(tmp, (size_t)nv, sizeof(double), cmp_d);
+            qsort(tmp, (size_t)nv, sizeof(double), cli_cmp_double);
             const double p99 = tmp[(size_t)(0.99 * (nv - 1))];
             expo = p99 > 0 ? 0.9 / p99 : 1;
         }
@@ -442,7 +430,7 @@ static int run(int argc, char **argv)
             if (M[k].rot.ignore) {
                 double t[1000];
                 memcpy(t, M[k].sec, sizeof(double) * repeat);
-                tig = median(t, repeat);
+                tig = cli_median(t, repeat);
             }
         }
         root = json_object();
@@ -498,8 +486,8 @@ static int run(int argc, char **argv)
             double t[1000];
             for (int r = 0; r < repeat; r++) ratio[r] = zsec[r] / M[k].sec[r];
             memcpy(t, M[k].sec, sizeof(double) * repeat);
-            const double tm = median(t, repeat), tmin = t[0], tmax = t[repeat - 1];
-            const double rmed = median(ratio, repeat);
+            const double tm = cli_median(t, repeat), tmin = t[0], tmax = t[repeat - 1];
+            const double rmed = cli_median(ratio, repeat);
             json_t *r = json_object();
             r = cli_put(r, "method", json_string(M[k].name));
             r = cli_put(r, "beta_lim", M[k].rot.beta_lim > 0 ? json_real(M[k].rot.beta_lim / deg) : json_null());

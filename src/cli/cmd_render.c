@@ -57,12 +57,6 @@ static const char help[] =
     "       \"exr\",\"png\",\"width\",\"height\",\"exposure\",\"transfer_seconds\",\n"
     "       [\"error\":{\"exr\",\"png\",\"rel_l2\",\"rel_max\",\"ref_l2\",\"error_max\"}]}\n";
 
-static int cmp_d(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 static int run(int argc, char **argv)
 {
     enum { O_KIND = 0x301, O_RAYS, O_ALBEDO, O_OUT, O_PNG, O_EXPO, O_EOUT, O_EPNG, O_EMAX, O_REFS, O_REPL, O_VIEW,
@@ -240,7 +234,7 @@ static int run(int argc, char **argv)
         if (!tmp) e = sh_error(SH_ENOMEM, "out of memory");
         else {
             memcpy(tmp, Y, sizeof(double) * nv);
-            qsort(tmp, (size_t)nv, sizeof(double), cmp_d);
+            qsort(tmp, (size_t)nv, sizeof(double), cli_cmp_double);
             const double p99 = tmp[(size_t)(0.99 * (nv - 1))];
             exposure = p99 > 0 ? 0.9 / p99 : 1;
             free(tmp);
