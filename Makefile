@@ -254,7 +254,7 @@ EXPERIMENTS := legendre_stability green_vector projection_convergence orthonorma
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
                rotation_extremes rotation_cost rotation_kernels \
-               highband_peers
+               highband_peers sht_accuracy
 # ---- scenes: experiments of src/scene/ -------------------
 EXPERIMENTS += scene_transfer scene_shading
 # ---- end scenes ---------------------------------------------------------------
@@ -266,6 +266,12 @@ EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(BUILD)/libshlab.a $(LDLIBS)
+
+# sht_accuracy compares with libsharp in-process (measure/peers/peer_sharp.o)
+$(BUILD)/experiments/sht_accuracy: experiments/sht_accuracy/*.c experiments/common/exp.c experiments/common/exp.h \
+    tests/legendre_truth.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(LDLIBS) $(SHARP_LIBS)
 
 experiments: $(EXP_BIN)
 

@@ -66,6 +66,9 @@ struct sh_sht {
     size_t *moff;
     double *fm;                 /* sectoral factors: Q_m^m = fm[m]·s·Q_{m−1}^{m−1}, fm[0] = Q_0^0 */
     double *cph, *sph;          /* cos mφ0, sin mφ0 */
+    sht_polar pol;              /* small m next to the poles in long double (sht_polar.c) */
+    double *pal;                /* its β tables, m < pol.pm, at pal + poff[m] */
+    size_t *poff;
     sht_isa isa;
     sht_kern_fn ana, syn;
     fftw_plan r2c, c2r;
@@ -198,6 +201,10 @@ static int chunk_pairs(int lmax, int nchan, int npairs)
     return (int)(c < all ? c : all);
 }
 
+/* The m that take the polar path (sht_internal.h), and the length of their tables. */
+static int polar_m(int lmax) { return lmax < SHT_POLAR_LMIN ? 0 : SHT_POLAR_M < lmax + 1 ? SHT_POLAR_M : lmax + 1; }
+static size_t polar_len(int lmax, int pm) { return (size_t)pm * (lmax + 1) - (size_t)pm * (pm - 1) / 2; }
+
 static int count_pairs(const sh_grid *g)
 {
     if (!g->cos_theta) return (g->nrings + 1) / 2; /* a symmetric grid */
@@ -226,6 +233,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
          ((double)(nchan + 1) * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
           L1 * nchan * 2 * 8 + 8 + 2.0 * 8 * nchan * L1 * 2);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
+    b += (double)polar_len(order - 1, polar_m(order - 1)) * sizeof(double) + SHT_POLAR_M * sizeof(size_t);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
 }
 
@@ -250,6 +258,7 @@ void sh_sht_destroy(sh_sht *p)
     }
     free(p->ring), free(p->fbuf), free(p->spec), free(p->fold), free(p->gsp), free(p->acc);
     free(p->pn), free(p->ps), free(p->px), free(p->psin), free(p->w), free(p->rc), free(p->moff);
+    free(p->pal), free(p->poff);
     free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->alm);
     free(p);
 }
@@ -299,6 +308,9 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->rc = malloc(sizeof(double) * 2 * nl_all);
     p->moff = malloc(sizeof(size_t) * (L + 1));
     p->fm = malloc(sizeof(double) * (L + 1));
+    const int pm = polar_m(L);
+    p->pal = pm ? malloc(sizeof(double) * polar_len(L, pm)) : NULL;
+    p->poff = pm ? malloc(sizeof(size_t) * pm) : NULL;
     p->cph = malloc(sizeof(double) * (L + 1));
     p->sph = malloc(sizeof(double) * (L + 1));
     p->cx = malloc(sizeof(double) * p->chunk);
@@ -313,7 +325,7 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->gsp = calloc(T, sizeof *p->gsp);
     p->acc = calloc(T, sizeof *p->acc);
     int bad = !p->pn || !p->ps || !p->px || !p->psin || (g->weight && !p->w) || !p->rc || !p->moff ||
-              !p->fm || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
+              !p->fm || (pm && (!p->pal || !p->poff)) || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
               !p->ring || !p->fbuf || !p->spec || !p->fold || !p->gsp || !p->acc || !p->alm;
     const size_t accn = (size_t)(L + 1) * nchan * 2 * 8;
     for (int t = 0; t < T && !bad; t++) {
@@ -349,13 +361,16 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     /* recursion tables (sht_kern.c), in long double: a_l = sqrt((4l²−1)/(l²−m²)),
      * c_l = a_l·sqrt(((l−1)²−m²)/(4(l−1)²−1)), g_0 = g_1 = 1, g_i = c_{m+i} g_{i−2},
      * α_i = a_{m+i} g_{i−1} / g_i, for i = l − m */
-    size_t off = 0;
+    size_t off = 0, poff = 0;
+    p->pol = (sht_polar){pm, cos(SHT_POLAR_THETA), p->pal, p->poff};
     for (int m = 0; m <= L; m++) {
         const int nl = L - m + 1;
         p->moff[m] = off;
         double *al = p->rc + off, *gg = al + nl;
         const long double m2 = (long double)m * m;
         long double g2 = 1.0L, g1 = 1.0L; /* g_{i−2}, g_{i−1} */
+        double *pal = m < pm ? p->pal + poff : NULL;
+        if (pal) p->poff[m] = poff, poff += nl, pal[0] = -2.0;
         al[0] = 0.0;
         gg[0] = 1.0;
         for (int i = 1; i < nl; i++) {
@@ -364,6 +379,7 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
             const long double c = a * sqrtl((lm1 * lm1 - m2) / (4.0L * lm1 * lm1 - 1.0L));
             const long double gi = i == 1 ? 1.0L : c * g2;
             al[i] = (double)(a * g1 / gi);
+            if (pal) pal[i] = (double)(a * g1 / gi - 2.0L);
             gg[i] = (double)gi;
             g2 = g1;
             g1 = gi;
@@ -440,6 +456,9 @@ static void seeds_group(sh_sht *p, int q0, int n, int i0)
         }
         memcpy(mant + (size_t)m * GRP, &P, sizeof P);
         memcpy(scl + (size_t)m * GRP, &k, sizeof k);
+        if (m < p->pol.pm) /* the polar path does these lanes: the kernels see zero */
+            for (int g = 0; g < GRP; g++)
+                if (sht_polar_lane(&p->pol, p->cx[i0 + g])) mant[(size_t)m * GRP + g] = 0.0;
     }
 }
 
@@ -601,6 +620,7 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
             j.out = p->alm + p->moff[m] * nc;
             j.acc = p->acc[thread_id()];
             p->ana(&j);
+            if (m < p->pol.pm) sh__sht_polar_analysis(&p->pol, &j, n);
         }
         if (p->progress) p->progress(p->pctx, ch + 1, p->nchunks, "ring chunks");
     }
@@ -691,6 +711,7 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
             j.in = p->alm + p->moff[m] * nc;
             j.out = data_at(p, 0, m, 0, 0);
             p->syn(&j);
+            if (m < p->pol.pm) sh__sht_polar_synthesis(&p->pol, &j, n);
         }
         /* (2) rings, a group of lanes at a time: fold, inverse FFT, hand out */
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)

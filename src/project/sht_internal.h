@@ -6,6 +6,8 @@
 
 #include "core/shlab_internal.h"
 
+#include <math.h>
+
 /* Ring pairs are handed to the kernels in chunks padded to a multiple of
  * SHT_LANES, which every kernel's block (lanes × vectors) divides. */
 #define SHT_LANES 32
@@ -42,6 +44,43 @@ typedef struct {
 } sht_kjob;
 
 typedef void (*sht_kern_fn)(const sht_kjob *);
+
+/* Offset of lane i in a group-major array with group stride `stride`. */
+static inline size_t sht_lane_off(int i, size_t stride) { return (size_t)(i / SHT_GRP) * stride + i % SHT_GRP; }
+
+/* The polar path (sht_polar.c).  Next to a pole the recursion of the kernels
+ * loses accuracy for small m: its two characteristic roots e^{±iθ} nearly
+ * coincide, α x T_{i−1} − T_{i−2} cancels, and a rounding error made at one
+ * step reaches band l amplified by up to min(l − k, 1/sin θ) (measured at
+ * lmax 2047: 4e-12 of max|Q| for m ≤ 2 at θ < 0.2, against ≤ 2.4e-13 for
+ * m ≥ 16).  For m < SHT_POLAR_M on rings with θ < SHT_POLAR_THETA (or
+ * π − θ), when lmax ≥ SHT_POLAR_LMIN, the polar path runs Reinsch's form of
+ * the same recursion instead (sht_polar.c), and the SIMD kernels see a zero
+ * seed on those lanes (they add nothing, and write zeros that the polar path
+ * replaces).  The constants were chosen by measurement against the truth of
+ * tests/legendre_truth.h (experiments/sht_accuracy). */
+#ifndef SHT_POLAR_M /* (overridable at build time for the measurements) */
+#define SHT_POLAR_M 16
+#endif
+#ifndef SHT_POLAR_THETA
+#define SHT_POLAR_THETA 0.1
+#endif
+#ifndef SHT_POLAR_LMIN
+#define SHT_POLAR_LMIN 512
+#endif
+
+typedef struct {
+    int pm;                 /* m < pm take the polar path (0: none) */
+    double xmin;            /* a lane is polar when |x| > xmin = cos SHT_POLAR_THETA */
+    const double *beta;     /* β_i = α_i − 2 of m < pm at beta + off[m] (rounded from long double) */
+    const size_t *off;
+} sht_polar;
+
+/* For job j (m < pol->pm) and the first n lanes of its chunk: add the polar
+ * lanes' sums to j->out (analysis) or write their ring values (synthesis). */
+void sh__sht_polar_analysis(const sht_polar *pol, const sht_kjob *j, int n);
+void sh__sht_polar_synthesis(const sht_polar *pol, const sht_kjob *j, int n);
+static inline int sht_polar_lane(const sht_polar *pol, double x) { return pol->pm && fabs(x) > pol->xmin; }
 
 /* Instruction sets with a compiled kernel (sht_kern.c built once per set). */
 typedef enum { SHT_ISA_AUTO = 0, SHT_ISA_BASE, SHT_ISA_AVX2, SHT_ISA_AVX512 } sht_isa;

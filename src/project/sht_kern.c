@@ -111,8 +111,6 @@ typedef struct {
     size_t doff[NVMAX];
 } blk_t;
 
-/* Offset of lane i in a group-major array with group stride `stride`. */
-static inline size_t lane_off(int i, size_t stride) { return (size_t)(i / SHT_GRP) * stride + i % SHT_GRP; }
 
 /* Returns 0 if every seed of the block is zero (padding, poles), 1 if no lane
  * lives yet, 2 if some do, 3 if all do. */
@@ -120,8 +118,8 @@ AI int blk_load(blk_t *B, const sht_kjob *j, int b, const int nv)
 {
     vm nz = {0}, live = (vm){0} - 1, some = {0};
     for (int v = 0; v < nv; v++) {
-        const size_t so = lane_off(b + v * VL, j->sstride);
-        B->doff[v] = lane_off(b + v * VL, j->dstride);
+        const size_t so = sht_lane_off(b + v * VL, j->sstride);
+        B->doff[v] = sht_lane_off(b + v * VL, j->dstride);
         B->x[v] = vload(j->x + b + v * VL);
         B->p1[v] = vload(j->mant + so);
         B->sc[v] = vload(j->scl + so);
@@ -227,7 +225,7 @@ AI void analysis_body(const sht_kjob *j, const int nc)
         if (!kind) continue;
         vd q[NVMAX];
         int i = 1;
-        if (kind == 1) i = run_dead(&B, al, 0, nl, NVA);
+        if (kind == 1) i = run_dead(&B, al, 1, nl, NVA);
         else {
             for (int v = 0; v < NVA; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
             acc_analysis(acc, q, in, B.doff, nc, 0, NVA); /* i = 0: l = m */
@@ -295,7 +293,7 @@ AI void synthesis_body(const sht_kjob *j, const int nc)
         if (kind) {
             vd q[NVMAX];
             int i = 1;
-            if (kind == 1) i = run_dead(&B, al, 0, nl, NVS);
+            if (kind == 1) i = run_dead(&B, al, 1, nl, NVS);
             else {
                 for (int v = 0; v < NVS; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
                 acc_synthesis(E, q, cin, nc, NVS); /* l = m */
