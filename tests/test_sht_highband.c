@@ -36,7 +36,7 @@ static double urand(unsigned *s)
     return ((*s >> 8) & 0xffffff) / (double)0x1000000 - 0.5;
 }
 
-static const int LMAXES[] = {700, 1000, 1023, 2047};
+static const int LMAXES[] = {700, 1000, 1023, 2047, 2048}; /* 2048: order 2049; order 4097 (lmax 4096) is swept by experiments/sht_accuracy */
 #define NLMAX ((int)(sizeof LMAXES / sizeof LMAXES[0]))
 
 /* ------------------------------------------------- the truth bounded by MPFR */

@@ -33,7 +33,7 @@
 #include <string.h>
 
 static const int LMAX[] = {32, 64, 128, 256, 384, 511, 512, 576, 600, 640, 650, 680, 700, 720, 740, 767,
-                           800, 900, 1000, 1023, 1200, 1400, 1600, 1800, 2047};
+                           800, 900, 1000, 1023, 1200, 1400, 1600, 1800, 2047, 2048, 3000, 4096};
 #define NLMAX ((int)(sizeof LMAX / sizeof LMAX[0]))
 #define NPOLE 12  /* test rings next to each pole */
 #define NSPREAD 24 /* test rings spread between */

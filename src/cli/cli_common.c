@@ -281,39 +281,8 @@ double cli_median(double *v, int n)
 
 int cli_read_file(const char *what, const char *path, size_t max, char **buf, size_t *n)
 {
-    *buf = NULL;
-    *n = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return cli_fail("cannot open %s '%s': %s", what, path, strerror(errno));
-    struct stat sb;
-    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        fclose(f);
-        return cli_fail("cannot read %s '%s': it is a directory", what, path);
-    }
-    size_t cap = 1 << 16, len = 0;
-    char *b = malloc(cap + 1);
-    if (!b) { fclose(f); return cli_fail("out of memory"); }
-    size_t got;
-    while ((got = fread(b + len, 1, cap - len, f)) > 0) {
-        len += got;
-        if (len > max) {
-            free(b);
-            fclose(f);
-            return cli_fail("%s '%s' is larger than %zu bytes (the most a file of this kind needs)", what, path, max);
-        }
-        if (len == cap) {
-            char *nb = realloc(b, 2 * cap + 1);
-            if (!nb) { free(b); fclose(f); return cli_fail("out of memory"); }
-            b = nb;
-            cap *= 2;
-        }
-    }
-    int rerr = ferror(f);
-    fclose(f);
-    if (rerr) { free(b); return cli_fail("cannot read %s '%s'", what, path); }
-    b[len] = '\0';
-    *buf = b;
-    *n = len;
+    /* the library's input policy: regular files only, size checked first */
+    if (sh_input_read_all(what, path, (long long)max, buf, n)) return cli_fail_status(SH_EIO);
     return 0;
 }
 

@@ -40,6 +40,9 @@ static const char help[] =
     "  parallel shlab stability --method zxzxz --lmax 300 --shard {}/2 '>' part{}.jsonl ::: 0 1\n"
     "  shlab merge part0.jsonl part1.jsonl\n";
 
+/* A shard file holds one line per item: the largest runs write a few MB. */
+#define MERGE_MAX_BYTES (1LL << 30)
+
 typedef struct {
     json_t *head;  /* the shlab_shard object */
     json_t *params;
@@ -50,8 +53,13 @@ typedef struct {
 /* Read one shard file: header, item lines, end line. */
 static int read_file(const char *path, shard_file *f)
 {
-    FILE *in = fopen(path, "r");
-    if (!in) return cli_fail("merge: cannot open '%s': %s", path, strerror(errno));
+    sh_input inp;
+    if (sh_input_open("shard file", path, MERGE_MAX_BYTES, &inp)) return cli_fail_status(SH_EIO);
+    FILE *in = fdopen(inp.fd, "r");
+    if (!in) {
+        sh_input_close(&inp);
+        return cli_fail("merge: cannot read '%s': %s", path, strerror(errno));
+    }
     char *line = NULL;
     size_t cap = 0;
     ssize_t n;

@@ -591,20 +591,11 @@ static int slurp(const char *path, sh_exr_limits *lim, unsigned char **buf, size
 {
     *buf = NULL;
     *n = 0;
-    int fd = open(path, O_RDONLY);
-    if (fd < 0) return sh_error(SH_EIO, "cannot open '%s': %s", path, strerror(errno));
-    struct stat sb;
-    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        close(fd);
-        return sh_error(SH_EIO, "cannot read '%s': not a regular file", path);
-    }
-    if ((long long)sb.st_size >= lim->max_bytes) {
-        char a[32], b[32];
-        close(fd);
-        return sh_error(SH_ENOMEM, "%s: the file has %s, more than the %s allowed", path,
-                        human(a, (double)sb.st_size), human(b, (double)lim->max_bytes));
-    }
-    size_t cap = (size_t)sb.st_size, got = 0;
+    sh_input in;
+    int st = sh_input_open("EXR image", path, lim->max_bytes - 1, &in);
+    if (st) return st;
+    const int fd = in.fd;
+    size_t cap = (size_t)in.size, got = 0;
     unsigned char *b = malloc(cap ? cap : 1);
     if (!b) {
         close(fd);

@@ -251,14 +251,11 @@ int sh_mesh_load(const char *path, int flags, sh_mesh *out, sh_mesh_report *rep)
     if (!out) return sh_error(SH_EINVAL, "sh_mesh_load: no output");
     memset(out, 0, sizeof *out);
     if (!path) return sh_error(SH_EINVAL, "sh_mesh_load: no path");
-    /* our own message for a missing file (assimp's says "Unable to open") */
-    FILE *f = fopen(path, "rb");
-    if (!f) return sh_error(SH_EIO, "cannot open mesh '%s': %s", path, strerror(errno));
-    struct stat sb;
-    const int regular = fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode);
-    fclose(f);
-    /* a directory opens for reading; assimp would call it a scene without meshes */
-    if (!regular) return sh_error(SH_EIO, "cannot read mesh '%s': not a regular file", path);
+    /* the input policy (input_file.c): our messages, no blocking on a FIFO */
+    sh_input in;
+    int st0 = sh_input_open("mesh", path, SH_MESH_MAX_BYTES, &in);
+    if (st0) return st0;
+    sh_input_close(&in);
     const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                       aiProcess_PreTransformVertices | aiProcess_SortByPType |
                                                       aiProcess_ValidateDataStructure);

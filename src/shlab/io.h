@@ -57,6 +57,22 @@ int sh_exr_write(const char *path, const sh_image *img);
  * for SIGINT/SIGTERM handlers and atexit. */
 void sh_temp_files_unlink(void);
 
+/* ------------------------------------------------------------ input files
+ * The policy every reader applies (input_file.c): regular files only (a
+ * FIFO, directory, device or socket is refused without blocking), the size
+ * checked against max_bytes (< 0: no limit) before reading, one message
+ * naming `what` ("mesh", "fixture", ...) and the path.  dev, ino identify
+ * the file (the CLI refuses an output that names an input). */
+typedef struct {
+    int fd;
+    long long size;
+    unsigned long long dev, ino;
+} sh_input;
+int sh_input_open(const char *what, const char *path, long long max_bytes, sh_input *in);
+void sh_input_close(sh_input *in);
+/* The whole file into a malloc'd, NUL-terminated buffer (*n bytes). */
+int sh_input_read_all(const char *what, const char *path, long long max_bytes, char **buf, size_t *n);
+
 typedef enum { SH_LAYOUT_LATLONG = 0, SH_LAYOUT_PROBE } sh_layout;
 int sh_layout_parse(const char *s, sh_layout *out);
 /* Exact solid angle of every pixel (w*h weights, row-major). */

@@ -52,6 +52,8 @@ typedef struct {
 #define SH_MESH_Y_UP 4              /* the file is y up: turned +90° about x, (x,y,z) → (x,−z,y) */
 /* Largest mesh accepted (vertices or triangles). */
 #define SH_MESH_MAX_ELEMS (1 << 26)
+/* Largest mesh file read (bytes). */
+#define SH_MESH_MAX_BYTES (1LL << 31)
 
 /* Read a triangle mesh (PLY, OBJ and every other format assimp reads) with
  * assimp's C API: triangulated, node transforms applied, submeshes

@@ -100,7 +100,7 @@ for c in "transfer" "scene-plan --light const:1 --budget 0.1" "render --light co
     done
 done
 expect_usage_error "a directory as mesh" transfer --mesh "$TMP/dir.obj"
-grep -q "not a regular file" "$TMP/err" && ok "a directory is named as such" || notok "directory mesh: $(cat "$TMP/err")"
+grep -q "it is a directory" "$TMP/err" && ok "a directory is named as such" || notok "directory mesh: $(cat "$TMP/err")"
 [ ! -e "$TMP/k/m.exr" ] && ok "render with a bad mesh writes nothing" || notok "render with a bad mesh wrote m.exr"
 # a file name with a newline stays on one line (escaped)
 expect_usage_error "mesh name with a newline" transfer --mesh "$TMP/a
