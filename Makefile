@@ -189,6 +189,10 @@ $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -o $@ $< $(TEST_EXTRA) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
 
+# test_signal_cleanup exercises the CLI's signal handlers (src/cli/cli_output.c).
+$(BUILD)/tests/test_signal_cleanup: $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
+$(BUILD)/tests/test_signal_cleanup: TEST_EXTRA = $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
+
 # The EXR tests write their files with OpenEXR's C++ library (tests/exr_writer.cpp).
 EXR_WRITER_TESTS := $(BUILD)/tests/test_exr_layouts $(BUILD)/tests/test_exr_damage
 $(EXR_WRITER_TESTS): $(BUILD)/tests/exr_writer.o

@@ -397,24 +397,40 @@ void cli_out_discard(void)
 }
 
 /* ---- signals -------------------------------------------------------------
- * SIGINT, SIGTERM, SIGHUP and SIGPIPE: remove the temporary files (the
- * library's registry holds every one, the CLI's and sh_exr_write's), then
- * die by the same signal (SA_RESETHAND restored the default action; the
- * re-raised signal is delivered when the handler returns). */
+ * On SIGINT, SIGTERM, SIGHUP, SIGPIPE (the user or a supervisor stops us)
+ * and SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL (a library aborts or faults):
+ * remove every temporary file (the library's registry holds them all, the
+ * CLI's and the library writers'), then die by the same signal.
+ *
+ * The handler runs with every signal blocked (sa_mask full) and without
+ * SA_RESETHAND: with SA_RESETHAND (which on Linux implies SA_NODEFER) a second
+ * signal arriving during the handler — `timeout` sends one to the child and
+ * one to its process group, a user presses Ctrl-C twice — met the default
+ * action before the files were removed.  Now a second signal waits until the
+ * removal is done; only then is the default action restored and the signal
+ * raised again (it is delivered when the handler returns).  A signal that
+ * reaches another thread runs this handler there, which also removes every
+ * file before it restores the default.  Everything called here is
+ * async-signal-safe (unlink, sigaction, raise). */
 static void on_signal(int sig)
 {
     sh_temp_files_unlink();
+    struct sigaction dfl;
+    memset(&dfl, 0, sizeof dfl);
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    sigaction(sig, &dfl, NULL);
     raise(sig);
 }
 
 void cli_signals_install(void)
 {
-    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL};
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
-    sa.sa_flags = SA_RESETHAND;
-    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0;
+    sigfillset(&sa.sa_mask);
     for (size_t k = 0; k < sizeof sigs / sizeof *sigs; k++) {
         struct sigaction old;
         /* a signal ignored by whoever started us stays ignored */

@@ -125,7 +125,7 @@ static void unit_vector(gsl_rng *r, double *v, int n)
  * temporary file of an output (cli_out_open; cli_emit renames it onto path). */
 static int write_file(const char *tmp, const char *path, const char *description, json_t *cases)
 {
-    FILE *f = fopen(tmp, "w");
+    FILE *f = sh__temp_fopen(tmp, "w");
     int bad = !f;
     if (f) {
         fprintf(f, "{\"format\":\"shlab-rotation-fixtures/1\",\n\"description\":");

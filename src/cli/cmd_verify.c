@@ -134,7 +134,7 @@ static double max_err(const double *a, const double *b, int n, int *at)
  * file of the output (cli_out_open; cli_emit renames it onto `path`). */
 static int write_candidate(const char *tmp, const char *path, const fx_set *fx, double **got)
 {
-    FILE *f = fopen(tmp, "w");
+    FILE *f = sh__temp_fopen(tmp, "w");
     int bad = !f;
     if (f) {
         fputs("{\"results\":{\n", f);

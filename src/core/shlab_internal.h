@@ -4,6 +4,9 @@
 
 #include "shlab.h"
 
+#include <signal.h>
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -49,6 +52,14 @@ int sh__gauss_legendre(long S, double *x, double *w);
 int sh__make_temp_path(const char *path, char **tmp_out);
 int sh__commit_temp(const char *tmp, const char *path);
 void sh__discard_temp(const char *tmp);
+/* An existing temporary (made by sh__make_temp_path) opened for writing by
+ * name, safely against a signal handler in another thread (tempfile.c). */
+FILE *sh__temp_fopen(const char *tmp, const char *mode);
+/* The window around a library call that opens a temporary by name itself
+ * (OpenEXR's writers): signals blocked in this thread, and the signal
+ * handler of another thread waits until sh__temp_leave (tempfile.c). */
+void sh__temp_enter(sigset_t *old);
+void sh__temp_leave(const sigset_t *old);
 
 /* light_zonal.c: the zonal coefficients z[l] (of y_l^0, l < order) of
  * max(0, cosθ)^e about +z scaled to a unit vector (sh_lobe_zonal / its norm). */

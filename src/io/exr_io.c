@@ -684,7 +684,11 @@ int sh_exr_write(const char *path, const sh_image *img)
     const size_t plane = (size_t)img->width * img->height;
     core_msg[0] = '\0';
 
+    /* OpenEXRCore opens (creates) the temporary by name: inside a window */
+    sigset_t old;
+    sh__temp_enter(&old);
     exr_result_t rv = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
+    sh__temp_leave(&old);
     if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(ctxt, "shlab", EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(ctxt, part, img->width, img->height,

@@ -55,7 +55,10 @@ int sh_exr_write_dwab_rgba(const char *path, const sh_image *img)
     ImfHeaderSetCompression(hdr, IMF_DWAB_COMPRESSION);
     const int channels = img->nchan == 1 ? IMF_WRITE_Y
                        : img->nchan == 3 ? IMF_WRITE_RGB : IMF_WRITE_RGBA;
+    sigset_t old; /* OpenEXR opens the temporary by name: inside a window */
+    sh__temp_enter(&old);
     out = ImfOpenOutputFile(tmp, hdr, channels);
+    sh__temp_leave(&old);
     if (!out || !ImfOutputSetFrameBuffer(out, buf, 1, (size_t)w) ||
         !ImfOutputWritePixels(out, h)) {
         st = sh_error(SH_EIO, "cannot write '%s': %s", path, ImfErrorMessage());

@@ -9,16 +9,32 @@
  * (signals held in between) and leaves the registry only after it has been
  * renamed or removed, so a signal at any point finds every temporary that
  * may exist.
+ *
+ * Threads.  A handler runs in one thread while the others go on, and a
+ * writer may (re)create a name after the handler removed it: a library that
+ * opens its temporary by name (OpenEXR, a FILE*), or the rename of a nested
+ * temporary onto its parent (sh_exr_write into the CLI's temporary).  So
+ * every operation that creates or renames a temporary name runs inside a
+ * window (sh__temp_enter/leave: signals blocked in that thread, a counter of
+ * open windows), and sh_temp_files_unlink first marks the process as dying,
+ * waits for the open windows to close, then removes the names; a thread that
+ * would open a window after that waits for the end instead.  The wait is
+ * bounded (TEMP_WAIT_NS): a window that does not close (its thread waiting
+ * for a lock held by the interrupted thread, say) costs at most that delay,
+ * never a hang.  Nothing inside a window allocates in this file.
  */
 #include "core/shlab_internal.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define TMP_SUFFIX ".tmp.XXXXXX"
@@ -30,9 +46,33 @@
  * dangling pointer: at worst a stale name, whose unlink fails harmlessly. */
 static char *_Atomic slots[NSLOTS];
 
-static void reg_add(const char *p)
+/* ---- windows (see above) */
+#define TEMP_WAIT_NS 200000000L
+static atomic_int open_windows, dying;
+
+void sh__temp_enter(sigset_t *old)
 {
-    char *copy = strdup(p);
+    sigset_t all;
+    sigfillset(&all);
+    for (;;) {
+        pthread_sigmask(SIG_BLOCK, &all, old);
+        atomic_fetch_add(&open_windows, 1);
+        if (!atomic_load(&dying)) return;
+        atomic_fetch_sub(&open_windows, 1);
+        pthread_sigmask(SIG_SETMASK, old, NULL);
+        for (;;) pause(); /* the process is being stopped: no new name */
+    }
+}
+
+void sh__temp_leave(const sigset_t *old)
+{
+    atomic_fetch_sub(&open_windows, 1);
+    pthread_sigmask(SIG_SETMASK, old, NULL);
+}
+
+/* (copy: the registry's own copy of the name, made outside the window) */
+static void reg_add(char *copy)
+{
     if (!copy) return; /* still written atomically, only not removed by a signal handler */
     for (int k = 0; k < NSLOTS; k++) {
         char *expect = NULL;
@@ -54,6 +94,14 @@ static void reg_remove(const char *p)
 
 void sh_temp_files_unlink(void)
 {
+    /* no new name from now on; let the open windows close (bounded) */
+    atomic_store(&dying, 1);
+    struct timespec t0, t;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    while (atomic_load(&open_windows) > 0) {
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        if ((t.tv_sec - t0.tv_sec) * 1000000000L + (t.tv_nsec - t0.tv_nsec) > TEMP_WAIT_NS) break;
+    }
     /* unlink only: the names stay registered (and reachable), nothing is
      * freed, so this is safe in a signal handler and at exit */
     for (int k = 0; k < NSLOTS; k++) {
@@ -91,18 +139,22 @@ int sh__make_temp_path(const char *path, char **tmp_out)
     }
     snprintf(tmp, n, "%s" TMP_SUFFIX, target);
     free(target);
-    /* mkstemp picks the name and creates the file; signals are held until
-     * the name is registered, so a handler never misses this file */
-    sigset_t all, old;
-    sigfillset(&all);
-    sigprocmask(SIG_BLOCK, &all, &old);
+    /* mkstemp picks the name and creates the file inside a window, so a
+     * handler never misses this file; the registry's copy is allocated
+     * first (mkstemp only fills in the X's) */
+    char *copy = strdup(tmp);
+    sigset_t old;
+    sh__temp_enter(&old);
     int fd = mkstemp(tmp);
     const int e = errno;
-    if (fd >= 0) reg_add(tmp);
-    sigprocmask(SIG_SETMASK, &old, NULL);
-    if (fd < 0) {
+    if (fd >= 0 && copy) memcpy(copy, tmp, strlen(tmp) + 1);
+    if (fd >= 0) reg_add(copy);
+    sh__temp_leave(&old);
+    if (fd < 0 || !copy) {
+        if (fd >= 0) sh__discard_temp(tmp), close(fd);
+        free(copy);
         free(tmp);
-        return sh_error(SH_EIO, "cannot write '%s': %s", path, strerror(e));
+        return sh_error(fd < 0 ? SH_EIO : SH_ENOMEM, "cannot write '%s': %s", path, fd < 0 ? strerror(e) : "out of memory");
     }
     close(fd);
     *tmp_out = tmp;
@@ -123,8 +175,11 @@ int sh__commit_temp(const char *tmp, const char *path)
     mode_t um = umask(0);
     umask(um);
     chmod(tmp, 0666 & ~um);
+    sigset_t old;
+    sh__temp_enter(&old);
     int rc = rename(tmp, target);
     int e = errno;
+    sh__temp_leave(&old);
     free(target);
     if (rc != 0) {
         sh__discard_temp(tmp);
@@ -139,4 +194,17 @@ void sh__discard_temp(const char *tmp)
     if (!tmp) return;
     unlink(tmp);
     reg_remove(tmp);
+}
+
+FILE *sh__temp_fopen(const char *tmp, const char *mode)
+{
+    /* open(2) inside the window (no allocation), fdopen after it */
+    sigset_t old;
+    sh__temp_enter(&old);
+    const int fd = open(tmp, O_WRONLY | O_TRUNC | O_CLOEXEC);
+    sh__temp_leave(&old);
+    if (fd < 0) return NULL;
+    FILE *f = fdopen(fd, mode);
+    if (!f) close(fd);
+    return f;
 }

@@ -168,7 +168,7 @@ int sh_png_write(const char *path, const sh_image *img, double exposure)
     char *tmp = NULL;
     int st = sh__make_temp_path(path, &tmp);
     if (st) return st;
-    FILE *f = fopen(tmp, "wb");
+    FILE *f = sh__temp_fopen(tmp, "wb");
     png_structp png = f ? png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL) : NULL;
     png_infop info = png ? png_create_info_struct(png) : NULL;
     const size_t W = (size_t)img->width, np = W * img->height;
