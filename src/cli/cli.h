@@ -129,6 +129,10 @@ int cli_emit(json_t *root, cli_format fmt);
  * an existing file, and nothing is left behind.  Returns 0 or the exit code
  * after the error line. */
 int cli_out_open(const char *cmd, const char *path, const char **tmp);
+/* Record an input file (`what`: "fixture", "probe", ...) before reading it:
+ * an output that names the same file (path or link), opened before or after,
+ * is refused in one line.  Returns 0 or the exit code after the error line. */
+int cli_input(const char *what, const char *path);
 int cli_out_commit(void);
 void cli_out_discard(void);
 /* main: remove temporary files on SIGINT/SIGTERM/SIGHUP/SIGPIPE and at exit. */

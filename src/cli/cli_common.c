@@ -281,6 +281,7 @@ double cli_median(double *v, int n)
 
 int cli_read_file(const char *what, const char *path, size_t max, char **buf, size_t *n)
 {
+    if (cli_input(what, path)) return CLI_EXIT_USAGE;
     /* the library's input policy: regular files only, size checked first */
     if (sh_input_read_all(what, path, (long long)max, buf, n)) return cli_fail_status(SH_EIO);
     return 0;

@@ -16,6 +16,7 @@
 #include "core/shlab_internal.h"
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -347,8 +348,36 @@ int cli_emit(json_t *root, cli_format fmt)
 #define CLI_MAX_OUT 8
 static struct {
     char *tmp, *path;
+    int exists;                   /* the target existed when it was opened */
+    unsigned long long dev, ino;  /* its file then (stat, through links) */
 } outs[CLI_MAX_OUT];
 static int nouts;
+
+/* Inputs read so far (cli_input): an output may not name one of them, by the
+ * same path or through a link (same device and inode), in either order. */
+#define CLI_MAX_IN 64
+static struct {
+    unsigned long long dev, ino;
+    char what[32];
+} ins[CLI_MAX_IN];
+static int nins;
+
+int cli_input(const char *what, const char *path)
+{
+    struct stat sb;
+    if (!path || stat(path, &sb) != 0) return 0; /* the reader reports a missing file */
+    for (int k = 0; k < nouts; k++)
+        if (outs[k].exists && outs[k].dev == (unsigned long long)sb.st_dev && outs[k].ino == (unsigned long long)sb.st_ino)
+            return cli_fail("the output '%s' is also the input %s '%s': refusing to overwrite it", outs[k].path, what,
+                            path);
+    if (nins < CLI_MAX_IN) {
+        ins[nins].dev = (unsigned long long)sb.st_dev;
+        ins[nins].ino = (unsigned long long)sb.st_ino;
+        snprintf(ins[nins].what, sizeof ins[nins].what, "%s", what);
+        nins++;
+    }
+    return 0;
+}
 
 int cli_out_open(const char *cmd, const char *path, const char **tmp)
 {
@@ -357,6 +386,12 @@ int cli_out_open(const char *cmd, const char *path, const char **tmp)
     for (int k = 0; k < nouts; k++)
         if (!strcmp(outs[k].path, path)) return cli_fail("%s: '%s' is written twice", cmd, path);
     if (nouts == CLI_MAX_OUT) return cli_fail("%s: too many output files", cmd);
+    struct stat sb;
+    const int exists = stat(path, &sb) == 0;
+    for (int k = 0; exists && k < nins; k++)
+        if (ins[k].dev == (unsigned long long)sb.st_dev && ins[k].ino == (unsigned long long)sb.st_ino)
+            return cli_fail("%s: the output '%s' is also an input (the %s): refusing to overwrite it", cmd, path,
+                            ins[k].what);
     char *t = NULL, *p = strdup(path);
     if (!p) return cli_fail("out of memory");
     if (sh__make_temp_path(path, &t)) {
@@ -365,6 +400,9 @@ int cli_out_open(const char *cmd, const char *path, const char **tmp)
     }
     outs[nouts].tmp = t;
     outs[nouts].path = p;
+    outs[nouts].exists = exists;
+    outs[nouts].dev = exists ? (unsigned long long)sb.st_dev : 0;
+    outs[nouts].ino = exists ? (unsigned long long)sb.st_ino : 0;
     nouts++;
     *tmp = t;
     return 0;

@@ -60,6 +60,8 @@ int cli_scene_build(const char *cmd, const cli_scene_args *a, sh_mesh *m, sh_pro
         ps->res = a->res;
         if ((st = sh_mesh_procedural(ps, m))) return cli_fail_status(st);
         *is_proc = 1;
+    } else if (cli_input("mesh", a->mesh)) {
+        return CLI_EXIT_USAGE;
     } else if ((st = sh_mesh_load(a->mesh, a->flags, m, &rep))) {
         return cli_fail_status(st);
     }
@@ -109,6 +111,7 @@ int cli_env_build(const char *cmd, const cli_scene_args *a, int degrees, int opt
         d = cli_put(d, "light", json_string(a->light));
     } else {
         sh_image img;
+        if (cli_input("probe", a->probe)) { json_decref(d); return CLI_EXIT_USAGE; }
         if ((st = sh_exr_read(a->probe, &img, NULL))) { json_decref(d); return cli_fail_status(st); }
         st = sh_env_from_image(&img, e);
         d = cli_put(d, "probe", json_string(a->probe));

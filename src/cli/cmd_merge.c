@@ -54,6 +54,7 @@ typedef struct {
 static int read_file(const char *path, shard_file *f)
 {
     sh_input inp;
+    if (cli_input("shard file", path)) return CLI_EXIT_USAGE;
     if (sh_input_open("shard file", path, MERGE_MAX_BYTES, &inp)) return cli_fail_status(SH_EIO);
     FILE *in = fdopen(inp.fd, "r");
     if (!in) {

@@ -257,6 +257,7 @@ static int run(int argc, char **argv)
     const double img_tol = co.tolerance;
     if (order_auto) {
         sh_image img = {0};
+        if (cli_input("EXR image", exr)) return CLI_EXIT_USAGE;
         int st = sh_exr_read(exr, &img, NULL);
         if (st) return cli_fail_status(st);
         double resid[64];

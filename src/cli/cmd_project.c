@@ -133,6 +133,7 @@ static int run_exr(int order, sh_convention conv, const char *path, sh_layout la
 {
     sh_image img;
     int fallback = 0;
+    if (cli_input("EXR image", path)) return CLI_EXIT_USAGE;
     int st = sh_exr_read(path, &img, &fallback);
     if (st) return cli_fail_status(st);
     const int n = sh_ncoeff(order);

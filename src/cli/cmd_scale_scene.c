@@ -161,6 +161,7 @@ static int run(int argc, char **argv)
     sh_image img = {0};
     if (sc.kind == SH_SCENE_MIDRANGE) {
         if (probe) {
+            if (cli_input("probe", probe)) return CLI_EXIT_USAGE;
             if (sh_exr_read(probe, &img, NULL)) return cli_fail("--probe: %s", sh_last_error());
             if (img.width != 2 * img.height) {
                 sh_image_free(&img);
