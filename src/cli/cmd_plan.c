@@ -262,6 +262,8 @@ static int run(int argc, char **argv)
         if (st) return cli_fail_status(st);
         double resid[64];
         int order = -1;
+        /* no order beyond what the image can carry (sh_image_max_order) */
+        if (max_order > sh_image_max_order(&img, layout)) max_order = sh_image_max_order(&img, layout);
         if (!quiet) fprintf(stderr, "plan: projecting %s (%dx%d) to order %d\n", exr, img.width, img.height, max_order);
         st = sh_order_for_image(&img, layout, img_tol, max_order, &order, resid);
         const int w = img.width, h = img.height;

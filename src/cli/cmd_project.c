@@ -136,6 +136,12 @@ static int run_exr(int order, sh_convention conv, const char *path, sh_layout la
     if (cli_input("EXR image", path)) return CLI_EXIT_USAGE;
     int st = sh_exr_read(path, &img, &fallback);
     if (st) return cli_fail_status(st);
+    if (order > sh_image_max_order(&img, layout)) {
+        const int mx = sh_image_max_order(&img, layout), w = img.width, h = img.height;
+        sh_image_free(&img);
+        return cli_fail("project: a %d×%d image carries orders up to %d (2n − 1 pixels across, n down), not %d", w,
+                        h, mx, order);
+    }
     const int n = sh_ncoeff(order);
     char what[96];
     snprintf(what, sizeof what, "order %d of a %d×%d image", order, img.width, img.height);

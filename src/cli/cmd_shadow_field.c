@@ -102,7 +102,8 @@ static int run(int argc, char **argv)
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_scene_args sa = {0};
     cli_picture_args pa = CLI_PICTURE_DEFAULTS;
-    double d0 = 0, cone = -1, albedo = 0.8;
+    double d0 = 0, cone = M_PI / 4, albedo = 0.8; /* cone: 45° unless --cone-angle */
+    int have_cone = 0;
     int cone_tangent = 0, nsamp = 5, samples[SF_MAX_SAMPLES] = {0, 2, 5, 10, 40}, reference = 0, nbins = 5, quiet = 0;
     int pic_samples = 0;
     sh_sf_scaling pic_scaling = SH_SF_CONE;
@@ -126,6 +127,7 @@ static int run(int argc, char **argv)
             else {
                 cone_tangent = 0;
                 if (cli_double("--cone-angle", optarg, &cone)) return CLI_EXIT_USAGE;
+                have_cone = 1;
             }
             break;
         case O_SAMPLES: {
@@ -196,8 +198,9 @@ static int run(int argc, char **argv)
         if (d0 == 0) d0 = chk.p[1];
         if (!(d0 > chk.p[0])) return cli_fail("--field-distance: %g must exceed the sphere's radius %g", d0, chk.p[0]);
         if (cone_tangent) cone = acos(chk.p[0] / d0);
-        else cone = cone >= 0 ? cone * deg : M_PI / 4;
-        if (!(cone > 0 && cone < M_PI)) return cli_fail("--cone-angle: must be in (0, π)");
+        else if (have_cone) cone *= deg;
+        if (!(cone > 0 && cone < M_PI))
+            return cli_fail("--cone-angle: %g must be in (0, %s)", cone / deg, com.degrees ? "180" : "π");
     }
     /* the pictures: temporaries beside their targets, renamed by cli_emit
      * once the result is out (all or none; cli_out_open) */

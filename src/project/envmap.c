@@ -386,6 +386,19 @@ static int project_latlong(const sh_image *img, int order, sh_convention conv,
     return st;
 }
 
+/* The sampling bound of a band limit n: 2n − 1 samples in φ and n in θ
+ * (lat-long), 2n − 1 across the disc of an angle map.  Fewer cannot carry
+ * the bands (a 1×1 image projected to order 2 gave a dipole 6× its constant
+ * term); the projection of such an image is only the discrete sum. */
+int sh_image_max_order(const sh_image *img, sh_layout layout)
+{
+    if (!img || img->width < 1 || img->height < 1) return 0;
+    int n = (img->width + 1) / 2;
+    if (layout == SH_LAYOUT_LATLONG && img->height < n) n = img->height;
+    if (layout == SH_LAYOUT_PROBE && (img->height + 1) / 2 < n) n = (img->height + 1) / 2;
+    return n > SHLAB_MAX_ORDER ? SHLAB_MAX_ORDER : n;
+}
+
 int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_convention conv,
                      double *coeffs)
 {

@@ -96,6 +96,11 @@ int sh_light_parse(const char *spec, int degrees, sh_light *out)
             if (L.p[0] > M_PI) L.p[0] = M_PI;
         } else if (NAME_IS("const")) {
             L.kind = SH_LIGHT_CONST;
+            /* shading, errors and pictures square and sum the radiance: keep
+             * those finite (1e308 gave an exposure of 0 and infinite pixels) */
+            if (!(fabs(L.p[0]) <= SH_LIGHT_MAX_VALUE))
+                return sh_error(SH_EINVAL, "light '%s': the constant must be at most %g in magnitude", spec,
+                                SH_LIGHT_MAX_VALUE);
         } else {
             L.kind = SH_LIGHT_LOBE;
             if (!(L.p[0] >= 0.0)) return sh_error(SH_EINVAL, "light '%s': lobe exponent must be >= 0", spec);

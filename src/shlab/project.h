@@ -49,7 +49,9 @@ typedef struct {
 } sh_light;
 
 /* Parse SPEC (green, cap:T, cie-overcast, cie-clear:TH,PH, cie-partly:TH,PH,
- * const:V, lobe:E); angles in degrees when `degrees` is non-zero. */
+ * const:V with |V| ≤ SH_LIGHT_MAX_VALUE, lobe:E); angles in degrees when
+ * `degrees` is non-zero. */
+#define SH_LIGHT_MAX_VALUE 1e100
 int sh_light_parse(const char *spec, int degrees, sh_light *out);
 double sh_light_eval(const sh_light *L, const double dir[3], double theta, double phi);
 /* sh_sphere_fn adaptor: ctx is a const sh_light *. */
@@ -62,6 +64,11 @@ int sh_light_closed_form(const sh_light *L, int order, sh_convention conv, doubl
 int sh_cap_zonal(double t, int order, double *z);
 int sh_lobe_zonal(double e, int order, double *z);
 
+/* The largest order an image can carry: the sampling bound of a band limit
+ * n, 2n − 1 samples in φ and n in θ (lat-long; 2n − 1 across an angle map).
+ * sh_project_image computes the discrete sums at any order; above this one
+ * they are not a projection (the CLI refuses them). */
+int sh_image_max_order(const sh_image *img, sh_layout layout);
 /* Project each channel of an environment image: coeffs[c*n² + i]. */
 int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_convention conv,
                      double *coeffs);

@@ -14,7 +14,7 @@ no_tmp() { [ -z "$(find "$1" -name '*.tmp.*' 2>/dev/null)" ]; }
 for f in $SEEDS/exr/rgba-half-scan-*.exr $SEEDS/exr/ayz-half-scan-*.exr $SEEDS/exr/bgrz-half-ripmap-*.exr; do
     expect_success "project --exr $(basename "$f")" project --order 2 --exr "$f" --format json
 done
-expect_success "plan --exr half RGBA" plan --order auto --exr $SEEDS/exr/rgba-half-scan-piz.exr --tolerance 0.1 --max-beta 0.1 --quiet --format json
+expect_success "plan --exr half RGBA" plan --order auto --exr $SEEDS/exr/rgba-half-scan-piz.exr --tolerance 0.5 --max-beta 0.1 --quiet --format json
 
 # ---- sizes are checked against the file before anything is allocated
 expect_usage_error "733-byte EXR claiming 32768x32768" project --order 2 --exr $SEEDS/exr/huge-window-scan.exr

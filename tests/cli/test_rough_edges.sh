@@ -83,3 +83,20 @@ if make -s "$BUILD/experiments/orthonormality" >"$TMP/log" 2>&1; then
 else
     notok "cannot build $BUILD/experiments/orthonormality: $(tail -3 "$TMP/log")"
 fi
+
+# ---- no silent wrong results: out-of-domain values refused, not replaced
+expect_usage_error "shadow-field --cone-angle -1 (was silently 45°)" shadow-field --scene sphere-plane --cone-angle -1 --res 2
+expect_usage_error "shadow-field --cone-angle 0" shadow-field --scene sphere-plane --cone-angle 0 --res 2
+expect_usage_error "render with a light whose square overflows" render --scene bowl --res 4 --light const:1e308 --rays 16 --width 16 --height 12 --quiet --out "$TMP/big.exr" --error-png "$TMP/big.png"
+expect_usage_error "scene-plan with a light whose square overflows" scene-plan --scene bowl --light const:1e300 --budget 0.1 --quiet
+[ ! -e "$TMP/big.exr" ] && [ ! -e "$TMP/big.png" ] && ok "nothing written for the refused render" || notok "a refused render wrote files"
+"$SHLAB" reconstruct --order 1 --coeffs 1 --width 2 --out "$TMP/one.exr" >/dev/null 2>&1
+expect_usage_error "project: a 2×1 image cannot carry order 2" project --order 2 --exr "$TMP/one.exr"
+expect_success "project: a 2×1 image carries order 1" project --order 1 --exr "$TMP/one.exr" --format json
+# the image is y_0^0 = 1/√(4π) everywhere (reconstructed from c0 = 1, float
+# pixels): its order-1 projection gives back c0 = 1 to float precision
+c0=$(tr -d ' \n' <"$TMP/out" | sed -n 's/.*"Y":\[\([^],]*\).*/\1/p')
+close "$c0" 1 1e-6 && ok "order-1 projection of a constant image gives its coefficient back" || notok "c0 = $c0"
+"$SHLAB" reconstruct --order 1 --coeffs 1 --width 12 --out "$TMP/small.exr" >/dev/null 2>&1
+"$SHLAB" plan --order auto --exr "$TMP/small.exr" --tolerance 1e-3 --max-beta 0.1 --quiet --format json >"$TMP/out" 2>"$TMP/err"
+grep -q '"order": *1' "$TMP/out" && ok "plan --order auto stays within what the image carries" || notok "plan auto: $(head -c 300 "$TMP/out") $(cat "$TMP/err")"
