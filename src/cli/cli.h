@@ -137,6 +137,9 @@ int cli_out_commit(void);
 void cli_out_discard(void);
 /* main: remove temporary files on SIGINT/SIGTERM/SIGHUP/SIGPIPE and at exit. */
 void cli_signals_install(void);
+/* cli_emit, before the result's first byte: from here the run finishes (stop
+ * signals are held), so a stopped run has printed nothing. */
+void cli_signals_commit(void);
 
 /* Print help text to stdout; returns 0. */
 int cli_help(const cli_command *cmd);

@@ -330,6 +330,7 @@ int cli_emit(json_t *root, cli_format fmt)
     fclose(m);
     json_decref(root);
     if (!buf || len == 0) { free(buf); return cli_fail("could not render the result"); }
+    cli_signals_commit();
     size_t w = fwrite(buf, 1, len, stdout);
     free(buf);
     if (w != len || fflush(stdout) != 0) {
@@ -450,8 +451,13 @@ void cli_out_discard(void)
  * reaches another thread runs this handler there, which also removes every
  * file before it restores the default.  Everything called here is
  * async-signal-safe (unlink, sigaction, raise). */
+static volatile sig_atomic_t committing;
+
 static void on_signal(int sig)
 {
+    /* the result is being written: a stop request now would leave a complete
+     * stdout with a signal's exit status, or outputs half renamed */
+    if (committing && (sig == SIGINT || sig == SIGTERM || sig == SIGHUP)) return;
     sh_temp_files_unlink();
     struct sigaction dfl;
     memset(&dfl, 0, sizeof dfl);
@@ -459,6 +465,22 @@ static void on_signal(int sig)
     sigemptyset(&dfl.sa_mask);
     sigaction(sig, &dfl, NULL);
     raise(sig);
+}
+
+/* From the first byte of the result on: the run finishes.  SIGINT, SIGTERM
+ * and SIGHUP are blocked in this thread and ignored by the handler in any
+ * other, so a run either stops before it prints anything, or prints its whole
+ * result, renames its outputs and exits 0.  Called by cli_emit only; what
+ * follows it (writing a few kilobytes, renames, freeing) takes milliseconds. */
+void cli_signals_commit(void)
+{
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    sigaddset(&stop, SIGHUP);
+    committing = 1;
+    sigprocmask(SIG_BLOCK, &stop, NULL);
 }
 
 void cli_signals_install(void)

@@ -12,7 +12,8 @@
 #   - each output file is either absent or complete (its format's magic
 #     number; the run may have committed it just before the signal);
 #   - a run that was stopped printed nothing on stdout (no half result), and
-#     one that finished exited 0 with its result.
+#     one that finished exited 0 with its result: once a run has begun to
+#     print its result it holds stop signals and finishes (cli_signals_commit).
 # The delays are drawn from a fixed seed, so a failure can be replayed.
 . "$(dirname "$0")/lib.inc"
 
@@ -34,7 +35,6 @@ magic_ok() {
     case "$2" in exr) [ "$m" = 762f3101 ] ;; png) [ "$m" = 89504e47 ] ;; esac
 }
 
-signum() { case $1 in HUP) echo 1 ;; INT) echo 2 ;; TERM) echo 15 ;; esac; }
 
 fails=0 stopped=0 finished=0
 i=0
@@ -51,9 +51,10 @@ while [ "$i" -lt "$RUNS" ]; do
     if [ "$what" = render ]; then args="$RENDER --out $D/r.exr --png $D/r.png"; else args=$PLAN; fi
     if [ "$how" = 3 ]; then
         s2=; gap=
-        # timeout sends s1 to the child, then to its own process group (itself)
-        timeout -s "$s1" "$delay" $SHLAB $args >"$D/stdout" 2>"$D/stderr"; rc=$?
-        [ "$rc" = 124 ] && rc=$((128 + $(signum "$s1")))
+        # timeout sends s1 to the child, then to its own process group (itself);
+        # --preserve-status: the child's own status (124 would only say that
+        # the timer fired, also when the child had begun its result and finished)
+        timeout --preserve-status -s "$s1" "$delay" $SHLAB $args >"$D/stdout" 2>"$D/stderr"; rc=$?
     else
         # a non-interactive shell starts background jobs with SIGINT ignored
         # (and shlab keeps an ignored signal ignored): restore it
