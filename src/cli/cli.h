@@ -141,6 +141,8 @@ void cli_signals_install(void);
  * signals are held), so a stopped run has printed nothing. */
 void cli_signals_commit(void);
 
+/* The closing paragraph of every --help (where the conventions are written). */
+extern const char cli_conventions_note[];
 /* Print help text to stdout; returns 0. */
 int cli_help(const cli_command *cmd);
 const cli_command *cli_find(const char *name);

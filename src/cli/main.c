@@ -34,14 +34,14 @@ const cli_command *cli_find(const char *name)
 }
 
 /* Every help text ends by pointing at the conventions document. */
-static const char conventions_note[] =
+const char cli_conventions_note[] =
     "\nConventions (basis, index, rotations, angles and units, output): docs/CONVENTIONS.md\n"
     "in the shlab source, installed as share/doc/shlab/CONVENTIONS.md.\n";
 
 int cli_help(const cli_command *cmd)
 {
     fputs(cmd->help, stdout);
-    fputs(conventions_note, stdout);
+    fputs(cli_conventions_note, stdout);
     if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
     return CLI_EXIT_OK;
 }
@@ -67,7 +67,7 @@ static void usage(FILE *o)
             "(then angles in and out are in degrees).\n"
             "Every command takes --format table|csv|json (default table).\n"
             "Exit status: 0 success, 1 a check failed, 2 bad usage or input.\n");
-    fputs(conventions_note, o);
+    fputs(cli_conventions_note, o);
 }
 
 int main(int argc, char **argv)

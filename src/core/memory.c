@@ -37,6 +37,10 @@ const char *sh__bytes_str(double bytes, char *buf, size_t n)
 
 int sh__mem_check(double bytes, const char *what)
 {
+    /* below 64 MiB the answer is yes on any machine that runs us at all (a
+     * failing malloc is still reported), and a small rotator, made once per
+     * rotation by some callers, must not read a file each time */
+    if (bytes < SH__MEM_CHECK_FROM) return SH_OK;
     /* an eighth of what is available is left to everything else running */
     const size_t avail = sh__mem_available();
     const double usable = (double)avail - (double)(avail / 8);

@@ -71,6 +71,7 @@ int sh__lobe_zonal_unit(double e, int order, double *z);
  * memory; Y is available". */
 size_t sh__mem_available(void);
 const char *sh__bytes_str(double bytes, char *buf, size_t n);
+#define SH__MEM_CHECK_FROM (64.0 * 1024 * 1024) /* smaller requests are not checked */
 int sh__mem_check(double bytes, const char *what);
 
 #ifdef __cplusplus

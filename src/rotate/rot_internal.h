@@ -225,7 +225,60 @@ void sh__rot_halfpi_set_angles(const sh_rotation *rot, int inverse, int M, doubl
 /* d^l_{m'm}(π/2), m', m = 0..l, into d[m'(l+1) + m]; work as for nj = 0. */
 void sh__rot_halfpi_delta_d(int l, void *work, double *d);
 
-/* rotation_plan.c: non-zero if the band iterator computes each band alone
+/* ---- rotation_methods.c, rotation_kernels.c: the registry and the kernels */
+/* The ops table of method m (NULL: unknown or not built in). */
+const sh__rot_ops *sh__rot_ops_of(sh_rot_method m);
+/* The widest kernel this CPU runs (never SH_KERNEL_AUTO). */
+sh_rot_kernel sh__rot_kernel_auto(void);
+/* The unrolled tables of kernel k: one lane (single vectors) and SIMD lanes
+ * (batches). */
+void sh__rot_kernel_tables(sh_rot_kernel k, const sh__rot_fast_d **d1, const sh__rot_fast_d **dv,
+                           const sh__rot_fast_f **f1, const sh__rot_fast_f **fv);
+/* The unrolled method of m (SH__FAST_*), or −1 if it has none. */
+int sh__rot_fast_method(sh_rot_method m);
+
+/* ---- rotator.c: the immutable part of a rotation (sh_rotator, rotate.h),
+ * shared by the per-thread plans made from it (rotation_plan.c).  Nothing
+ * here changes after sh_rotator_create. */
+struct sh_rotator {
+    int order;
+    sh_rot_method method; /* resolved (never SH_ROT_AUTO) */
+    sh_precision prec;
+    sh_convention conv;
+    const sh__rot_ops *ops;
+    void *tables;         /* the method's per-order tables (read only), or NULL */
+    sh_rot_kernel kernel; /* the kernel in use (never AUTO) */
+    int fmeth;            /* the unrolled method, or −1: the loop kernels */
+    const sh__rot_fast_d *fd1, *fdv; /* unrolled: one lane, SIMD lanes */
+    const sh__rot_fast_f *ff1, *ffv;
+    int nb;               /* the method needs β itself (Taylor) */
+    sh__fast_fn_d fn_d;   /* unrolled, one lane: the kernel of this order, or NULL */
+    sh__fast_fn_f fn_f;
+    uint64_t fn_mults;    /* its multiplications per call */
+    int stream;           /* halfpi in double: all bands by sh_rot_stream, on threads */
+    int threads;          /* the stream's threads (1 for the plans) */
+    sh_progress_fn progress;
+    void *progress_ctx;
+};
+/* The checks every rotation front door makes once: order within the
+ * library's and the method's limits, known method, precision, convention. */
+int sh__rot_check_args(int order, sh_rot_method method, sh_precision prec, sh_convention conv);
+/* What one plan of r allocates (per-rotation state, scratch, vector copies;
+ * the blocks of block methods), and the rotator's tables. */
+double sh__rot_plan_state_bytes(const sh_rotator *r);
+double sh__rot_tables_bytes(int order, const sh__rot_ops *ops, sh_precision prec);
+
+/* rotation_plan.c: a plan reading rotator r (owns: freed with the plan). */
+int sh__rot_plan_new(const sh_rotator *r, int owns, sh_rot_plan **out);
+/* The unrolled kernels' parameters of a matrix for r (r->fmeth ≥ 0; the
+ * float form not for ivanic); SH_EINVAL if an entry is not finite. */
+int sh__rot_plan_par_matrix_d(const sh_rotator *r, const double R[9], double *par);
+int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par);
+/* rotation_stream.c: the threads of a stream asked with `threads` (≤ 0:
+ * every core; 1 without OpenMP). */
+int sh__rot_stream_resolve_threads(int threads);
+
+/* rotation_bands.c: non-zero if the band iterator computes each band alone
  * (a single-band routine with a per-band workspace): dropping it and asking
  * sh_rot_band for the next band costs nothing more and holds one workspace
  * instead of one per iterator. */

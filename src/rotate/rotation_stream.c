@@ -31,7 +31,7 @@ struct sh_rot_stream {
     void *progress_ctx;
 };
 
-static int resolve_threads(int threads)
+int sh__rot_stream_resolve_threads(int threads)
 {
 #ifdef _OPENMP
     if (threads <= 0) threads = omp_get_max_threads();
@@ -44,7 +44,7 @@ static int resolve_threads(int threads)
 size_t sh_rot_stream_bytes(int order, int threads)
 {
     if (order < 1) order = 1;
-    threads = resolve_threads(threads);
+    threads = sh__rot_stream_resolve_threads(threads);
     return sizeof(sh_rot_stream) + (size_t)threads * (sizeof(void *) + sh__rot_halfpi_work_bytes(order - 1, SH_STREAM_JB));
 }
 
@@ -54,7 +54,7 @@ int sh_rot_stream_create(int order, sh_convention conv, int threads, sh_rot_stre
     int st = sh_check_order(order);
     if (st) return st;
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "rotation stream: unknown convention");
-    threads = resolve_threads(threads);
+    threads = sh__rot_stream_resolve_threads(threads);
     char what[96];
     snprintf(what, sizeof what, "rotation stream (order %d, %d thread%s)", order, threads, threads > 1 ? "s" : "");
     if ((st = sh__mem_check((double)sh_rot_stream_bytes(order, threads), what))) return st;

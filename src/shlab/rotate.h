@@ -87,13 +87,19 @@ int sh_rot_method_is_exact(sh_rot_method m);
 #define SH_ROT_DEFAULT_ZXZXZ_MAX 32
 sh_rot_method sh_rot_method_default(int order, int one_band);
 
-/* A rotation plan: create once for (order, method, precision, convention) —
+/* A rotation plan: the per-rotation state of one thread (rotation_plan.c).
+ * sh_rotator_plan (below) makes one reading a rotator; any number of plans
+ * of one rotator may run on different threads at once.
+ * sh_rot_plan_create is the older door: a rotator and a plan in one
+ * object (halfpi then stays a one-thread plan).
+ * Create once for (order, method, precision, convention) —
  * per-order tables (X±90 blocks, recursion coefficients) are built here —
- * then set a rotation and apply it to many vectors.  Not thread-safe; one
- * plan per thread.  Float plans compute and apply in float arithmetic;
+ * then set a rotation and apply it to many vectors.  A plan is used by one
+ * thread at a time.  Float plans compute and apply in float arithmetic;
  * vectors cross this interface as double (sh_rot_plan_apply_f and the
  * batches below take float). */
 typedef struct sh_rot_plan sh_rot_plan;
+typedef struct sh_rotator sh_rotator;
 int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                        sh_rot_plan **out);
 void sh_rot_plan_free(sh_rot_plan *p);
@@ -145,6 +151,68 @@ int sh_rot_kernel_available(sh_rot_kernel k);
 int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
                               sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out);
 sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
+
+/* ---- the rotator: the front door of rotation (rotator.c) ---------------------
+ * One immutable object per (order, method, precision, kernel, convention,
+ * threads): created once — arguments checked, `auto` resolved, per-order
+ * tables built — then shared by any number of threads.  It chooses the path:
+ * the unrolled kernels where they exist (zxzxz and Taylor to order 10, ivanic
+ * to 6), the loop kernels otherwise, and for halfpi in double (what `auto`
+ * picks above order SH_ROT_DEFAULT_ZXZXZ_MAX) the threaded all-band stream.
+ *
+ * Two ways to use one:
+ *  - one call per rotation: sh_rotator_apply* (thread-safe; the unrolled
+ *    kernels on one vector allocate nothing, the others make their per-call
+ *    state inside the call);
+ *  - a plan per thread (sh_rotator_plan, below): set a rotation once, apply
+ *    it to many vectors, batches of K vectors or of K rotations.
+ * Creating a rotator at order ≤ 10 costs a few small allocations: the CPU's
+ * features are read once per process, and the memory available is consulted
+ * only for requests of 64 MiB or more. */
+#define SH_ROT_AUTO ((sh_rot_method)-1) /* zxzxz up to order 32, halfpi above */
+typedef struct {
+    int order;              /* bands 0..order−1 */
+    sh_rot_method method;   /* a method, or SH_ROT_AUTO */
+    sh_precision prec;      /* arithmetic (and the vectors of the _f calls) */
+    sh_rot_kernel kernel;   /* SH_KERNEL_AUTO: the widest this CPU runs */
+    sh_convention conv;
+    int threads;            /* the stream's threads (≤ 0: every core); 1 elsewhere */
+    sh_progress_fn progress; /* the stream's progress (bands done), or NULL */
+    void *progress_ctx;
+} sh_rotator_opts;
+/* Options start from this (method auto; every other zero field is a default:
+ * double, kernel auto, cs, every core):
+ *     sh_rotator_opts o = SH_ROTATOR_OPTS(6);  o.prec = SH_PREC_FLOAT;
+ * (A zeroed method field is SH_ROT_Z, rotation about z only.) */
+#define SH_ROTATOR_OPTS(n) ((sh_rotator_opts){.order = (n), .method = SH_ROT_AUTO})
+int sh_rotator_create(const sh_rotator_opts *opts, sh_rotator **out);
+void sh_rotator_free(sh_rotator *r);
+/* What it chose. */
+int sh_rotator_order(const sh_rotator *r);
+sh_rot_method sh_rotator_method(const sh_rotator *r);
+sh_precision sh_rotator_precision(const sh_rotator *r);
+sh_rot_kernel sh_rotator_kernel(const sh_rotator *r);
+int sh_rotator_threads(const sh_rotator *r);
+int sh_rotator_streams(const sh_rotator *r); /* 1: the high-band stream */
+/* Bytes the rotator holds (tables), and those of each plan or call (*per_plan). */
+size_t sh_rotator_bytes(const sh_rotator *r, size_t *per_plan);
+/* out + v·order² = R_sh · (in + v·order²) for v < nvec (in == out allowed),
+ * with R_sh the rotation's (flags 0) or its inverse's (SH_ROTATE_INVERSE:
+ * Rᵀ; for the stream the exactly negated angles −γ, −β, −α).  The rotation
+ * as ZYZ angles (sh_rotation: its angles are used), as a row-major matrix
+ * (by algebra where the kernels allow: no trigonometric call), or, for float
+ * rotators, a float matrix and float vectors. */
+#define SH_ROTATE_INVERSE 1u
+int sh_rotator_apply(const sh_rotator *r, const sh_rotation *rot, unsigned flags, int nvec, const double *in,
+                     double *out);
+int sh_rotator_apply_matrix(const sh_rotator *r, const double R[9], unsigned flags, int nvec, const double *in,
+                            double *out);
+int sh_rotator_apply_matrix_f(const sh_rotator *r, const float R[9], const float *in, float *out);
+
+/* A plan reading r (which must outlive it), for one thread (rotation_plan.c). */
+int sh_rotator_plan(const sh_rotator *r, sh_rot_plan **out);
+const sh_rotator *sh_rot_plan_rotator(const sh_rot_plan *p);
+
 
 /* The rotation as a row-major 3×3 matrix or a quaternion (w, x, y, z; any
  * non-zero norm), without trigonometric calls for zxzxz and the Taylor
@@ -232,6 +300,16 @@ int sh_rot_band_apply(int l, sh_convention conv, const sh_rotation *rot, int inv
  * follow from d_{m',−m} = (−1)^{l+m'} d_{m'm} and d_{−m',m} = (−1)^{l+m} d_{m'm}.
  * O(l²), within ~1e-15 of the exact values up to l = 4000. */
 int sh_wigner_d_halfpi(int l, double *d);
+/* J = dR_Y/dβ at β = 0, the generator of rotations about y
+ * (rotation_generator.c): band l as a (2l+1)² row-major block, closed form
+ * from the angular-momentum ladder (the only non-zeros are m' = m ± 1, never
+ * between m = 0 and m = −1); and its sub-diagonal in CS, s[j] = J[m][m−1] at
+ * m = j − l for j = 1..2l, s[0] = 0 (the super-diagonal is −s). */
+int sh_rot_deriv_J_band(int l, sh_convention conv, double *block);
+void sh_rot_deriv_J_subdiag(int l, double *s);
+/* Blocks of order n between the cs and nocs conventions (both ways):
+ * entries whose m and m' differ in parity change sign (S·B·S). */
+void sh_rot_blocks_flip_phase(int order, double *blocks);
 /* Dense order²×order² matrix (row-major) from blocks. */
 void sh_rot_blocks_to_dense(int order, const double *blocks, double *dense);
 /* Reference band block: MPFR with precision chosen for `digits` (≥ 30)

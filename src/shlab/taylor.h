@@ -11,7 +11,8 @@ extern "C" {
 #endif
 
 /* Derivatives of R_Y(β) = R_sh(Ry(β)) and Krivánek et al.'s (2005) Taylor
- * approximations (rotation_deriv.c, taylor_error.c, rot_taylor.c).  Blocks use
+ * approximations (rotation_deriv.c, taylor_error.c; the Taylor rotations themselves are
+ * rotation methods, src/rotate/rot_taylor.c).  Blocks use
  * the layout of sh_rot_block_offset; J = dR_Y/dβ at β = 0 (docs/CONVENTIONS.md). */
 #define SH_DERIV_MAX_ORDER 64 /* the Ivanic-Ruedenberg recursion loses digits above */
 /* d^k R_Y/dβ^k at β, bands 0..order-1, by Krivánek's Appendix A: the Leibniz
@@ -23,14 +24,8 @@ extern "C" {
  * every derivative 0..k: O(k²) per entry). */
 int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, double *blocks);
 /* The same by the generator: R_Y(β)·J^k, R_Y(β) from the zxzxz method and J
- * from its closed form (sh_rot_deriv_J_band). */
+ * from its closed form (sh_rot_deriv_J_band, rotate.h). */
 int sh_rot_deriv_generator(int order, int k, double beta, sh_convention conv, double *blocks);
-/* J of band l, (2l+1)² row-major, closed form from the angular-momentum
- * ladder (the only non-zeros are m' = m ± 1, never between m = 0 and m = −1). */
-int sh_rot_deriv_J_band(int l, sh_convention conv, double *block);
-/* J's sub-diagonal in band l, CS: s[j] = J[m][m−1] at m = j − l for j = 1..2l,
- * s[0] = 0 (the super-diagonal is −s by antisymmetry). */
-void sh_rot_deriv_J_subdiag(int l, double *s);
 /* D(β) = R_Y(β) − approx(R_Y(β)) for taylor = SH_ROT_TAYLOR1/15/2: its
  * singular values (GSL one-sided Jacobi SVD, band by band: D is block
  * diagonal) give max (largest) and mean (mean of all order² values); lobe =

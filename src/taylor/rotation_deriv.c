@@ -35,56 +35,16 @@
  * (2) The generator.  Ry(β + t) = Ry(β) Ry(t) and R_sh is a homomorphism, so
  *   d^k R_Y/dβ^k (β) = R_Y(β) J^k,  J = dR_Y/dβ(0),
  * with R_Y(β) from the zxzxz method (accurate to l = 1000) and J from its
- * closed form below — no code shared with (1).
+ * closed form (rotate/rotation_generator.c) — no code shared with (1).
  *
- * Closed form of J ([3]).  d/dβ d^l(β) at 0 = −i<m'|J_y|m> = −½<m'|J_+ − J_−|m>:
- *   d'_{m+1,m}(0) = −½√((l−m)(l+m+1)),  d'_{m−1,m}(0) = +½√((l+m)(l−m+1)).
- * The real block from d (rot_internal.h, sh__rot_block_from_d: R[m',m] =
- * d_{m'm} ± (−1)^m d_{m',−m} for m, m' > 0, √2 d at row or column 0) is
- * linear in d, so J's real (CS) entries are, with s_m = J[m][m−1]:
- *   m ≥ 2:  s_m = −½√((l−m+1)(l+m))
- *   m = 1:  s_1 = −√(l(l+1)/2)              (the √2 of row/column 0)
- *   m = 0:  s_0 = J[0][−1] = 0                (cos and sin functions never mix)
- *   m ≤ −1: s_m = +½√((l−m+1)(l+m))
- * and J[m−1][m] = −s_m (antisymmetric).  In nocs every entry of J changes sign
- * (each couples m to m ± 1, of the other parity); J² is the same in both.
+ * The closed form of J is derived in rotate/rotation_generator.c.
  */
-#include "rotate/rot_internal.h"
+#include "core/shlab_internal.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-void sh_rot_deriv_J_subdiag(int l, double *s)
-{
-    s[0] = 0;
-    for (int j = 1; j <= 2 * l; j++) {
-        const int m = j - l;
-        const double h = 0.5 * sqrt((double)(l - m + 1) * (double)(l + m));
-        if (m >= 2) s[j] = -h;
-        else if (m == 1) s[j] = -sqrt(0.5 * l * (l + 1.0));
-        else if (m == 0) s[j] = 0;
-        else s[j] = h;
-    }
-}
-
-int sh_rot_deriv_J_band(int l, sh_convention conv, double *block)
-{
-    if (l < 0 || l >= SHLAB_MAX_ORDER) return sh_error(SH_EINVAL, "deriv: band %d out of range", l);
-    const int w = 2 * l + 1;
-    double *s = malloc((size_t)w * sizeof *s);
-    if (!s) return sh_error(SH_ENOMEM, "deriv: out of memory");
-    sh_rot_deriv_J_subdiag(l, s);
-    memset(block, 0, (size_t)w * w * sizeof *block);
-    const double sg = conv == SH_NOCS ? -1.0 : 1.0;
-    for (int j = 1; j < w; j++) {
-        block[(size_t)j * w + (j - 1)] = sg * s[j] + 0.0; /* no −0 */
-        block[(size_t)(j - 1) * w + j] = -sg * s[j] + 0.0;
-    }
-    free(s);
-    return SH_OK;
-}
 
 /* Checks the arguments and brings (k, β) to an equivalent pair:
  *  - β modulo 2π (R_Y is 2π-periodic, so are its derivatives): remainder()
@@ -246,7 +206,7 @@ int sh_rot_deriv_recursion(int order, int k, double beta, sh_convention conv, do
     }
     memcpy(blocks, all + (size_t)K * nb, nb * sizeof *blocks);
     free(all), free(R1), free(binom);
-    if (conv == SH_CS) sh__rot_blocks_nocs_d(order, blocks); /* S·M·S: the recursion works in nocs */
+    if (conv == SH_CS) sh_rot_blocks_flip_phase(order, blocks); /* S·M·S: the recursion works in nocs */
     return deriv_finite(order, k_asked, blocks);
 }
 
@@ -287,6 +247,6 @@ int sh_rot_deriv_generator(int order, int k, double beta, sh_convention conv, do
     }
     if (k > 0) blocks[0] = 0;
     free(s), free(row);
-    if (conv == SH_NOCS) sh__rot_blocks_nocs_d(order, blocks); /* S·M·S */
+    if (conv == SH_NOCS) sh_rot_blocks_flip_phase(order, blocks); /* S·M·S */
     return deriv_finite(order, k_asked, blocks);
 }

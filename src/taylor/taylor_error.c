@@ -24,7 +24,7 @@
  * is S·D·S with S = diag(±1) orthogonal, and the lobe vector is zonal (m = 0,
  * S c = c).
  */
-#include "rotate/rot_internal.h"
+#include "core/shlab_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,0 +1,274 @@
+/* cli_args.c — the one parser of declared options, and --help from the same
+ * tables (cli_args.h). */
+#include "cli_args.h"
+#include "cli.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* ---- the table, groups flattened ------------------------------------------ */
+
+typedef struct {
+    const cli_opt *o;
+    size_t base; /* offset of the group's sub-struct in the command's struct */
+} flat_opt;
+
+typedef struct {
+    flat_opt v[CLI_ARGS_MAX];
+    int n;
+} flat_table;
+
+/* Append every option of t (groups expanded, headings skipped) to f. */
+static int flatten(const cli_opt *t, size_t base, flat_table *f)
+{
+    for (; t && t->type != CLI_T_END; t++) {
+        if (t->type == CLI_T_HEADING) continue;
+        if (t->type == CLI_T_GROUP) {
+            if (flatten(t->group, base + t->off, f)) return -1;
+            continue;
+        }
+        if (f->n == CLI_ARGS_MAX) return -1;
+        f->v[f->n].o = t;
+        f->v[f->n].base = base;
+        f->n++;
+    }
+    return 0;
+}
+
+static const flat_opt *find(const flat_table *f, const char *name, size_t len)
+{
+    for (int k = 0; k < f->n; k++)
+        if (strlen(f->v[k].o->name) == len && !strncmp(f->v[k].o->name, name, len)) return &f->v[k];
+    return NULL;
+}
+
+/* ---- values ----------------------------------------------------------------- */
+
+/* "must be in (0, 1]", "must be > 0", "must be <= 10": the range of a real. */
+static void real_range_text(const cli_opt *o, char *buf, size_t n)
+{
+    const int lo_open = (o->flags & CLI_LO_OPEN) != 0, hi_open = (o->flags & CLI_HI_OPEN) != 0;
+    if (isinf(o->hi))
+        snprintf(buf, n, "%s %.17g", lo_open ? ">" : ">=", o->lo);
+    else if (isinf(o->lo))
+        snprintf(buf, n, "%s %.17g", hi_open ? "<" : "<=", o->hi);
+    else
+        snprintf(buf, n, "in %c%.17g, %.17g%c", lo_open ? '(' : '[', o->lo, o->hi, hi_open ? ')' : ']');
+}
+
+static int has_range(const cli_opt *o) { return o->lo != 0 || o->hi != 0; }
+
+static int real_in_range(const cli_opt *o, double v)
+{
+    if (!has_range(o)) return 1;
+    if ((o->flags & CLI_LO_OPEN) ? !(v > o->lo) : !(v >= o->lo)) return 0;
+    if ((o->flags & CLI_HI_OPEN) ? !(v < o->hi) : !(v <= o->hi)) return 0;
+    return 1;
+}
+
+/* Parse s into the option's field (base + off of args); one error line and
+ * CLI_EXIT_USAGE if it is not a value of the option's kind and range. */
+static int set_value(const flat_opt *fo, const char *s, void *args)
+{
+    const cli_opt *o = fo->o;
+    void *field = (char *)args + fo->base + o->off;
+    char opt[80];
+    snprintf(opt, sizeof opt, "--%s", o->name);
+    switch (o->type) {
+    case CLI_T_FLAG: *(int *)field = 1; return 0;
+    case CLI_T_INT: {
+        int v;
+        if (cli_int(opt, s, &v)) return CLI_EXIT_USAGE;
+        if (has_range(o) && (v < o->lo || v > o->hi))
+            return cli_fail("%s: out of range %.0f..%.0f", opt, o->lo, o->hi);
+        *(int *)field = v;
+        return 0;
+    }
+    case CLI_T_LONG: {
+        long v;
+        if (cli_long(opt, s, &v)) return CLI_EXIT_USAGE;
+        if (has_range(o) && ((double)v < o->lo || (double)v > o->hi))
+            return cli_fail("%s: out of range %.0f..%.0f", opt, o->lo, o->hi);
+        *(long *)field = v;
+        return 0;
+    }
+    case CLI_T_REAL: {
+        double v;
+        if (cli_double(opt, s, &v)) return CLI_EXIT_USAGE;
+        if (!real_in_range(o, v)) {
+            char r[96];
+            real_range_text(o, r, sizeof r);
+            return cli_fail("%s: must be %s", opt, r);
+        }
+        *(double *)field = v;
+        return 0;
+    }
+    case CLI_T_STRING:
+        if (!*s) return cli_fail("%s: empty value", opt);
+        *(const char **)field = s;
+        return 0;
+    case CLI_T_CHOICE:
+        for (int k = 0; o->choices[k]; k++)
+            if (!strcmp(o->choices[k], s)) {
+                *(int *)field = k;
+                return 0;
+            }
+        {
+            char list[256] = "";
+            for (int k = 0; o->choices[k]; k++) {
+                strncat(list, k ? ", " : "", sizeof list - strlen(list) - 1);
+                strncat(list, o->choices[k], sizeof list - strlen(list) - 1);
+            }
+            return cli_fail("%s: unknown value '%s' (one of %s)", opt, s, list);
+        }
+    case CLI_T_CUSTOM: return o->parse(opt, s, field);
+    default: return cli_fail("%s: option of unknown kind", opt);
+    }
+}
+
+/* ---- parsing ---------------------------------------------------------------- */
+
+int cli_given(const cli_parsed *seen, const char *name)
+{
+    for (int k = 0; k < seen->ngiven; k++)
+        if (!strcmp(seen->given[k], name)) return 1;
+    return 0;
+}
+
+static int apply_defaults(const cli_cmd *cmd, const flat_table *f, void *args)
+{
+    for (int k = 0; k < f->n; k++)
+        if (f->v[k].o->def && set_value(&f->v[k], f->v[k].o->def, args))
+            return cli_fail("%s: the default of --%s is refused (a bug)", cmd->name, f->v[k].o->name);
+    return 0;
+}
+
+int cli_args_parse(const cli_cmd *cmd, int argc, char **argv, void *args, cli_parsed *seen)
+{
+    flat_table f = {.n = 0};
+    memset(seen, 0, sizeof *seen);
+    seen->first_positional = argc;
+    if (flatten(cmd->opts, 0, &f)) return cli_fail("%s: too many options declared (a bug)", cmd->name);
+    if (apply_defaults(cmd, &f, args)) return CLI_EXIT_USAGE;
+    int i = 1, npos = 0;
+    for (; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--")) { i++; break; }
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) return cli_args_help(cmd);
+        if (a[0] != '-' || a[1] == '\0') { /* a positional argument ("-": standard input) */
+            if (!cmd->positional) return cli_fail("%s: unexpected argument '%s'", cmd->name, a);
+            if (!npos++) seen->first_positional = i;
+            continue;
+        }
+        if (a[1] != '-') return cli_fail("%s: unknown option '%s' (see 'shlab %s --help')", cmd->name, a, cmd->name);
+        if (npos) return cli_fail("%s: option '%s' after the arguments (options come first)", cmd->name, a);
+        const char *name = a + 2, *eq = strchr(name, '=');
+        const size_t len = eq ? (size_t)(eq - name) : strlen(name);
+        const flat_opt *fo = find(&f, name, len);
+        if (!fo) return cli_fail("%s: unknown option '%.*s' (see 'shlab %s --help')", cmd->name, (int)len + 2, a, cmd->name);
+        if (cli_given(seen, fo->o->name))
+            return cli_fail("%s: option --%s given twice (give each option once)", cmd->name, fo->o->name);
+        const char *val = NULL;
+        if (fo->o->type == CLI_T_FLAG) {
+            if (eq) return cli_fail("%s: option --%s takes no value", cmd->name, fo->o->name);
+        } else if (eq) {
+            val = eq + 1;
+        } else if (i + 1 < argc) {
+            val = argv[++i];
+        } else {
+            return cli_fail("%s: option '%s' needs a value (see 'shlab %s --help')", cmd->name, a, cmd->name);
+        }
+        if (seen->ngiven == CLI_ARGS_MAX) return cli_fail("%s: too many options", cmd->name);
+        seen->given[seen->ngiven++] = fo->o->name;
+        const int rc = set_value(fo, val, args);
+        if (rc) return rc;
+    }
+    /* after "--": everything is positional */
+    for (; i < argc; i++) {
+        if (!cmd->positional) return cli_fail("%s: unexpected argument '%s'", cmd->name, argv[i]);
+        if (!npos++) seen->first_positional = i;
+    }
+    for (int k = 0; k < seen->ngiven; k++) {
+        const flat_opt *fo = find(&f, seen->given[k], strlen(seen->given[k]));
+        if (fo->o->needs && !cli_given(seen, fo->o->needs))
+            return cli_fail("%s: --%s applies to --%s only", cmd->name, fo->o->name, fo->o->needs);
+    }
+    return -1;
+}
+
+/* ---- --help ----------------------------------------------------------------- */
+
+#define HELP_COL 23 /* where the help lines of the options begin */
+
+/* "(default D; 1..32)": what the table knows beyond the help line, unless
+ * the help line says it already. */
+static void auto_text(const cli_opt *o, char *buf, size_t n)
+{
+    char parts[2][128];
+    int np = 0;
+    const int says_default = o->help && strstr(o->help, "default") != NULL;
+    if (o->def && !(o->flags & CLI_NO_DEFAULT) && !says_default) snprintf(parts[np++], sizeof parts[0], "default %s", o->def);
+    if (has_range(o) && (o->type == CLI_T_INT || o->type == CLI_T_LONG)) {
+        char r[64];
+        snprintf(r, sizeof r, "%.0f..%.0f", o->lo, o->hi);
+        if (!o->help || !strstr(o->help, r)) snprintf(parts[np++], sizeof parts[0], "%s", r);
+    } else if (has_range(o) && o->type == CLI_T_REAL) {
+        real_range_text(o, parts[np], sizeof parts[0]);
+        np++;
+    }
+    buf[0] = '\0';
+    if (!np) return;
+    snprintf(buf, n, "(%s%s%s)", parts[0], np > 1 ? "; " : "", np > 1 ? parts[1] : "");
+}
+
+static void help_option(FILE *out, const cli_opt *o)
+{
+    char head[96], extra[300];
+    snprintf(head, sizeof head, "  --%s%s%s", o->name, o->meta ? " " : "", o->meta ? o->meta : "");
+    auto_text(o, extra, sizeof extra);
+    if ((int)strlen(head) >= HELP_COL - 1) {
+        fprintf(out, "%s\n%*s", head, HELP_COL - 1, "");
+    } else {
+        fprintf(out, "%-*s", HELP_COL - 1, head);
+    }
+    int col = HELP_COL - 1;
+    for (const char *p = o->help ? o->help : ""; *p; p++) {
+        if (*p == '\n') {
+            fprintf(out, "\n%*s", HELP_COL - 1, "");
+            col = HELP_COL - 1;
+        } else {
+            fputc(*p, out);
+            col++;
+        }
+    }
+    if (*extra) {
+        if (col + 1 + (int)strlen(extra) > 80) fprintf(out, "\n%*s%s", HELP_COL - 1, "", extra);
+        else fprintf(out, "%s%s", o->help && *o->help ? " " : "", extra);
+    }
+    fputc('\n', out);
+}
+
+static void help_table(FILE *out, const cli_opt *t)
+{
+    for (; t && t->type != CLI_T_END; t++) {
+        if (t->flags & CLI_HIDDEN) continue;
+        if (t->type == CLI_T_GROUP) help_table(out, t->group);
+        else if (t->type == CLI_T_HEADING) fprintf(out, "%s\n", t->help);
+        else help_option(out, t);
+    }
+}
+
+int cli_args_help(const cli_cmd *cmd)
+{
+    FILE *out = stdout;
+    fprintf(out, "Usage: shlab %s\n", cmd->usage);
+    if (cmd->about && *cmd->about) fprintf(out, "\n%s", cmd->about);
+    fputs("\nOptions:\n", out);
+    help_table(out, cmd->opts);
+    fputs("  --help               this text\n", out);
+    if (cmd->notes && *cmd->notes) fprintf(out, "\n%s", cmd->notes);
+    fputs(cli_conventions_note, out);
+    if (fflush(out) != 0 || ferror(out)) return cli_fail("cannot write to standard output");
+    return CLI_EXIT_OK;
+}
