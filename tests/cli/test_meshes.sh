@@ -1,0 +1,77 @@
+#!/bin/sh
+# test_meshes.sh — hostile mesh files through the commands that read one:
+# each is refused with exit 2 and exactly one line "shlab: error: cannot read
+# mesh 'F': ..." within 2 s, writing nothing (under make check SANITIZE=1 a
+# sanitizer or leak report would add lines and change the exit status); good
+# meshes load with the content their construction gives them.  The files come
+# from tests/fuzz/mesh_files.pl (its header says what each is), plus two cuts
+# of the test model data/models/Wuson.ply when `make models` has run.
+. "$(dirname "$0")/lib.inc"
+D="$TMP/m"
+O="$TMP/out"
+mkdir -p "$O"
+if ! perl tests/fuzz/mesh_files.pl "$D"; then notok "tests/fuzz/mesh_files.pl wrote the files"; exit 0; fi
+if [ -f data/models/Wuson.ply ]; then
+    head -c 457877 data/models/Wuson.ply >"$D/bad-wuson-body-cut.ply"   # assimp aborted
+    head -c 200 data/models/Wuson.ply >"$D/bad-wuson-header-cut.ply"    # assimp read forever
+else
+    echo "SKIP Wuson cuts: no data/models/Wuson.ply (make models)"
+fi
+
+ms_now() { date +%s%N | cut -b1-13; }
+# refused FILE CMD...: exit 2, stdout empty, one stderr line naming FILE, < 2 s, nothing in $O
+refused() {
+    f=$1; shift
+    t0=$(ms_now)
+    "$SHLAB" "$@" --mesh "$f" >"$TMP/o" 2>"$TMP/e"; rc=$?
+    ms=$(($(ms_now) - t0))
+    what="$1 $(basename "$f")"
+    if [ "$rc" = 2 ] && [ ! -s "$TMP/o" ] && [ "$(wc -l <"$TMP/e")" = 1 ] &&
+        grep -qF "shlab: error: cannot read mesh '$f': " "$TMP/e" && [ "$ms" -lt 2000 ] && [ -z "$(ls -A "$O")" ]; then
+        ok "$what: refused in $ms ms"
+    else
+        notok "$what: exit $rc in $ms ms, stdout $(wc -c <"$TMP/o") bytes, files [$(ls -A "$O")], stderr: $(head -c 300 "$TMP/e")"
+        rm -f "$O"/* "$O"/.[!.]* 2>/dev/null
+    fi
+}
+
+for f in "$D"/bad-*; do refused "$f" transfer --rays 16; done
+# the other readers, on the three kinds of failure (importer abort, endless
+# read, allocation storm before the guard)
+for f in "$D/bad-ply-count-short.ply" "$D/bad-ply-header-cut.ply" "$D/bad-ply-binary-count-2e9.ply"; do
+    refused "$f" render --light const:1 --rays 16 --width 8 --height 8 --out "$O/r.exr" --png "$O/r.png"
+    refused "$f" scene-plan --light const:1 --budget 0.1 --rays 16
+    refused "$f" cache --light const:1 --rays 4 --png "$O/c.png"
+done
+
+# the reason names what is wrong, and where
+reason() {
+    if grep -qF "$2" "$TMP/e"; then ok "$1: names '$2'"; else notok "$1: '$2' not in: $(cat "$TMP/e")"; fi
+}
+"$SHLAB" transfer --mesh "$D/bad-obj-nan-late.obj" 2>"$TMP/e" >/dev/null
+reason "NaN in a later vertex" "OBJ vertex 4 (line 4) has a non-finite coordinate 'nan'"
+"$SHLAB" transfer --mesh "$D/bad-obj-inf-unused.obj" 2>"$TMP/e" >/dev/null
+reason "inf in an unused vertex" "OBJ vertex 4 (line 4) has a non-finite coordinate 'inf'"
+"$SHLAB" transfer --mesh "$D/bad-obj-1e308.obj" 2>"$TMP/e" >/dev/null
+reason "1e308" "a coordinate out of range: '1e308' (|x| <= 1e+38)"
+"$SHLAB" transfer --mesh "$D/bad-ply-nan-late.ply" 2>"$TMP/e" >/dev/null
+reason "PLY NaN" "PLY vertex 3 (line 14) has a non-finite coordinate 'nan'"
+"$SHLAB" transfer --mesh "$D/bad-ply-ascii-count-20digits.ply" 2>"$TMP/e" >/dev/null
+reason "20-digit count" "element 'vertex' has 99999999999999999999 instances, more than the 67108864"
+"$SHLAB" transfer --mesh "$D/bad-ply-list-count-zero.ply" 2>"$TMP/e" >/dev/null
+reason "list count 0" "PLY face 0 has no vertex indices"
+
+# good files: vertices and triangles as built (mesh_files.pl): the square 4
+# and 2 in every encoding, the quad 4 and 2, the cube 24 corners (8 corners ×
+# 3 face normals) and 12, the 30 × 30 grid 31² and 2·30²
+for g in square.obj:4:2 square-crlf.obj:4:2 square-ascii.ply:4:2 square-le.ply:4:2 square-be.ply:4:2 \
+         quad-le.ply:4:2 cube.obj:24:12 grid-ascii.ply:961:1800; do
+    f="$D/good-${g%%:*}"; nv=$(echo "$g" | cut -d: -f2); nt=$(echo "$g" | cut -d: -f3)
+    if "$SHLAB" transfer --mesh "$f" --rays 16 --quiet --format json >"$TMP/o" 2>"$TMP/e" &&
+        grep -q "\"vertices\":$nv,\"triangles\":$nt," "$TMP/o"; then
+        ok "good-${g%%:*}: $nv vertices, $nt triangles"
+    else
+        notok "good-${g%%:*}: expected $nv vertices, $nt triangles: $(head -c 200 "$TMP/o") $(head -c 200 "$TMP/e")"
+    fi
+done
+exit 0
