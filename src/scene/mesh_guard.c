@@ -19,7 +19,8 @@
  *   memory   256 MB + 64 n  (+ 512 MB under AddressSanitizer, whose
  *            allocations carry redzones and whose quarantine holds up to
  *            256 MB of freed memory), formats not checked here 1 GB + 64 n;
- *   CPU      10 s + 1 s per 4 MB. */
+ *   CPU      10 s + 1 s per 2 MB;
+ * the memory budget never above the machine's physical memory. */
 #include "scene/mesh_internal.h"
 
 #include <ctype.h>
@@ -29,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 int sh__mesh_import_knows_ext(const char *ext); /* mesh_import.c */
 
@@ -107,7 +109,9 @@ int sh__mesh_guard(const unsigned char *data, size_t n, const char *name, int fl
 #ifdef GUARD_ASAN
     g->mem_budget += 512LL << 20;
 #endif
-    g->cpu_seconds = 10.0 + (double)n / (4 << 20);
+    const long long phys = (long long)sysconf(_SC_PHYS_PAGES) * (long long)sysconf(_SC_PAGESIZE);
+    if (phys > 0 && g->mem_budget > phys) g->mem_budget = phys;
+    g->cpu_seconds = 10.0 + (double)n / (2 << 20);
     int st = SH_OK;
     if (fmt == SH_MESH_FMT_PLY) st = sh__mesh_guard_ply(data, n, flags, g);
     else if (fmt == SH_MESH_FMT_OBJ) st = sh__mesh_guard_obj(data, n, flags, g);

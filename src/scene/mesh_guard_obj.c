@@ -32,8 +32,10 @@
  * SH_MESH_MAX_COORD, and normals too unless SH_MESH_COMPUTE_NORMALS — every
  * statement, used or not; at most SH_MESH_MAX_ELEMS positions and triangles;
  * every index names an element that exists (relative ones: before the
- * statement); a face has 3 to SH_MESH_MAX_FACE_INDICES corners, a line 2; a
- * face gives normals for all its corners or none, and (unless
+ * statement); a face has 3 to SH_MESH_MAX_FACE_INDICES corners, a line 2;
+ * the faces' k² summed over those of k > 4 corners is within
+ * SH_MESH_NGON_WORK (triangulation time); a face gives normals for all its
+ * corners or none, and (unless
  * SH_MESH_COMPUTE_NORMALS) so do all faces, since assimp gives the corners of
  * a face without them a zero normal.  The importer then reads the file's own
  * bytes. */
@@ -51,7 +53,7 @@ typedef struct {
     int flags, line;
     long long nv, nvt, nvn;        /* defined so far */
     long long maxv[3], maxline[3]; /* the largest positive index of each kind, and its line */
-    long long corners, tris;
+    long long corners, tris, ngon; /* ngon: sum of k² over faces of k > 4 corners */
     int with_n, without_n;         /* lines of a face with normals, one without (0: none yet) */
 } obj_t;
 
@@ -209,8 +211,13 @@ static int corners(obj_t *O, char type, const char *s, size_t len)
     if (without && !O->without_n) O->without_n = O->line;
     O->corners += k;
     O->tris += k - 2;
+    if (k > 4) O->ngon += k * k;
     if (O->tris > SH_MESH_MAX_ELEMS)
         return sh_error(SH_EFORMAT, "OBJ faces make more than the %d triangles a mesh may have", SH_MESH_MAX_ELEMS);
+    if (O->ngon > SH_MESH_NGON_WORK(O->n))
+        return sh_error(SH_EFORMAT, "OBJ faces of many corners (up to line %d, %lld corners) would take the importer "
+                                    "too long to triangulate: the sum of their corners squared exceeds %lld for a file "
+                                    "of %zu bytes", O->line, k, SH_MESH_NGON_WORK(O->n), O->n);
     return SH_OK;
 }
 

@@ -51,8 +51,9 @@
  *    numbers as sh__mesh_number reads them), x, y, z (and nx, ny, nz unless
  *    SH_MESH_COMPUTE_NORMALS) finite and within SH_MESH_MAX_COORD, 1 to
  *    SH_MESH_MAX_FACE_INDICES indices per face, each a vertex that exists, at
- *    most two texture coordinates per index, and nothing after the last
- *    element but (ASCII) white space. */
+ *    most two texture coordinates per index, faces of many corners within
+ *    SH_MESH_NGON_WORK, and nothing after the last element but (ASCII)
+ *    white space. */
 #include "scene/mesh_internal.h"
 
 #include <ctype.h>
@@ -103,6 +104,7 @@ typedef struct {
     int nelem, vertex, face; /* element indices (-1: none) */
     elem_t *el;
     long long corners, tris; /* face indices, and the triangles they make */
+    long long ngon;          /* sum of k² over faces of k > 4 corners */
     unsigned char *out;      /* the canonical copy */
     size_t olen, ocap;
     int line;                /* ASCII: line number of the current position */
@@ -429,8 +431,13 @@ static int face_done(ply_t *P, long long f, long long k, long long tc)
         return sh_error(SH_EFORMAT, "PLY face %lld has %lld texture coordinates for %lld vertices (2 each at most)", f, tc, k);
     P->corners += k;
     P->tris += k >= 3 ? k - 2 : 0;
+    if (k > 4) P->ngon += k * k;
     if (P->tris > SH_MESH_MAX_ELEMS)
         return sh_error(SH_EFORMAT, "PLY faces make more than the %d triangles a mesh may have", SH_MESH_MAX_ELEMS);
+    if (P->ngon > SH_MESH_NGON_WORK(P->n))
+        return sh_error(SH_EFORMAT, "PLY faces of many corners (up to face %lld, %lld corners) would take the importer "
+                                    "too long to triangulate: the sum of their corners squared exceeds %lld for a file "
+                                    "of %zu bytes", f, k, SH_MESH_NGON_WORK(P->n), P->n);
     return SH_OK;
 }
 

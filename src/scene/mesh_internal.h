@@ -33,6 +33,13 @@ enum { SH_MESH_FMT_OTHER = 0, SH_MESH_FMT_PLY = 1, SH_MESH_FMT_OBJ = 2 };
 /* Most vertex indices in one PLY face or OBJ statement (assimp's
  * AI_MAX_FACE_INDICES). */
 #define SH_MESH_MAX_FACE_INDICES 0x7fff
+/* assimp triangulates a face of k > 4 corners in time ~ k² (measured: a
+ * convex face of 8000 corners 0.9 s, 16000 3.2 s, 32767 16.5 s on the
+ * test machine), so the sum of k² over such faces is bounded by this
+ * budget for a file of n bytes: 2^28 (~3.5 s) plus 32 per byte (~0.4 s a
+ * MB, within the CPU budget's 0.5 s a MB).  Faces of up to ~100 corners
+ * never come near it (their k² is at most 50 times their bytes). */
+#define SH_MESH_NGON_WORK(n) ((1LL << 28) + 32LL * (long long)(n))
 
 /* What the guard found.  The importer is given `bytes` (the file's own bytes,
  * or for PLY a canonical copy: see mesh_guard_ply.c) under the name `name`,
