@@ -13,14 +13,16 @@
  *   anything else -> the importer's own choice, unchecked here: such files
  *        rely on the sandbox alone (mesh_sandbox.c).
  *
- * Limits handed to the sandbox, from the file's size n (measured on the test
- * models: assimp peaks at about 30 bytes of address space per byte of ASCII
- * PLY and imports 10-30 MB/s; see the commit that added this file):
- *   memory   256 MB + 64 n  (+ 512 MB under AddressSanitizer, whose
- *            allocations carry redzones and whose quarantine holds up to
- *            256 MB of freed memory), formats not checked here 1 GB + 64 n;
- *   CPU      10 s + 1 s per 2 MB;
- * the memory budget never above the machine's physical memory. */
+ * Limits handed to the sandbox, from the file's size n.  Measured growth of
+ * the importer's resident memory (getrusage around sh__mesh_import on 11 MB
+ * PLY and OBJ grids and the test models): 11 (PLY) to 17 (OBJ)
+ * bytes per input byte, at least 20 MB for any OBJ (assimp's 16 MB line
+ * buffer); under AddressSanitizer 25 to 37 bytes per byte.  Speed: 10-30 MB/s
+ * on a loaded machine.  So:
+ *   memory   256 MB + 64 n, formats not checked here 1 GB + 64 n, plus under
+ *            AddressSanitizer 256 MB (its quarantine keeps up to 256 MB of
+ *            freed memory); never above the machine's physical memory;
+ *   CPU      10 s + 1 s per 2 MB. */
 #include "scene/mesh_internal.h"
 
 #include <ctype.h>
@@ -33,14 +35,6 @@
 #include <unistd.h>
 
 int sh__mesh_import_knows_ext(const char *ext); /* mesh_import.c */
-
-#if defined(__SANITIZE_ADDRESS__)
-#define GUARD_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define GUARD_ASAN 1
-#endif
-#endif
 
 void sh__mesh_guard_free(sh_mesh_guard *g)
 {
@@ -106,8 +100,8 @@ int sh__mesh_guard(const unsigned char *data, size_t n, const char *name, int fl
     g->size = n;
     g->max_vertices = g->max_triangles = SH_MESH_MAX_ELEMS;
     g->mem_budget = (fmt == SH_MESH_FMT_OTHER ? 1LL << 30 : 256LL << 20) + 64 * (long long)n;
-#ifdef GUARD_ASAN
-    g->mem_budget += 512LL << 20;
+#ifdef SH_MESH_ASAN
+    g->mem_budget += 256LL << 20;
 #endif
     const long long phys = (long long)sysconf(_SC_PHYS_PAGES) * (long long)sysconf(_SC_PAGESIZE);
     if (phys > 0 && g->mem_budget > phys) g->mem_budget = phys;

@@ -140,14 +140,14 @@ static int tokenize(const char *s, size_t len, const char **tok, size_t *tlen, i
 
 static int tok_is(const char *t, size_t len, const char *w) { return len == strlen(w) && !memcmp(t, w, len); }
 
-/* a decimal count of digits only, saturated above 10^18; -1 if not digits */
+/* a decimal count of digits only, saturated above 10^17; -1 if not digits */
 static long long parse_count(const char *t, size_t len)
 {
     if (len == 0) return -1;
     long long v = 0;
     for (size_t i = 0; i < len; i++) {
         if (!isdigit((unsigned char)t[i])) return -1;
-        if (v < 1000000000000000000LL) v = 10 * v + (t[i] - '0');
+        if (v < 100000000000000000LL) v = 10 * v + (t[i] - '0');
     }
     return v;
 }
@@ -593,6 +593,10 @@ static int walk_ascii(ply_t *P)
                 break;
             }
             const int nt = tokenize((const char *)P->d + b, t - b, tok, tl, MAXTOK);
+            if (nt > MAXTOK) {
+                st = sh_error(SH_EFORMAT, "PLY line %d has more than %d values", P->line, MAXTOK);
+                break;
+            }
             int q = 0, used = 0;
             long long k = 0, tc = 0;
             for (; q < e->nprop && !st; q++) {

@@ -23,6 +23,16 @@
 
 #include "core/shlab_internal.h"
 
+/* Built with AddressSanitizer (gcc's or clang's): the sandbox limits memory
+ * another way there, and the budget allows for the sanitizer's own use. */
+#if defined(__SANITIZE_ADDRESS__)
+#define SH_MESH_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SH_MESH_ASAN 1
+#endif
+#endif
+
 /* ------------------------------------------------------------------ guard */
 
 enum { SH_MESH_FMT_OTHER = 0, SH_MESH_FMT_PLY = 1, SH_MESH_FMT_OBJ = 2 };

@@ -16,17 +16,30 @@
  *    leaked;
  *  - limits (setrlimit): RLIMIT_CPU (soft at the budget, hard one second
  *    later: SIGXCPU then SIGKILL), RLIMIT_CORE 0 (an abort dumps nothing),
- *    RLIMIT_FSIZE 0 (it writes no file), RLIMIT_AS at its address space at
- *    the fork plus the memory budget.  The limit is relative, so it also
- *    holds under AddressSanitizer, whose shadow memory and allocator regions
- *    (terabytes of address space, reserved at start-up, so already counted)
- *    make any absolute limit impossible: an allocation beyond the budget
- *    fails there too (assimp's std::bad_alloc, or AddressSanitizer's
- *    out-of-memory report and exit);
+ *    RLIMIT_FSIZE 0 (it writes no file), and RLIMIT_AS at its address space
+ *    at the fork plus the memory budget: an allocation beyond it fails
+ *    (assimp catches std::bad_alloc and says so).  Under AddressSanitizer an
+ *    address-space limit cannot be used: the shadow memory and allocator
+ *    regions take terabytes of it (reserved at start-up), and even a limit
+ *    relative to them fails badly — the allocator's out-of-memory report
+ *    itself needs memory, fails, and the process hangs in the sanitizer's
+ *    CHECK handler until killed.  There the child counts instead: a malloc
+ *    hook (__sanitizer_install_malloc_and_free_hooks) reads the allocator's
+ *    live bytes (__sanitizer_get_current_allocated_bytes) after every
+ *    allocation and leaves with CHILD_OVER_MEMORY once they pass the budget
+ *    (an allocation is only reserved address space until touched, so one
+ *    huge request costs nothing before the hook sees it);
  *  - the parent polls both pipes until the wall-clock limit, feeds the
  *    result pipe to the frame reader (mesh_frame.c), which checks every count
  *    against the bounds before allocating, and kills the child (SIGKILL) at
- *    the limit or on the first broken rule; it always reaps the child.
+ *    the limit or on the first broken rule; it always reaps the child;
+ *  - while it waits the parent also reads the child's resident memory
+ *    (/proc/PID/statm) every 10 ms and kills it once it has grown by more
+ *    than the budget over the parent's own at the fork (their pages are
+ *    shared until written): the limit on real memory, which under
+ *    AddressSanitizer also catches what the malloc hook cannot — one huge
+ *    allocation, whose shadow the sanitizer fills (an eighth of its size)
+ *    before the hook is called.
  *
  * The child is a copy of a process that may run threads (OpenMP, Embree):
  * only the forking thread exists in it.  glibc's malloc is safe after fork;
@@ -53,6 +66,27 @@
 #define NSIG 65
 #endif
 
+/* the child's exit statuses besides 0 */
+enum { CHILD_ORPHAN = 3, CHILD_WRITE_FAILED = 4, CHILD_OVER_MEMORY = 5 };
+
+#ifdef SH_MESH_ASAN
+/* AddressSanitizer's allocator interface (sanitizer/allocator_interface.h,
+ * which gcc does not install; libasan exports the functions) */
+size_t __sanitizer_get_current_allocated_bytes(void);
+int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void *, size_t),
+                                              void (*free_hook)(const volatile void *));
+static size_t asan_limit;
+static void asan_free_hook(const volatile void *p) {} /* the interface takes both hooks or none */
+static void asan_malloc_hook(const volatile void *p, size_t size)
+{
+    if (__sanitizer_get_current_allocated_bytes() > asan_limit) {
+        static const char msg[] = "over the memory limit (AddressSanitizer's count of live bytes)\n";
+        if (write(2, msg, sizeof msg - 1) < 0) {}
+        _exit(CHILD_OVER_MEMORY);
+    }
+}
+#endif
+
 static double now_s(void)
 {
     struct timespec t;
@@ -60,17 +94,24 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* The child's address space now (bytes): /proc/self/statm's first field. */
-static long long vm_size(void)
+/* Field k (0: size, 1: resident) of /proc/PID/statm in bytes (pid 0: this
+ * process), or -1. */
+static long long statm(pid_t pid, int k)
 {
-    char buf[128];
-    const int fd = open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+    char path[64], buf[128];
+    if (pid) snprintf(path, sizeof path, "/proc/%d/statm", (int)pid);
+    else snprintf(path, sizeof path, "/proc/self/statm");
+    const int fd = open(path, O_RDONLY | O_CLOEXEC);
     if (fd < 0) return -1;
     const ssize_t n = read(fd, buf, sizeof buf - 1);
     close(fd);
     if (n <= 0) return -1;
     buf[n] = '\0';
-    return strtoll(buf, NULL, 10) * (long long)sysconf(_SC_PAGESIZE);
+    char *p = buf;
+    for (int i = 0; i < k; i++) {
+        strtoll(p, &p, 10);
+    }
+    return strtoll(p, NULL, 10) * (long long)sysconf(_SC_PAGESIZE);
 }
 
 static void set_limit(int which, rlim_t soft, rlim_t hard)
@@ -91,7 +132,7 @@ static void child(const sh_mesh_job *job, int wfd, int efd, int devnull, pid_t p
     sigprocmask(SIG_SETMASK, &none, NULL);
 #ifdef __linux__
     prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(3); /* the parent died before the request */
+    if (getppid() != parent) _exit(CHILD_ORPHAN); /* the parent died before the request */
 #endif
     if (devnull >= 0) {
         dup2(devnull, 0);
@@ -106,8 +147,13 @@ static void child(const sh_mesh_job *job, int wfd, int efd, int devnull, pid_t p
     const rlim_t cpu = (rlim_t)ceil(job->cpu_seconds > 0 ? job->cpu_seconds : 1);
     set_limit(RLIMIT_CPU, cpu, cpu + 1);
     if (job->mem_bytes > 0) {
-        const long long vm = vm_size();
+#ifdef SH_MESH_ASAN
+        asan_limit = __sanitizer_get_current_allocated_bytes() + (size_t)job->mem_bytes;
+        __sanitizer_install_malloc_and_free_hooks(asan_malloc_hook, asan_free_hook);
+#else
+        const long long vm = statm(0, 0);
         if (vm > 0) set_limit(RLIMIT_AS, (rlim_t)(vm + job->mem_bytes), (rlim_t)(vm + job->mem_bytes));
+#endif
     }
     if (job->raw) {
         job->raw(job->arg, wfd);
@@ -118,7 +164,7 @@ static void child(const sh_mesh_job *job, int wfd, int efd, int devnull, pid_t p
     memset(&m, 0, sizeof m);
     memset(&rep, 0, sizeof rep);
     const int st = job->run(job->arg, &m, &rep);
-    _exit(sh__mesh_frame_write(wfd, st, &m, &rep) ? 4 : 0);
+    _exit(sh__mesh_frame_write(wfd, st, &m, &rep) ? CHILD_WRITE_FAILED : 0);
 }
 
 /* Reap the child (its wait status and resource use); past the deadline
@@ -180,6 +226,7 @@ int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
     sigfillset(&all);
     pthread_sigmask(SIG_SETMASK, &all, &old);
     const pid_t parent = getpid();
+    const long long rss0 = job->mem_bytes > 0 ? statm(0, 1) : -1;
     const double t0 = now_s();
     const pid_t pid = fork();
     if (pid == 0) child(job, res[1], err[1], devnull, parent);
@@ -198,13 +245,17 @@ int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
     sh__mesh_frame_begin(&fr, job->max_vertices, job->max_triangles);
     char errbuf[1024];
     size_t errlen = 0;
-    int fds[2] = {res[0], err[0]}, bad = 0;
+    int fds[2] = {res[0], err[0]}, bad = 0, over = 0;
     unsigned char chunk[1 << 16];
-    while ((fds[0] >= 0 || fds[1] >= 0) && !bad) {
+    while ((fds[0] >= 0 || fds[1] >= 0) && !bad && !over) {
         const double left = deadline - now_s();
         if (left <= 0) break;
         struct pollfd pf[2] = {{fds[0], POLLIN, 0}, {fds[1], POLLIN, 0}};
-        const int k = poll(pf, 2, (int)ceil(left * 1000));
+        const int k = poll(pf, 2, rss0 >= 0 && left > 0.01 ? 10 : (int)ceil(left * 1000));
+        if (rss0 >= 0) {
+            const long long r = statm(pid, 1);
+            over = r > 0 && r - rss0 > job->mem_bytes;
+        }
         if (k < 0 && errno == EINTR) continue;
         if (k < 0) break;
         for (int i = 0; i < 2; i++) {
@@ -223,8 +274,8 @@ int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
             }
         }
     }
-    const int unfinished = fds[0] >= 0 && !bad; /* the deadline came first */
-    if (bad || unfinished) kill(pid, SIGKILL);
+    const int unfinished = fds[0] >= 0 && !bad && !over; /* the deadline came first */
+    if (bad || unfinished || over) kill(pid, SIGKILL);
     for (int i = 0; i < 2; i++)
         if (fds[i] >= 0) close(fds[i]);
     int status;
@@ -232,11 +283,13 @@ int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
     const int late = reap(pid, deadline, &status, &ru);
     const double cpu = (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
                        1e-6 * (double)ru.ru_stime.tv_usec;
-    const int complete = !bad && !unfinished && sh__mesh_frame_complete(&fr);
+    const int complete = !bad && !unfinished && !over && sh__mesh_frame_complete(&fr);
     const char *line = first_line(errbuf, errlen);
     const double cpu_limit = ceil(job->cpu_seconds > 0 ? job->cpu_seconds : 1);
     int st;
-    if (unfinished || late) {
+    if (over || (status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == CHILD_OVER_MEMORY)) {
+        st = sh_error(SH_EFORMAT, "the importer went over its memory limit of %lld MB (stopped)", job->mem_bytes >> 20);
+    } else if (unfinished || late) {
         st = sh_error(SH_EFORMAT, "the importer did not finish within %g s (stopped)", job->wall_seconds);
     } else if (bad) {
         st = sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr.why);
