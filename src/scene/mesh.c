@@ -320,9 +320,8 @@ int sh_mesh_load(const char *path, int flags, sh_mesh *out, sh_mesh_report *rep)
     sh_mesh_report r0;
     if (!rep) rep = &r0;
     memset(rep, 0, sizeof *rep);
-    if (!out) return sh_error(SH_EINVAL, "sh_mesh_load: no output");
+    if (!out || !path) return sh_error(SH_EINVAL, "sh_mesh_load: no output or no path");
     memset(out, 0, sizeof *out);
-    if (!path) return sh_error(SH_EINVAL, "sh_mesh_load: no path");
     /* the input policy (input_file.c): our messages, no blocking on a FIFO */
     char *buf;
     size_t n;
@@ -338,9 +337,8 @@ int sh_mesh_load_mem(const void *data, size_t size, const char *name, int flags,
     sh_mesh_report r0;
     if (!rep) rep = &r0;
     memset(rep, 0, sizeof *rep);
-    if (!out) return sh_error(SH_EINVAL, "sh_mesh_load_mem: no output");
+    if (!out || !name || (!data && size)) return sh_error(SH_EINVAL, "sh_mesh_load_mem: no output, name or data");
     memset(out, 0, sizeof *out);
-    if (!name || (!data && size)) return sh_error(SH_EINVAL, "sh_mesh_load_mem: no name or no data");
     if ((long long)size > SH_MESH_MAX_BYTES)
         return sh_error(SH_EFORMAT, "mesh '%s' has %zu bytes, more than the %lld a mesh may have", name, size,
                         SH_MESH_MAX_BYTES);

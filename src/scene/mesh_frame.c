@@ -27,6 +27,7 @@ static const char *const stage_name[] = {"header", "message", "positions", "norm
 
 /* ------------------------------------------------------------- writer */
 
+/* Write n bytes (EINTR and short writes retried): 0, or -1. */
 static int write_all(int fd, const void *p, size_t n)
 {
     const char *b = p;
@@ -78,6 +79,7 @@ int sh__mesh_frame_write(int fd, int st, const sh_mesh *m, const sh_mesh_report 
 
 /* ------------------------------------------------------------- reader */
 
+/* The stream broke a rule: remember which, refuse all further bytes; -1. */
 static int broken(sh_mesh_frame_reader *r, const char *why)
 {
     snprintf(r->why, sizeof r->why, "%s", why);
@@ -85,6 +87,7 @@ static int broken(sh_mesh_frame_reader *r, const char *why)
     return -1;
 }
 
+/* The next part: need bytes into dst. */
 static void expect(sh_mesh_frame_reader *r, int stage, void *dst, size_t need)
 {
     r->stage = stage;

@@ -113,6 +113,25 @@ int sh__mesh_guard(const unsigned char *data, size_t n, const char *name, int fl
     return st;
 }
 
+/* ------------------------------------------------------------- tokens */
+
+int sh__mesh_tokens(const char *s, size_t len, const char **tok, size_t *tl, int max)
+{
+    int k = 0;
+    size_t i = 0;
+    while (i < len) {
+        while (i < len && (s[i] == ' ' || s[i] == '\t')) i++;
+        if (i == len) break;
+        const size_t b = i;
+        while (i < len && s[i] != ' ' && s[i] != '\t') i++;
+        if (k == max) return max + 1;
+        tok[k] = s + b;
+        tl[k] = i - b;
+        k++;
+    }
+    return k;
+}
+
 /* ------------------------------------------------------------- numbers */
 
 int sh__mesh_number(const char *s, size_t len, int max_exp, double *v)

@@ -60,23 +60,6 @@ typedef struct {
 enum { K_V, K_VT, K_VN };
 static const char *const kind_name[] = {"vertex", "texture coordinate", "normal"};
 
-static int tokenize(const char *s, size_t len, const char **tok, size_t *tl, int max)
-{
-    int k = 0;
-    size_t i = 0;
-    while (i < len) {
-        while (i < len && (s[i] == ' ' || s[i] == '\t')) i++;
-        if (i == len) break;
-        const size_t b = i;
-        while (i < len && s[i] != ' ' && s[i] != '\t') i++;
-        if (k == max) return max + 1;
-        tok[k] = s + b;
-        tl[k] = i - b;
-        k++;
-    }
-    return k;
-}
-
 /* a number of a v, vt or vn statement: sh__mesh_number's, and a digit or a
  * sign first (assimp's IsNumeric, by which it counts the components) */
 static int obj_number(const char *t, size_t len, double *v)
@@ -92,7 +75,7 @@ static int numbers(obj_t *O, int kind, const char *s, size_t len)
 {
     const char *tok[8];
     size_t tl[8];
-    const int nt = tokenize(s, len, tok, tl, 7);
+    const int nt = sh__mesh_tokens(s, len, tok, tl, 7);
     const long long num = (kind == K_V ? O->nv : kind == K_VT ? O->nvt : O->nvn) + 1;
     const int check = kind == K_V || (kind == K_VN && !(O->flags & SH_MESH_COMPUTE_NORMALS));
     double x[7];

@@ -112,32 +112,16 @@ typedef struct {
 
 /* ------------------------------------------------------------- helpers */
 
+/* Append k bytes to the canonical copy (olen counts past ocap: checked at the end). */
 static void put(ply_t *P, const void *s, size_t k)
 {
     if (P->olen + k <= P->ocap) memcpy(P->out + P->olen, s, k);
     P->olen += k; /* an overflow is caught by the caller (olen > ocap) */
 }
+/* Append a string to the canonical copy. */
 static void puts_(ply_t *P, const char *s) { put(P, s, strlen(s)); }
 
-/* Split s[0..len) at spaces and tabs into at most max tokens; the count, or
- * max + 1 if there are more. */
-static int tokenize(const char *s, size_t len, const char **tok, size_t *tlen, int max)
-{
-    int k = 0;
-    size_t i = 0;
-    while (i < len) {
-        while (i < len && (s[i] == ' ' || s[i] == '\t')) i++;
-        if (i == len) break;
-        const size_t b = i;
-        while (i < len && s[i] != ' ' && s[i] != '\t') i++;
-        if (k == max) return max + 1;
-        tok[k] = s + b;
-        tlen[k] = i - b;
-        k++;
-    }
-    return k;
-}
-
+/* The token t[0..len) is the word w. */
 static int tok_is(const char *t, size_t len, const char *w) { return len == strlen(w) && !memcmp(t, w, len); }
 
 /* a decimal count of digits only, saturated above 10^17; -1 if not digits */
@@ -170,6 +154,7 @@ static int ascii_int(const char *t, size_t len, int type, long long *v)
     return 0;
 }
 
+/* size bytes at p as an unsigned number in the file's byte order. */
 static uint64_t rd(const ply_t *P, const unsigned char *p, int size)
 {
     uint64_t v = 0;
@@ -218,6 +203,7 @@ static int bad_coord(const ply_t *P, long long v, int role, int code, const char
 
 /* ------------------------------------------------------------- header */
 
+/* T_* of a type name (PLY's and assimp's spellings), or -1. */
 static int find_type(const char *t, size_t len)
 {
     for (size_t k = 0; k < sizeof type_names / sizeof *type_names; k++)
@@ -320,6 +306,9 @@ static int header_line(ply_t *P, int line, const char **tok, size_t *tl, int nt,
     return SH_OK; /* another line (Blender 2.4 wrote a bare "Created by ..."): ignored, as assimp does */
 }
 
+/* The header, line by line within SH_MESH_PLY_MAX_HEADER bytes: P->fmt,
+ * the elements, P->body; then the element rules (a vertex element with
+ * properties, a face element with its index list). */
 static int parse_header(ply_t *P)
 {
     const size_t lim = P->n < SH_MESH_PLY_MAX_HEADER ? P->n : SH_MESH_PLY_MAX_HEADER;
@@ -341,7 +330,7 @@ static int parse_header(ply_t *P)
                 return sh_error(SH_EFORMAT, "PLY header line %d has a control character (0x%02x)", line, P->d[i]);
         const char *tok[8];
         size_t tl[8];
-        const int nt = tokenize((const char *)P->d + pos, e - pos, tok, tl, 7);
+        const int nt = sh__mesh_tokens((const char *)P->d + pos, e - pos, tok, tl, 7);
         if (line == 1) {
             if (nt != 1 || tl[0] != 3 || strncasecmp(tok[0], "ply", 3))
                 return sh_error(SH_EFORMAT, "not a PLY file: the first line is not 'ply'");
@@ -425,6 +414,8 @@ static int fit_counts(ply_t *P)
 
 /* ------------------------------------------------------------- body */
 
+/* Face f read, with k indices and tc texture coordinates: its rules, and
+ * the counts of corners, triangles and triangulation work. */
 static int face_done(ply_t *P, long long f, long long k, long long tc)
 {
     if (tc > 2 * k)
@@ -441,6 +432,7 @@ static int face_done(ply_t *P, long long f, long long k, long long tc)
     return SH_OK;
 }
 
+/* A face's index count: 1 to SH_MESH_MAX_FACE_INDICES. */
 static int vidx_count(const ply_t *P, long long f, long long k)
 {
     if (k < 1) return sh_error(SH_EFORMAT, "PLY face %lld has no vertex indices (a count of %lld)", f, k);
@@ -450,6 +442,7 @@ static int vidx_count(const ply_t *P, long long f, long long k)
     return SH_OK;
 }
 
+/* A face's index: a vertex of the vertex element. */
 static int vidx_value(const ply_t *P, long long f, long long v)
 {
     const long long nv = P->el[P->vertex].count;
@@ -461,6 +454,9 @@ static int vidx_value(const ply_t *P, long long f, long long v)
     return SH_OK;
 }
 
+/* The binary body, record by record (every value in the file, every
+ * length checked before it is read); the vertex and face elements' bytes
+ * copied to the canonical copy; nothing may follow the last element. */
 static int walk_binary(ply_t *P)
 {
     const unsigned char *p = P->d + P->body, *end = P->d + P->n;
@@ -569,6 +565,10 @@ static int ascii_value(ply_t *P, const elem_t *e, long long j, const prop_t *pr,
     return SH_OK;
 }
 
+/* The ASCII body, an instance a line (blank lines skipped), each line
+ * holding exactly its element's values; the vertex and face lines copied
+ * to the canonical copy, values one space apart; only white space may
+ * follow the last element. */
 static int walk_ascii(ply_t *P)
 {
     size_t pos = P->body;
@@ -592,7 +592,7 @@ static int walk_ascii(ply_t *P)
                               e->count);
                 break;
             }
-            const int nt = tokenize((const char *)P->d + b, t - b, tok, tl, MAXTOK);
+            const int nt = sh__mesh_tokens((const char *)P->d + b, t - b, tok, tl, MAXTOK);
             if (nt > MAXTOK) {
                 st = sh_error(SH_EFORMAT, "PLY line %d has more than %d values", P->line, MAXTOK);
                 break;

@@ -53,6 +53,8 @@ typedef struct {
     char *owned; /* a side file's bytes */
 } memfile;
 
+/* aiFile over bytes in memory, as assimp's MemoryIOStream: Read gives whole
+ * elements only, Seek refuses a position past the end, Write writes nothing. */
 static size_t f_read(struct aiFile *f, char *buf, size_t size, size_t count)
 {
     memfile *m = (memfile *)f->UserData;
@@ -77,6 +79,9 @@ static enum aiReturn f_seek(struct aiFile *f, size_t off, enum aiOrigin origin)
     return aiReturn_SUCCESS;
 }
 
+/* Open for reading only: the main file by its exact name from memory, any
+ * other through sh_input_read_all when side files are allowed, else none
+ * (assimp then goes without, e.g. an OBJ without its materials). */
 static struct aiFile *fio_open(struct aiFileIO *io, const char *name, const char *mode)
 {
     const fio_ctx *c = (const fio_ctx *)io->UserData;
@@ -109,6 +114,7 @@ fail:
     return NULL;
 }
 
+/* Close a file of fio_open. */
 static void fio_close(struct aiFileIO *io, struct aiFile *f)
 {
     if (!f) return;

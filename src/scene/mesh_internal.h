@@ -82,7 +82,12 @@ void sh__mesh_guard_free(sh_mesh_guard *g);
 int sh__mesh_guard_ply(const unsigned char *data, size_t n, int flags, sh_mesh_guard *g);
 int sh__mesh_guard_obj(const unsigned char *data, size_t n, int flags, sh_mesh_guard *g);
 
-/* Shared by the two readers (mesh_guard.c).  A number as assimp's
+/* Shared by the two readers (mesh_guard.c).  Split s[0..len) at spaces and
+ * tabs (what assimp's SkipSpaces skips) into at most max tokens, tok[k] and
+ * tl[k] their starts and lengths: the count, or max + 1 if there are more
+ * (then only max are set). */
+int sh__mesh_tokens(const char *s, size_t len, const char **tok, size_t *tl, int max);
+/* A number as assimp's
  * fast_atof reads it, restricted to what it and strtod(3) read alike:
  * [+-]? (D+ (. D*)? | . D+) ([eE] [+-]? D+)?, at most 64 characters, a
  * decimal exponent at most max_exp (38 when assimp parses into a float,

@@ -87,6 +87,7 @@ static void asan_malloc_hook(const volatile void *p, size_t size)
 }
 #endif
 
+/* Monotonic time in seconds. */
 static double now_s(void)
 {
     struct timespec t;
@@ -114,6 +115,7 @@ static long long statm(pid_t pid, int k)
     return strtoll(p, NULL, 10) * (long long)sysconf(_SC_PAGESIZE);
 }
 
+/* setrlimit, failure ignored (a limit the system refuses is not ours to raise). */
 static void set_limit(int which, rlim_t soft, rlim_t hard)
 {
     struct rlimit rl = {soft, hard};
@@ -209,6 +211,7 @@ static const char *first_line(char *err, size_t n)
     return s;
 }
 
+/* Mark fd close-on-exec (a program another thread starts must not hold the pipes open). */
 static int set_cloexec(int fd) { return fcntl(fd, F_SETFD, FD_CLOEXEC); }
 
 int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
