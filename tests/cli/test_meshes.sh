@@ -53,6 +53,24 @@ LIMIT=10000
 refused "$D/bad-off-2e8.off" transfer --rays 16
 LIMIT=2000
 
+# the importer's child dies with shlab: SIGTERM to shlab while the child
+# triangulates one convex face of 16000 corners (within the guard's budget,
+# some seconds of work); then neither process may be left
+perl -e 'for $i (0 .. 15999) { $a = 6.283185307 * $i / 16000; printf "v %.9f %.9f 0\n", cos($a), sin($a) }
+         print "f ", join(" ", 1 .. 16000), "\n"' >"$D/slow-poly.obj"
+procs() { grep -la 'slow-pol[y]\.obj' /proc/[0-9]*/cmdline 2>/dev/null; } # (the bracket: not grep itself)
+"$SHLAB" transfer --mesh "$D/slow-poly.obj" --rays 4 --quiet >/dev/null 2>&1 &
+pid=$!
+i=0
+while [ "$(procs | wc -l)" -lt 2 ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i + 1)); done
+seen=$(procs | wc -l)
+kill -TERM $pid
+wait $pid; rc=$?
+i=0
+while [ -n "$(procs)" ] && [ $i -lt 20 ]; do sleep 0.05; i=$((i + 1)); done
+if [ "$seen" = 2 ] && [ "$rc" = 143 ] && [ -z "$(procs)" ]; then ok "SIGTERM during the import: shlab and its importer gone"
+else notok "SIGTERM during the import: $seen processes seen, exit $rc, left: $(procs)"; fi
+
 # the reason names what is wrong, and where: reason FILE TEXT
 reason() {
     "$SHLAB" transfer --mesh "$D/$1" 2>"$TMP/e" >/dev/null
