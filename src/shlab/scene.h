@@ -54,17 +54,32 @@ typedef struct {
 #define SH_MESH_MAX_ELEMS (1 << 26)
 /* Largest mesh file read (bytes). */
 #define SH_MESH_MAX_BYTES (1LL << 31)
+/* Largest |coordinate| of a vertex (in a file or in memory): inside single
+ * precision (3.4e38), in which assimp and Embree hold coordinates, so that
+ * none becomes infinite there; beyond it a coordinate is "out of range". */
+#define SH_MESH_MAX_COORD 1e38
 
 /* Read a triangle mesh (PLY, OBJ and every other format assimp reads) with
  * assimp's C API: triangulated, node transforms applied, submeshes
- * concatenated, then sh_mesh_check.  Errors (one line each): missing or
- * unreadable file (SH_EIO); a format no reader knows, a file assimp rejects,
- * no triangle, a non-finite coordinate or normal, non-manifold edges without
- * SH_MESH_ALLOW_NONMANIFOLD, more than SH_MESH_MAX_ELEMS (SH_EFORMAT).
- * rep may be NULL. */
+ * concatenated, then sh_mesh_check.  The file is read once; PLY and OBJ
+ * bytes are first checked by our own readers (header, counts against the
+ * file's length, indices, coordinates: a bad file is refused before assimp
+ * sees it), and assimp runs in a child process with CPU-time, memory and
+ * wall-clock limits, so that its abort, hang or runaway allocation is one
+ * error (src/scene/mesh_internal.h).  Errors (one line each): missing or
+ * unreadable file (SH_EIO); a format no reader knows, a file the guard or
+ * assimp rejects, an importer that failed or went past a limit, no
+ * triangle, a non-finite or out-of-range coordinate or normal anywhere in
+ * the file, non-manifold edges without SH_MESH_ALLOW_NONMANIFOLD, more than
+ * SH_MESH_MAX_ELEMS (SH_EFORMAT).  rep may be NULL. */
 int sh_mesh_load(const char *path, int flags, sh_mesh *out, sh_mesh_report *rep);
-/* Validate and clean a mesh in place: non-finite coordinates or normals and
- * indices out of range are refused; degenerate triangles (a repeated corner,
+/* The same from bytes in memory: name (never opened) stands for the file's
+ * path in messages and picks the format by its extension as a path would
+ * ("x.ply", "x.obj", ...); the importer reads no other file (an OBJ's
+ * material library is not read). */
+int sh_mesh_load_mem(const void *data, size_t size, const char *name, int flags, sh_mesh *out, sh_mesh_report *rep);
+/* Validate and clean a mesh in place: non-finite coordinates or normals,
+ * coordinates beyond SH_MESH_MAX_COORD and indices out of range are refused; degenerate triangles (a repeated corner,
  * or area ≤ 1e-14·diag² of the bounding box) and then unused vertices are
  * removed; nothing left is an error; edges are counted (above).  Normals:
  * with m->normal == NULL or SH_MESH_COMPUTE_NORMALS they are computed as the

@@ -6,7 +6,7 @@ set -eu
 cd "$(dirname "$0")/../.."
 B=${1:-build}
 C=tests/fuzz/corpus
-mkdir -p $C/exr $C/fixture $C/candidate $C/coeffs $C/light $C/rotation
+mkdir -p $C/exr $C/fixture $C/candidate $C/coeffs $C/light $C/rotation $C/mesh
 
 # exr: written by OpenEXR's C++ library
 make -s "$B/tests/exr_writer.o"
@@ -67,4 +67,29 @@ printf 'n1,2,3 4 [5]\nn1e-400\n' > $C/rotation/numbers
 # found by fuzzing: an axis 1e-150 away from z (β ≈ 1e-150), band 7 by blanco's
 # single-band recurrence was NaN
 printf 'a0,1e-150,1\nA.5\nO8\nMblanco\n' > $C/rotation/blanco_tiny_beta
+# mesh: the good and hostile files of mesh_files.pl, small cuts of the test
+# models (with `make models`: data/models is not in the repository), and one
+# frame of the importer's protocol (fuzz_mesh.c reads those apart by magic)
+perl tests/fuzz/mesh_files.pl $C/mesh
+M=data/models
+if [ -f $M/Wuson.ply ] && [ -f $M/WusonOBJ.obj ] && [ -f $M/spider.obj ]; then
+    # Wuson.ply: the header with 60 vertices and their 20 faces (face i uses 3i..3i+2)
+    awk '/^element vertex/ { $3 = 60 } /^element face/ { $3 = 20 } { print } /^end_header/ { exit }' $M/Wuson.ply >$C/mesh/wuson-60.ply
+    awk 'h && v < 60 { print; v++ } /^end_header/ { h = 1 }' $M/Wuson.ply >>$C/mesh/wuson-60.ply
+    grep -n '' $M/Wuson.ply | awk -F: '$1 > 15 + 11184 && $1 <= 15 + 11184 + 20 { sub(/^[0-9]*:/, ""); print }' >>$C/mesh/wuson-60.ply
+    head -c 200 $M/Wuson.ply >$C/mesh/bad-wuson-header-cut.ply
+    head -c 2000 $C/mesh/wuson-60.ply >$C/mesh/bad-wuson-body-cut.ply
+    # the OBJ models: the first 40 of each kind of element, the statements using only those
+    for o in WusonOBJ spider; do
+        awk -v K=40 '
+            /^v / { if (++nv > K) next } /^vt / { if (++nt > K) next } /^vn / { if (++nn > K) next }
+            /^f / { for (i = 2; i <= NF; i++) { split($i, c, "/"); for (j in c) if (c[j] + 0 > K) next } }
+            { print }' $M/$o.obj >$C/mesh/$(echo $o | tr 'A-Z' 'a-z')-40.obj
+    done
+else
+    echo "make_seeds: no data/models (make models): the mesh seeds lack the cuts of the test models" >&2
+fi
+# a frame: one triangle (0,0,0) (1,0,0) (0,1,0), no normals (mesh_internal.h)
+perl -e 'print "SHMESH\x01\n", pack("L l q q l l l L", 1, 0, 3, 1, 0, 1, 0, 0),
+         pack("d9", 0, 0, 0, 1, 0, 0, 0, 1, 0), pack("l3", 0, 1, 2), "SHMESH-E", pack("Q", 84)' >$C/mesh/frame-triangle
 echo "make_seeds: $(find $C -type f | wc -l) files in $C"
