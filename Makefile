@@ -194,7 +194,7 @@ $(BUILD)/tests/test_signal_cleanup: $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
 $(BUILD)/tests/test_signal_cleanup: TEST_EXTRA = $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
 
 # The EXR tests write their files with OpenEXR's C++ library (tests/exr_writer.cpp).
-EXR_WRITER_TESTS := $(BUILD)/tests/test_exr_layouts $(BUILD)/tests/test_exr_damage
+EXR_WRITER_TESTS := $(BUILD)/tests/test_exr_layouts $(BUILD)/tests/test_exr_damage $(BUILD)/tests/test_ranges
 $(EXR_WRITER_TESTS): $(BUILD)/tests/exr_writer.o
 $(EXR_WRITER_TESTS): TEST_EXTRA = $(BUILD)/tests/exr_writer.o
 $(BUILD)/tests/exr_writer.o: tests/exr_writer.cpp tests/exr_writer.h

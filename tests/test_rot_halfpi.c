@@ -334,9 +334,12 @@ START_TEST(test_refusals)
     ck_assert_uint_lt(sh_rot_plan_bytes(4097, SH_ROT_HALFPI, SH_PREC_DOUBLE), 400u << 20);
     ck_assert_uint_gt(sh_rot_plan_bytes(1001, SH_ROT_BLANCO, SH_PREC_DOUBLE), 10000u << 20);
     sh_rot_plan *p = NULL;
-    ck_assert_int_eq(sh_rot_plan_create(4097, SH_ROT_IVANIC, SH_PREC_DOUBLE, SH_CS, &p), SH_ENOMEM);
+    ck_assert_int_eq(sh_rot_plan_create(SH_ROT_BLANCO_MAX_ORDER, SH_ROT_BLANCO, SH_PREC_DOUBLE, SH_CS, &p), SH_ENOMEM);
     ck_assert_ptr_null(p);
     ck_assert_msg(strstr(sh_last_error(), "GB") != NULL, "names the size: %s", sh_last_error());
+    /* above a method's tested order: refused as such (docs/ranges.md) */
+    ck_assert_int_eq(sh_rot_plan_create(SH_ROT_IVANIC_MAX_ORDER + 1, SH_ROT_IVANIC, SH_PREC_DOUBLE, SH_CS, &p), SH_EINVAL);
+    ck_assert_ptr_null(p);
     /* defaults: exact methods at every band */
     ck_assert_int_eq(sh_rot_method_default(10, 0), SH_ROT_ZXZXZ);
     ck_assert_int_eq(sh_rot_method_default(1001, 0), SH_ROT_HALFPI);

@@ -224,7 +224,7 @@ START_TEST(test_vs_qags_elements)
     for (int p = 0; p < 8; p++) {
         elem_ctx c = {&s, picks[p][0], picks[p][1], N};
         gsl_function F = {elem_integrand, &c};
-        double br[4], pts[6], v = 0, err, part;
+        double br[SH_SCALE_MAX_BREAKS], pts[SH_SCALE_MAX_BREAKS + 2], v = 0, err, part;
         const int nb = sh_scale_breaks(&s, br);
         pts[0] = 0;
         for (int b = 0; b < nb; b++) pts[1 + b] = br[b];

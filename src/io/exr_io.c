@@ -654,6 +654,9 @@ static int check_image(const sh_image *img, const char *who)
     if (!img || !img->data) return sh_error(SH_EINVAL, "%s: image is empty", who);
     if (img->width < 1 || img->height < 1)
         return sh_error(SH_EINVAL, "%s: image size %d×%d", who, img->width, img->height);
+    if ((long long)img->width * img->height > SH_IMAGE_MAX_PIXELS)
+        return sh_error(SH_EINVAL, "%s: a %d×%d image is larger than %lld pixels (docs/ranges.md)", who, img->width,
+                        img->height, (long long)SH_IMAGE_MAX_PIXELS);
     if (img->nchan < 1 || img->nchan > SH_IMAGE_MAX_CHANNELS)
         return sh_error(SH_EINVAL, "%s: %d channels (1..%d)", who, img->nchan,
                         SH_IMAGE_MAX_CHANNELS);

@@ -148,6 +148,9 @@ static int check_args(int order, sh_convention conv, const double *coeffs, int w
     if (!coeffs) return sh_error(SH_EINVAL, "coefficient array is NULL");
     if (width < 2 || width > (1 << 16))
         return sh_error(SH_EINVAL, "width %d out of range (2..65536)", width);
+    if ((long long)width * (width / 2) > SH_IMAGE_MAX_PIXELS)
+        return sh_error(SH_EINVAL, "a %d×%d image is larger than %lld pixels (the largest tested; docs/ranges.md)",
+                        width, width / 2, (long long)SH_IMAGE_MAX_PIXELS);
     for (int i = 0; i < order * order; i++)
         if (!isfinite(coeffs[i])) return sh_error(SH_EINVAL, "coefficient %d is not finite", i);
     return SH_OK;

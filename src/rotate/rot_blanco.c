@@ -425,7 +425,7 @@ static size_t blanco_tables_bytes(int order) { return blanco_table_len(order) * 
 const sh__rot_ops sh__rot_blanco_ops = {
     .name = "blanco",
     .tables_bytes = blanco_tables_bytes,
-    .max_order = SHLAB_MAX_ORDER,
+    .max_order = SH_ROT_BLANCO_MAX_ORDER,
     .tables_new_d = sh__rot_blanco_tables_new_d,
     .tables_new_f = sh__rot_blanco_tables_new_f,
     .tables_free = blanco_tables_free,

@@ -50,8 +50,11 @@ void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real 
 /* cos(mθ) = 2cosθ·cos((m−1)θ) − cos((m−2)θ); likewise sin, from c1, s1.
  * The recurrence's rounding error grows like m·ε (2e-14 at m = 200 in
  * double), so with reseed every SH_ANGLE_RESEED steps two consecutive pairs
- * are taken from libm (argument m·θ formed in double) and the recurrence
- * restarts from it. */
+ * are taken from libm and the recurrence restarts from it.  The argument
+ * m·θ is split exactly, p + e with e = fma(m, θ, −p), and
+ * cos(p + e) = cos p − e sin p (as sh__rot_halfpi_angles): libm of the
+ * rounded product alone was off by ~m·θ·1e-16, 8e-12 on the coefficients of
+ * the z rotation at order 4097 (tests/test_ranges.c, rot_z_top). */
 static void SH_R(angles_rec)(sh_real c1, sh_real s1, int reseed, sh_real theta, int mmax, sh_real *cs)
 {
     const sh_real two_c = 2 * c1;
@@ -62,9 +65,10 @@ static void SH_R(angles_rec)(sh_real c1, sh_real s1, int reseed, sh_real theta, 
     cs[3] = s1;
     for (int m = 2; m <= mmax; m++) {
         if (reseed && m % SH_ANGLE_RESEED <= 1 && m > 1) { /* two consecutive seeds restart it */
-            const double a = (double)m * (double)theta;
-            cs[2 * m] = (sh_real)cos(a);
-            cs[2 * m + 1] = (sh_real)sin(a);
+            const double p = (double)m * (double)theta, e = fma((double)m, (double)theta, -p);
+            const double c = cos(p), s = sin(p);
+            cs[2 * m] = (sh_real)(c - s * e);
+            cs[2 * m + 1] = (sh_real)(s + c * e);
             continue;
         }
         cs[2 * m] = two_c * cs[2 * (m - 1)] - cs[2 * (m - 2)];

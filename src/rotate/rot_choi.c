@@ -254,7 +254,7 @@ static size_t choi_tables_bytes(int order) { return choi_table_len(order) * size
 const sh__rot_ops sh__rot_choi_ops = {
     .name = "choi",
     .tables_bytes = choi_tables_bytes,
-    .max_order = SHLAB_MAX_ORDER,
+    .max_order = SH_ROT_CHOI_MAX_ORDER,
     .tables_new_d = sh__rot_choi_tables_new_d,
     .tables_new_f = sh__rot_choi_tables_new_f,
     .tables_free = choi_tables_free,

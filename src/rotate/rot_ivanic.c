@@ -368,7 +368,7 @@ static size_t ivanic_tables_bytes(int order) { return 3 * sh_rot_block_offset(or
 const sh__rot_ops sh__rot_ivanic_ops = {
     .name = "ivanic",
     .tables_bytes = ivanic_tables_bytes,
-    .max_order = SHLAB_MAX_ORDER,
+    .max_order = SH_ROT_IVANIC_MAX_ORDER,
     .tables_new_d = sh__rot_ivanic_tables_new_d,
     .tables_new_f = sh__rot_ivanic_tables_new_f,
     .tables_free = ivanic_tables_free,

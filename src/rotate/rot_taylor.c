@@ -314,7 +314,7 @@ static size_t ty_work(int order) /* blocks: state, pad, e, col; apply: pad */
 #define TY_OPS(var, label, kn)                                                                   \
     const sh__rot_ops var = {                                                                      \
         .name = label,                                                                             \
-        .max_order = SHLAB_MAX_ORDER,                                                              \
+        .max_order = SH_TAYLOR_MAX_ORDER,                                                              \
         .approximate = 1,                                                                          \
         .tables_new_d = sh__rot_taylor_tables_new_d,                                               \
         .tables_new_f = sh__rot_taylor_tables_new_f,                                               \

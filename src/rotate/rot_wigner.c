@@ -21,7 +21,7 @@ SH__ROT_DECLARE_BAND(wigner);
 
 #include <stdlib.h>
 
-#define WIGNER_MAX_ORDER 400
+#define WIGNER_MAX_ORDER SH_ROT_WIGNER_MAX_ORDER
 
 /* work: long double fact[2l+1], sqf[2l+1], cpow[2l+1], spow[2l+1], then
  * sh_real d[(2l+1)²], csa, csg[2(l+1)] */

@@ -74,8 +74,9 @@
  * Memory.  A plan's tables hold Σ_{l<n} (l²+l+1) = n(n²+2)/3 values (X₋₉₀
  * uses them too), ≈ 360 MB in double at order 512.  The single-band path
  * (sh_rot_band) builds X₊₉₀ of that band only, O(l²) memory, so band 1000
- * takes ~3 s; hence max_order is SHLAB_MAX_ORDER and a large plan simply
- * fails with SH_ENOMEM if the tables do not fit.
+ * takes ~3 s; a large plan simply fails with SH_ENOMEM if the tables do not
+ * fit.  max_order is the largest band the report checks (l = 1400,
+ * SH_ROT_ZXZXZ_MAX_ORDER).
  */
 #include "rotate/rot_internal.h"
 #include "rotate/rot_real.h"
@@ -88,7 +89,7 @@ SH__ROT_DECLARE_SET_PAR(zxzxz);
 #include <stdlib.h>
 #include <string.h>
 
-#define ZX_MAX_ORDER SHLAB_MAX_ORDER
+#define ZX_MAX_ORDER SH_ROT_ZXZXZ_MAX_ORDER
 
 /* Compact X₊₉₀ storage: band l's l²+l+1 non-zeros start at zx_off(l). */
 static inline size_t zx_off(int l) { return (size_t)l * ((size_t)l * l + 2) / 3; }

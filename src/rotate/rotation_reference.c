@@ -18,7 +18,7 @@
 
 /* The MPFR sum costs O(l³) operations at O(l) bits per band: band 200 takes
  * about 1.5 s, band 400 about 20 s; higher bands are refused. */
-#define REF_MAX_ORDER 401
+#define REF_MAX_ORDER SH_ROT_REFERENCE_MAX_ORDER
 #define REF_DIGITS 32
 
 typedef struct {

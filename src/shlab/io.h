@@ -12,8 +12,11 @@ extern "C" {
 /* ----------------------------------------------------------------- images
  * Planar float image: data[c*width*height + y*width + x]. */
 #define SH_IMAGE_MAX_CHANNELS 4
-/* Largest image (width × height) any routine reads, writes or projects. */
-#define SH_IMAGE_MAX_PIXELS (1LL << 30)
+/* Largest image (width × height) any routine reads, writes or projects:
+ * 2²⁶ = 67,108,864 pixels (8192 × 8192, or a lat-long 11584 × 5792), the
+ * size tests/test_ranges.c reconstructs, projects and reads in full (it was
+ * 2³⁰, which no test could hold: 4 GB a channel). */
+#define SH_IMAGE_MAX_PIXELS (1LL << 26)
 typedef struct {
     int width, height, nchan;
     char names[SH_IMAGE_MAX_CHANNELS][8]; /* "R","G","B","A" or "Y" */

@@ -72,8 +72,28 @@ const char *sh_rot_method_name(sh_rot_method m);
 int sh_rot_method_parse(const char *s, sh_rot_method *out);
 const char *sh_precision_name(sh_precision p);
 int sh_precision_parse(const char *s, sh_precision *out);
-/* Largest order a method accepts (the direct sums use factorial tables);
- * 0 if the method is not built in. */
+/* Largest order a method accepts; 0 if the method is not built in.  Each is
+ * the top at which a test or the report checks the method against an
+ * independent truth (docs/ranges.md), and no higher:
+ *   z, halfpi   SHLAB_MAX_ORDER (tests/test_ranges.c: the z rotation's closed
+ *               form at order 4097, the pointwise identity at band 4096)
+ *   blanco      l ≤ 4000: orthogonality and homomorphism to l = 4000 in the
+ *               report (rotation_stability, long part); single bands
+ *               against halfpi to l = 2000 in make check
+ *   zxzxz       l ≤ 1400: the same long part (its single band is O(l³))
+ *   ivanic,     l ≤ 200: the golden fixtures at band 200 against the MPFR
+ *   choi        reference (tests/cli/test_fixtures.sh) and rotation_stability,
+ *               which show them breaking down (orth > 1 after l ≈ 180):
+ *               accepted to show that, accurate only to l ≈ 50
+ *   wigner      l ≤ 60: rotation_stability (its terms grow like 4^l)
+ *   reference   l ≤ 400: halfpi against it at band 400 (test_rot_halfpi)
+ *   taylor*     SH_TAYLOR_MAX_ORDER (taylor.h; tests/test_ranges.c) */
+#define SH_ROT_BLANCO_MAX_ORDER 4001
+#define SH_ROT_ZXZXZ_MAX_ORDER 1401
+#define SH_ROT_IVANIC_MAX_ORDER 201
+#define SH_ROT_CHOI_MAX_ORDER 201
+#define SH_ROT_WIGNER_MAX_ORDER 61
+#define SH_ROT_REFERENCE_MAX_ORDER 401
 int sh_rot_method_max_order(sh_rot_method m);
 /* 1 for the exact methods, 0 for the Taylor approximations. */
 int sh_rot_method_is_exact(sh_rot_method m);

@@ -29,7 +29,7 @@ int sh_scale_family_parse(const char *s, sh_scale_family *out);
 #define SH_SCALE_K_MAX 1e3
 #define SH_SCALE_MIDRANGE_K_MAX 0.999
 #define SH_SCALE_MAX_ORDER 64
-#define SH_SCALE_MAX_BREAKS 8
+#define SH_SCALE_MAX_BREAKS 16
 typedef struct {
     sh_scale_family family;
     double k;          /* linear, cone: d/r; midrange: signed d/R */
@@ -40,13 +40,16 @@ typedef struct {
 int sh_scaling_check(const sh_scaling *s);
 /* τ(θ) and τ′(θ) of a family (docs/CONVENTIONS.md "Scaling"); θ in [0, π]. */
 int sh_scale_tau(const sh_scaling *s, double theta, double *tau, double *dtau);
-/* Kinks / fast turns of τ in (0, π) (at most SH_SCALE_MAX_BREAKS); returns the count. */
+/* Kinks / fast turns of τ in (0, π), in increasing order (at most
+ * SH_SCALE_MAX_BREAKS: the cone family far from k = 1 adds graded points
+ * around its turn); returns the count. */
 int sh_scale_breaks(const sh_scaling *s, double *breaks);
 /* Scratch sizes (doubles) for sh_scale_matrix / sh_scale_matrix_tau and for
  * sh_scale_integrals_tau; work may be NULL (then it is allocated). */
 size_t sh_scale_matrix_work_n(int order);
 size_t sh_scale_work_n(int order);
-/* The scaling matrix of a family, θ integral to ~1e-15 (analytic φ). */
+/* The scaling matrix of a family, θ integral to ~1e-15 (analytic φ; 1.7e-12
+ * at order 64 and the ends of the k ranges, docs/ranges.md). */
 int sh_scale_matrix(int order, const sh_scaling *s, double *M, double *work);
 /* The same for any monotone τ given as a function (τ and τ′ at θ), with up to
  * SH_SCALE_MAX_BREAKS points in (0, π) where τ is not smooth. */

@@ -17,10 +17,14 @@ done
 expect_success "plan --exr half RGBA" plan --order auto --exr $SEEDS/exr/rgba-half-scan-piz.exr --tolerance 0.5 --max-beta 0.1 --quiet --format json
 
 # ---- sizes are checked against the file before anything is allocated
-expect_usage_error "733-byte EXR claiming 32768x32768" project --order 2 --exr $SEEDS/exr/huge-window-scan.exr
+# (8192×8192 = SH_IMAGE_MAX_PIXELS, the largest image read: the checks
+# after the pixel count; 32768×32768 is refused by the pixel count itself)
+expect_usage_error "733-byte EXR claiming 8192x8192" project --order 2 --exr $SEEDS/exr/huge-window-8k-scan.exr
 grep -q "needs at least" "$TMP/err" && ok "size error names what is needed" || notok "size error: $(cat "$TMP/err")"
-expect_usage_error "1.4 kB EXR with one 32768x32768 tile" project --order 2 --exr $SEEDS/exr/huge-window-tile.exr
-grep -q "12.9 GB" "$TMP/err" && ok "ratio error names the size asked for" || notok "ratio error: $(cat "$TMP/err")"
+expect_usage_error "1.4 kB EXR with one 8192x8192 tile" project --order 2 --exr $SEEDS/exr/huge-window-8k-tile.exr
+grep -q "805.3 MB" "$TMP/err" && ok "ratio error names the size asked for" || notok "ratio error: $(cat "$TMP/err")"
+expect_usage_error "733-byte EXR claiming 32768x32768" project --order 2 --exr $SEEDS/exr/huge-window-scan.exr
+grep -q "at most 67108864 pixels" "$TMP/err" && ok "pixel-count error names the limit" || notok "pixel error: $(cat "$TMP/err")"
 
 # ---- no error removes or truncates an existing file; nothing left behind
 mkdir -p "$TMP/o"

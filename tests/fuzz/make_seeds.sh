@@ -20,6 +20,13 @@ perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,32767,3
 perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,32767,32767)/se;
                s/(tiles\0tiledesc\0\x09\0\0\0).{8}/$1.pack("L<2",32768,32768)/se' \
     $C/exr/rgb-float-tiled-zip.exr > $C/exr/huge-window-tile.exr
+# the same at 8192×8192 (SH_IMAGE_MAX_PIXELS): past the pixel count, refused by
+# the chunk table's size and by the compression ratio
+perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,8191,8191)/se' \
+    $C/exr/rgba-half-scan-zip.exr > $C/exr/huge-window-8k-scan.exr
+perl -0777 -pe 's/(dataWindow\0box2i\0\x10\0\0\0).{16}/$1.pack("l<4",0,0,8191,8191)/se;
+               s/(tiles\0tiledesc\0\x09\0\0\0).{8}/$1.pack("L<2",8192,8192)/se' \
+    $C/exr/rgb-float-tiled-zip.exr > $C/exr/huge-window-8k-tile.exr
 
 # fixture: the first cases of the golden fixtures, and broken variants
 F=data/fixtures/rotation/orders_1_10.json
