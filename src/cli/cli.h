@@ -41,9 +41,14 @@ int cli_int(const char *opt, const char *s, int *out);
 int cli_long(const char *opt, const char *s, long *out);
 int cli_double(const char *opt, const char *s, double *out);
 /* Comma/space separated list; *out is malloc'd (caller frees).  At most
- * CLI_MAX_NUMBERS values (four channels of order SHLAB_MAX_ORDER). */
+ * CLI_MAX_NUMBERS values (four channels of order SHLAB_MAX_ORDER).  An
+ * empty element (",,", a comma first or last) is an error, in every list. */
 #define CLI_MAX_NUMBERS (SH_IMAGE_MAX_CHANNELS * SHLAB_MAX_ORDER * SHLAB_MAX_ORDER)
 int cli_doubles(const char *opt, const char *s, double **out, int *n);
+/* A list of words (methods, kernels, orders, ...) split as cli_doubles
+ * splits numbers: *items[0..*n) point into one malloc'd block (free(*items)
+ * frees it all); at least one element, none empty. */
+int cli_split(const char *opt, const char *s, char ***items, int *n);
 int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
 int cli_convention(const char *s, sh_convention *out);

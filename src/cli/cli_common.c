@@ -173,14 +173,35 @@ int cli_double(const char *opt, const char *s, double *out)
     return 0;
 }
 
+/* Lists: elements separated by a comma (white space around it allowed) or
+ * by white space alone.  An empty element — two commas in a row, a comma
+ * first or last — is an error, not dropped ("0.1,,0.2" is not two numbers,
+ * "taylor1," not one method). */
+static int fail_empty(const char *opt, const char *s, size_t at)
+{
+    return cli_fail("%s: empty element at character %zu of '%.40s%s' (two commas in a row, or a comma first or "
+                    "last)",
+                    opt, at + 1, s, strlen(s) > 40 ? "..." : "");
+}
+
 int cli_doubles(const char *opt, const char *s, double **out, int *n)
 {
     size_t cap = 16, k = 0;
     double *v = malloc(cap * sizeof *v);
     if (!v) return cli_fail("out of memory");
     const char *p = s;
+    int after_value = 0; /* a value since the last comma (or the start) */
     for (;;) {
-        while (*p && (isspace((unsigned char)*p) || *p == ',' || *p == '[' || *p == ']')) p++;
+        while (*p && (isspace((unsigned char)*p) || *p == '[' || *p == ']')) p++;
+        if (*p == ',' || (!*p && k > 0 && !after_value)) {
+            if (!after_value) {
+                free(v);
+                return fail_empty(opt, s, (size_t)(p - s));
+            }
+            after_value = 0;
+            p++;
+            continue;
+        }
         if (!*p) break;
         char *end;
         double x = 0;
@@ -205,6 +226,7 @@ int cli_doubles(const char *opt, const char *s, double **out, int *n)
             cap *= 2;
         }
         v[k++] = x;
+        after_value = 1;
         p = end;
         if (*p && !(isspace((unsigned char)*p) || *p == ',' || *p == ']')) {
             free(v);
@@ -214,6 +236,43 @@ int cli_doubles(const char *opt, const char *s, double **out, int *n)
     if (k == 0) { free(v); return cli_fail("%s: no numbers given", opt); }
     *out = v;
     *n = (int)k;
+    return 0;
+}
+
+int cli_split(const char *opt, const char *s, char ***items, int *n)
+{
+    /* one block: the pointers, then a copy of s cut into the elements */
+    const size_t len = strlen(s), most = len / 2 + 2;
+    char **t = malloc(most * sizeof *t + len + 1);
+    if (!t) return cli_fail("out of memory");
+    char *buf = (char *)(t + most);
+    memcpy(buf, s, len + 1);
+    int k = 0, after_value = 0;
+    char *p = buf;
+    for (;;) {
+        while (isspace((unsigned char)*p)) p++;
+        if (*p == ',' || (!*p && k > 0 && !after_value)) {
+            if (!after_value) {
+                const size_t at = (size_t)(p - buf);
+                free(t);
+                return fail_empty(opt, s, at);
+            }
+            after_value = 0;
+            *p++ = '\0';
+            continue;
+        }
+        if (!*p) break;
+        t[k++] = p;
+        after_value = 1;
+        while (*p && *p != ',' && !isspace((unsigned char)*p)) p++;
+        if (isspace((unsigned char)*p)) *p++ = '\0';
+    }
+    if (k == 0) {
+        free(t);
+        return cli_fail("%s: empty list", opt);
+    }
+    *items = t;
+    *n = k;
     return 0;
 }
 
@@ -400,16 +459,12 @@ int cli_orders(const char *opt, const char *s, int *out, int max, int *n)
 {
     /* each element through cli_order, so that a list words its errors as a
      * single --order does */
-    char *copy = strdup(s);
-    if (!copy) return cli_fail("out of memory");
-    int k = 0, rc = 0;
-    char *save = NULL;
-    for (char *t = strtok_r(copy, ", \t", &save); t && !rc; t = strtok_r(NULL, ", \t", &save)) {
-        if (k == max) rc = cli_fail("%s: at most %d orders", opt, max);
-        else rc = cli_order(opt, t, &out[k++]);
-    }
-    free(copy);
-    if (!rc && k == 0) rc = cli_fail("%s: no orders given", opt);
+    char **t;
+    int k, rc = 0;
+    if (cli_split(opt, s, &t, &k)) return CLI_EXIT_USAGE;
+    if (k > max) rc = cli_fail("%s: at most %d orders", opt, max);
+    for (int i = 0; i < k && !rc; i++) rc = cli_order(opt, t[i], &out[i]);
+    free(t);
     if (!rc) *n = k;
     return rc;
 }

@@ -120,20 +120,17 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
             if (sh_rot_method_max_order((sh_rot_method)m) > 0) ms[(*nm)++] = (sh_rot_method)m;
         return 0;
     }
-    char *dup = strdup(s);
-    if (!dup) return cli_fail("out of memory");
-    int rc = 0;
-    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t; t = strtok_r(NULL, ", ", &save)) {
+    char **t;
+    int n, rc = 0;
+    if (cli_split("--methods", s, &t, &n)) return CLI_EXIT_USAGE;
+    for (int i = 0; i < n && !rc; i++) {
         sh_rot_method m;
-        if (sh_rot_method_parse(t, &m)) { rc = cli_fail("--methods: %s", sh_last_error()); break; }
-        for (int k = 0; k < *nm; k++)
-            if (ms[k] == m) { rc = cli_fail("--methods: '%s' given twice", t); break; }
-        if (rc) break;
-        if (*nm >= SH_ROT_NMETHODS) { rc = cli_fail("--methods: too many"); break; }
-        ms[(*nm)++] = m;
+        if (sh_rot_method_parse(t[i], &m)) { rc = cli_fail("--methods: %s", sh_last_error()); break; }
+        for (int k = 0; k < *nm && !rc; k++)
+            if (ms[k] == m) rc = cli_fail("--methods: '%s' given twice", t[i]);
+        if (!rc) ms[(*nm)++] = m; /* distinct methods: at most SH_ROT_NMETHODS */
     }
-    free(dup);
-    if (!rc && *nm == 0) rc = cli_fail("--methods: empty list");
+    free(t);
     return rc;
 }
 
@@ -141,36 +138,34 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
  * would otherwise quietly time another kernel) */
 static int parse_kernels(const char *s, sh_rot_kernel *ks, int *nk)
 {
-    char *dup = strdup(s);
-    if (!dup) return cli_fail("out of memory");
-    int rc = 0;
+    char **t;
+    int n, rc = 0;
+    if (cli_split("--kernel", s, &t, &n)) return CLI_EXIT_USAGE;
     *nk = 0;
-    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t && !rc; t = strtok_r(NULL, ", ", &save)) {
+    for (int j = 0; j < n && !rc; j++) {
         sh_rot_kernel k;
-        if (sh_rot_kernel_parse(t, &k)) rc = cli_fail("--kernel: %s", sh_last_error());
-        else if (!sh_rot_kernel_available(k)) rc = cli_fail("--kernel: %s is not available on this machine", t);
+        if (sh_rot_kernel_parse(t[j], &k)) rc = cli_fail("--kernel: %s", sh_last_error());
+        else if (!sh_rot_kernel_available(k)) rc = cli_fail("--kernel: %s is not available on this machine", t[j]);
         for (int i = 0; !rc && i < *nk; i++)
-            if (ks[i] == k) rc = cli_fail("--kernel: '%s' given twice", t);
+            if (ks[i] == k) rc = cli_fail("--kernel: '%s' given twice", t[j]);
         if (!rc) ks[(*nk)++] = k;
     }
-    free(dup);
-    if (!rc && *nk == 0) rc = cli_fail("--kernel: empty list");
+    free(t);
     return rc;
 }
 
 static int parse_inputs(const char *s, int *bits)
 {
-    char *dup = strdup(s);
-    if (!dup) return cli_fail("out of memory");
-    int rc = 0;
+    char **t;
+    int n, rc = 0;
+    if (cli_split("--input", s, &t, &n)) return CLI_EXIT_USAGE;
     *bits = 0;
-    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t && !rc; t = strtok_r(NULL, ", ", &save)) {
-        if (!strcmp(t, "euler")) *bits |= 1;
-        else if (!strcmp(t, "matrix")) *bits |= 2;
-        else rc = cli_fail("--input: '%s' (euler or matrix)", t);
+    for (int i = 0; i < n && !rc; i++) {
+        if (!strcmp(t[i], "euler")) *bits |= 1;
+        else if (!strcmp(t[i], "matrix")) *bits |= 2;
+        else rc = cli_fail("--input: '%s' (euler or matrix)", t[i]);
     }
-    free(dup);
-    if (!rc && !*bits) rc = cli_fail("--input: empty list");
+    free(t);
     return rc;
 }
 

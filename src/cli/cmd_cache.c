@@ -102,24 +102,25 @@ typedef struct {
 
 static int parse_methods(const char *arg, meth *m, int *n)
 {
-    char buf[256];
-    if (strlen(arg) >= sizeof buf) return cli_fail("--methods: list too long");
-    strcpy(buf, arg);
+    char **t;
+    int nt, rc = 0;
+    if (cli_split("--methods", arg, &t, &nt)) return CLI_EXIT_USAGE;
     *n = 0;
-    for (char *tok = strtok(buf, ", "); tok; tok = strtok(NULL, ", ")) {
-        if (*n == CACHE_MAX_METHODS) return cli_fail("--methods: at most %d", CACHE_MAX_METHODS);
+    for (int i = 0; i < nt && !rc; i++) {
+        const char *tok = t[i];
+        if (*n == CACHE_MAX_METHODS) { rc = cli_fail("--methods: at most %d", CACHE_MAX_METHODS); break; }
         meth *x = &m[*n];
         memset(x, 0, sizeof *x);
         snprintf(x->name, sizeof x->name, "%s", tok);
         if (!strcmp(tok, "ignore")) x->rot.ignore = 1;
-        else if (sh_rot_method_parse(tok, &x->rot.method)) return cli_fail("--methods: %s", sh_last_error());
-        else if (x->rot.method == SH_ROT_Z) return cli_fail("--methods: z rotates about z only");
-        for (int k = 0; k < *n; k++)
-            if (!strcmp(m[k].name, tok)) return cli_fail("--methods: %s given twice", tok);
-        (*n)++;
+        else if (sh_rot_method_parse(tok, &x->rot.method)) rc = cli_fail("--methods: %s", sh_last_error());
+        else if (x->rot.method == SH_ROT_Z) rc = cli_fail("--methods: z rotates about z only");
+        for (int k = 0; k < *n && !rc; k++)
+            if (!strcmp(m[k].name, tok)) rc = cli_fail("--methods: %s given twice", tok);
+        if (!rc) (*n)++;
     }
-    if (!*n) return cli_fail("--methods: empty list");
-    return 0;
+    free(t);
+    return rc;
 }
 
 /* picture of 3-channel (or 1-channel) vertex values */

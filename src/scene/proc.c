@@ -13,7 +13,7 @@
  *      distance d, centre at angle α from the normal, wholly above the
  *      horizon: (R/d)² cos α = sin²ω cos α (a special case of the formula
  *      used below for every coefficient). */
-#include "shlab.h"
+#include "core/shlab_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -63,8 +63,9 @@ int sh_proc_parse(const char *spec, sh_proc_scene *out)
         const char *s = colon + 1;
         for (int k = 0; k < want; k++) {
             char *end;
-            const double v = strtod(s, &end);
-            if (end == s || !isfinite(v)) return sh_error(SH_EINVAL, "scene '%s': bad number '%s'", spec, s);
+            double v = 0;
+            if (sh__parse_double(s, &end, &v) != SH__NUM_OK)
+                return sh_error(SH_EINVAL, "scene '%s': bad number '%s'", spec, s);
             out->p[k] = v;
             s = end;
             if (k + 1 < want) {
