@@ -53,6 +53,11 @@ int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
 int cli_convention(const char *s, sh_convention *out);
 int cli_order(const char *opt, const char *s, int *out);
+/* The one wording for an order out of a command's range: "OPT: order N is
+ * outside 1..MAX" (and " (why)" when given); max 0 means SHLAB_MAX_ORDER.
+ * cli_order_max parses s first (an integer). */
+int cli_order_check(const char *opt, int order, int max, const char *why);
+int cli_order_max(const char *opt, const char *s, int max, const char *why, int *out);
 /* A comma-separated list of at most max orders, each checked as cli_order does. */
 int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 
@@ -187,8 +192,12 @@ typedef struct {
     sh_precision prec;    /* --precision (default double) */
     sh_rot_kernel kernel; /* --kernel (default auto) */
     int have_kernel;      /* --kernel was given */
+    /* the command's limits of --order, set before parsing (0: SHLAB_MAX_ORDER),
+     * and why, for the message (NULL: no reason given) */
+    int max_order;
+    const char *max_order_why;
 } cli_common;
-#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0}
+#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0, 0, NULL}
 
 /* Handle getopt_long's result o for command cmd: --help (prints the help),
  * the shared options, and unknown options or missing values (one error

@@ -108,7 +108,8 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
     case CLI_OPT_REPEATED: return CLI_EXIT_USAGE; /* the error is printed */
     case 'h': return cli_help(cmd);
     case CLI_OPT_FORMAT: return cli_format_parse(optarg, &c->fmt) ? CLI_EXIT_USAGE : -1;
-    case CLI_OPT_ORDER: return cli_order("--order", optarg, &c->order) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_ORDER:
+        return cli_order_max("--order", optarg, c->max_order, c->max_order_why, &c->order) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_DEGREES: c->degrees = 1; return -1;
     case CLI_OPT_METHOD:
@@ -150,12 +151,23 @@ int cli_int(const char *opt, const char *s, int *out)
     return 0;
 }
 
-int cli_order(const char *opt, const char *s, int *out)
+int cli_order_check(const char *opt, int order, int max, const char *why)
 {
-    if (cli_int(opt, s, out)) return CLI_EXIT_USAGE;
-    if (sh_check_order(*out)) return cli_fail("%s: %s", opt, sh_last_error());
+    if (max <= 0 || max > SHLAB_MAX_ORDER) max = SHLAB_MAX_ORDER;
+    if (order >= 1 && order <= max) return 0;
+    return cli_fail("%s: order %d is outside 1..%d%s%s%s", opt, order, max, why ? " (" : "", why ? why : "",
+                    why ? ")" : "");
+}
+
+int cli_order_max(const char *opt, const char *s, int max, const char *why, int *out)
+{
+    int v;
+    if (cli_int(opt, s, &v) || cli_order_check(opt, v, max, why)) return CLI_EXIT_USAGE;
+    *out = v;
     return 0;
 }
+
+int cli_order(const char *opt, const char *s, int *out) { return cli_order_max(opt, s, 0, NULL, out); }
 
 /* Numbers: sh__parse_double's rule everywhere (finite, no overflow, and no
  * underflow of a non-zero value to 0 or a subnormal). */

@@ -32,6 +32,10 @@ enum { CLI_OPT_MESH = 0x201, CLI_OPT_SCENE, CLI_OPT_UP, CLI_OPT_ALLOW_NM, CLI_OP
     "  --probe FILE         lat-long OpenEXR environment (e.g. data/probes/*.exr, `make probes`)\n" \
     "  --light SPEC         an analytic light instead (see `shlab project --help`; --degrees)\n"
 
+/* The largest --order of the scene commands (transfer, render, cache,
+ * scene-plan's --max-order); shadow-field's is SH_SF_MAX_ORDER. */
+#define CLI_SCENE_MAX_ORDER 32
+
 typedef struct {
     const char *mesh, *scene, *probe, *light;
     int flags, res, threads;

@@ -167,6 +167,7 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = CLI_SCENE_MAX_ORDER;
     cli_scene_args sa = {0};
     sh_cache_opts co = {0};
     co.a = 0.2;
@@ -255,7 +256,6 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("cache: unexpected argument '%s'", argv[optind]);
     co.order = com.order ? com.order : 6;
-    if (co.order > 32) return cli_fail("--order: %d > 32", co.order);
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     beta_lim *= deg;
     if (beta_lim > M_PI) return cli_fail("--beta-lim: must be <= π");

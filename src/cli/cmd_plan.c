@@ -12,6 +12,9 @@
 extern const cli_command cmd_plan;
 extern const cli_sweep_kind sweep_plan;
 
+/* plan times every method at the order: up to 64 */
+#define PLAN_MAX_ORDER 64
+
 static const char help[] =
     "Usage: shlab plan --order N --max-beta B --tolerance E [OPTIONS]\n"
     "       shlab plan --order auto --exr FILE --tolerance E --max-beta B [OPTIONS]\n"
@@ -181,8 +184,7 @@ static int run(int argc, char **argv)
         case 'o':
             if (!strcmp(optarg, "auto")) order_auto = 1;
             else {
-                if (cli_order("--order", optarg, &co.order)) return CLI_EXIT_USAGE;
-                if (co.order > 64) return cli_fail("--order: %d > 64", co.order);
+                if (cli_order_max("--order", optarg, PLAN_MAX_ORDER, NULL, &co.order)) return CLI_EXIT_USAGE;
                 order_auto = 0;
             }
             break;
@@ -219,8 +221,7 @@ static int run(int argc, char **argv)
             have_layout = 1;
             break;
         case 'M':
-            if (cli_int("--max-order", optarg, &max_order)) return CLI_EXIT_USAGE;
-            if (max_order < 1 || max_order > 64) return cli_fail("--max-order: out of range 1..64");
+            if (cli_order_max("--max-order", optarg, PLAN_MAX_ORDER, NULL, &max_order)) return CLI_EXIT_USAGE;
             have_max_order = 1;
             break;
         case 'q': quiet = 1; break;

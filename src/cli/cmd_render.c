@@ -87,6 +87,7 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = CLI_SCENE_MAX_ORDER;
     cli_scene_args sa = {0};
     cli_rotation_args ra = {0};
     sh_transfer_opts to = {0};
@@ -174,7 +175,6 @@ static int run(int argc, char **argv)
     const double vl = sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
     if (!(vl > 0)) return cli_fail("--view: must be a non-zero vector");
     to.order = com.order ? com.order : 4;
-    if (to.order > 32) return cli_fail("--order: %d > 32", to.order);
     int have_rot = 0;
     sh_rotation rot;
     int rc = cli_rotation_finish("render", &ra, com.degrees, 1, &have_rot, &rot);

@@ -90,6 +90,7 @@ static int run(int argc, char **argv)
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SH_SCALE_MAX_ORDER;
     const char *family = NULL, *spacing = NULL, *interp = "linear";
     int samples = 0, dense = INTERP_DEFAULT_DENSE, have_min = 0, have_max = 0, have_cone = 0, quiet = 0;
     double kmin = 0, kmax = 0, cone = 0;
@@ -122,7 +123,6 @@ static int run(int argc, char **argv)
     if (optind < argc) return cli_fail("scale-interp: unexpected argument '%s'", argv[optind]);
     const int order = com.order;
     if (!order) return cli_fail("scale-interp: --order is required");
-    if (order > SH_SCALE_MAX_ORDER) return cli_fail("scale-interp: --order %d is above %d", order, SH_SCALE_MAX_ORDER);
     if (!family) return cli_fail("scale-interp: --family is required (linear, cone, midrange)");
     if (sh_scale_family_parse(family, &s.family)) return cli_fail("--family: %s", sh_last_error());
     if (!samples) return cli_fail("scale-interp: --samples is required");

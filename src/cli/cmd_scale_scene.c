@@ -91,6 +91,7 @@ static int run(int argc, char **argv)
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SCENE_MAX_ORDER;
     const char *scene = NULL, *klist = NULL, *family = NULL, *light = NULL, *probe = NULL;
     double size = 0.5, wobble = 0.3, occ = -1, cone = -1;
     int nodes = SCENE_DEFAULT_NODES, have_dir = 0;
@@ -126,7 +127,6 @@ static int run(int argc, char **argv)
     if (sh_scale_scene_parse(scene, &sc.kind)) return cli_fail("--scene: %s", sh_last_error());
     const int order = com.order;
     if (!order) return cli_fail("scale-scene: --order is required");
-    if (order > SCENE_MAX_ORDER) return cli_fail("scale-scene: --order %d is above %d", order, SCENE_MAX_ORDER);
     if (!klist) return cli_fail("scale-scene: --k is required (comma-separated list)");
     const double deg = com.degrees ? M_PI / 180.0 : 1.0;
     if (occ >= 0 && sc.kind != SH_SCENE_CONE) return cli_fail("scale-scene: --occluder-angle applies to --scene cone");

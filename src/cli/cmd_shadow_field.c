@@ -100,6 +100,7 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SH_SF_MAX_ORDER;
     cli_scene_args sa = {0};
     cli_picture_args pa = CLI_PICTURE_DEFAULTS;
     double d0 = 0, cone = M_PI / 4, albedo = 0.8; /* cone: 45° unless --cone-angle */
@@ -189,7 +190,6 @@ static int run(int argc, char **argv)
     if (sa.mesh) return cli_fail("shadow-field: the occluder is the sphere of --scene sphere-plane (no --mesh)");
     if (!sa.scene) sa.scene = "sphere-plane";
     const int order = com.order ? com.order : 4;
-    if (order > 16) return cli_fail("--order: %d > 16", order);
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     {
         sh_proc_scene chk;

@@ -67,6 +67,7 @@ static int run(int argc, char **argv)
                                          CLI_LONGOPT_SHARD,
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = TE_MAX_ORDER;
     sh_rot_method m = SH_ROT_NMETHODS;
     const char *tname = NULL;
     double beta = -1, beta_max = -1, lobe_exp = 7;
@@ -114,7 +115,6 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("taylor-error: unexpected argument '%s'", argv[optind]);
     if (!com.order) return cli_fail("taylor-error: --order is required");
-    if (com.order > TE_MAX_ORDER) return cli_fail("taylor-error: --order %d exceeds %d", com.order, TE_MAX_ORDER);
     if (!tname) return cli_fail("taylor-error: --taylor is required (1, 1.5 or 2)");
     if (have_beta == have_max) return cli_fail("taylor-error: give --beta, or --beta-max with --steps");
     if (have_max && steps < 0) return cli_fail("taylor-error: --beta-max needs --steps");

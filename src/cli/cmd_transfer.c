@@ -95,6 +95,7 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = CLI_SCENE_MAX_ORDER;
     cli_scene_args sa = {0};
     sh_transfer_opts to = {0};
     to.kind = SH_TRANSFER_SHADOWED;
@@ -158,7 +159,6 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("transfer: unexpected argument '%s'", argv[optind]);
     to.order = com.order ? com.order : 4;
-    if (to.order > 32) return cli_fail("--order: %d > 32", to.order);
     to.conv = com.conv;
     if (to.closed_form && to.kind != SH_TRANSFER_UNSHADOWED) return cli_fail("transfer: --closed-form applies to unshadowed only");
     if (check && !sa.scene) return cli_fail("transfer: --check needs a procedural --scene");

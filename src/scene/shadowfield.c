@@ -45,7 +45,7 @@ static int check_opts(const sh_sf_opts *o, double radius)
     if (!o) return sh_error(SH_EINVAL, "shadow field: no options");
     int st = sh_check_order(o->order);
     if (st) return st;
-    if (o->order > 16) return sh_error(SH_EINVAL, "shadow field: order %d > 16", o->order);
+    if (o->order > SH_SF_MAX_ORDER) return sh_error(SH_EINVAL, "shadow field: order %d > %d", o->order, SH_SF_MAX_ORDER);
     if (o->scaling != SH_SF_EXACT && o->scaling != SH_SF_CONE && o->scaling != SH_SF_SPHERE)
         return sh_error(SH_EINVAL, "shadow field: unknown scaling");
     if (!(radius > 0) || !isfinite(radius)) return sh_error(SH_EINVAL, "shadow field: radius %g must be > 0", radius);

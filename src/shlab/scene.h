@@ -500,8 +500,9 @@ void sh_rgb_luminance(int n, const double *rgb, double *Y);
 typedef enum { SH_SF_EXACT = 0, SH_SF_CONE, SH_SF_SPHERE } sh_sf_scaling;
 const char *sh_sf_scaling_name(sh_sf_scaling s);
 int sh_sf_scaling_parse(const char *s, sh_sf_scaling *out);
+#define SH_SF_MAX_ORDER 16
 typedef struct {
-    int order;             /* ≤ 16 */
+    int order;             /* ≤ SH_SF_MAX_ORDER */
     sh_sf_scaling scaling;
     double cone_angle;     /* cone: θ0 (0: π/4) */
     double d0;             /* the distance the field is sampled at (> R) */
