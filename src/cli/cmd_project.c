@@ -136,11 +136,9 @@ static int run_exr(int order, sh_convention conv, const char *path, sh_layout la
     if (cli_input("EXR image", path)) return CLI_EXIT_USAGE;
     int st = sh_exr_read(path, &img, &fallback);
     if (st) return cli_fail_status(st);
-    if (order > sh_image_max_order(&img, layout)) {
-        const int mx = sh_image_max_order(&img, layout), w = img.width, h = img.height;
+    if (sh_image_check_order(&img, layout, order)) {
         sh_image_free(&img);
-        return cli_fail("project: a %d×%d image carries orders up to %d (2n − 1 pixels across, n down), not %d", w,
-                        h, mx, order);
+        return cli_fail("project: %s", sh_last_error());
     }
     const int n = sh_ncoeff(order);
     char what[96];
