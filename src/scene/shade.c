@@ -160,7 +160,11 @@ int sh_shade_error(int n, const double *B, const double *ref, const double *se, 
         if (se) s2 += se[v] * se[v];
         dmax = fmax(dmax, fabs(d));
     }
-    if (!(r2 > 0)) return sh_error(SH_EINVAL, "sh_shade_error: the reference is zero everywhere");
+    if (!(r2 > 0))
+        return sh_error(SH_EINVAL,
+                        "no light reaches the scene: the shading the errors are relative to is 0 at all %d vertices, "
+                        "so a relative error is undefined",
+                        n);
     e->rel_l2 = sqrt(d2 / r2);
     e->rel_max = dmax / sqrt(r2 / n);
     e->ref_l2 = sqrt(s2 / r2);

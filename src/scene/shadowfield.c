@@ -267,6 +267,7 @@ int sh_shadow_field_transfer(const sh_sf_opts *o, const double centre[3], double
         double *t = T + (size_t)p * n2;
         memset(t, 0, sizeof(double) * n2);
         for (int q = 0; q < G.n; q++) t[G.k[q]] += G.g[q] * V[G.i[q]] * c[G.j[q]];
+        if (o->progress && ((p & 255) == 255 || p == n - 1)) o->progress(o->progress_ctx, p + 1, n, "receivers");
     }
     stats->seconds = sh__now() - t0;
     gaunt_free(&G);
