@@ -99,7 +99,8 @@ int sh_proc_parse(const char *spec, sh_proc_scene *out);
 const char *sh_proc_name(sh_proc_kind k);
 int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out);
 /* The number of vertices and triangles sh_mesh_procedural makes, without
- * making them (the same builder, counting only). */
+ * making them (the same builder, counting only; vertices before its mesh
+ * check drops unused ones, those inside box-open's hole: an upper bound). */
 int sh_proc_size(const sh_proc_scene *ps, long long *nvert, long long *ntri);
 /* The shadowed transfer vector (sh_transfer's definition, albedo ρ) of
  * vertex v of the mesh sh_mesh_procedural made, where a closed form exists:
