@@ -75,6 +75,12 @@ typedef struct {
                         void *work, uint64_t *mults);
 } sh__rot_ops;
 
+/* Progress of a plan's long steps (rotation_plan.c): a method whose tables
+ * or blocks cost O(order³) or more reports each band finished, done of
+ * total; nothing happens unless the plan was made with a progress function
+ * (sh_rot_plan_create_progress). */
+void sh__rot_band_done(int done, int total);
+
 /* ---- the rotation as the sparse kernels use it ----------------------------
  * par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β) (ivanic's unrolled
  * kernel: the matrix R, row-major, 9 values), at most SH__PAR_N values,

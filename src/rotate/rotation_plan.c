@@ -228,7 +228,33 @@ struct sh_rot_plan {
     sh__fast_fn_d fn_d;      /* unrolled, one lane: the kernel of this order, or NULL */
     sh__fast_fn_f fn_f;
     uint64_t fn_mults;       /* its multiplications per call */
+    sh_progress_fn progress; /* sh_rot_plan_create_progress: bands of the long steps */
+    void *progress_ctx;
 };
+
+/* Progress of a plan's long steps, band by band (rot_internal.h): the plan
+ * whose tables or rotation this thread is computing, while it has a
+ * progress function; the methods' band loops call sh__rot_band_done. */
+static _Thread_local const sh_rot_plan *progress_plan;
+static _Thread_local const char *progress_what;
+typedef struct { const sh_rot_plan *plan; const char *what; } progress_scope;
+static progress_scope progress_enter(const sh_rot_plan *p, const char *what)
+{
+    const progress_scope outer = {progress_plan, progress_what};
+    progress_plan = p->progress ? p : NULL;
+    progress_what = what;
+    return outer;
+}
+static void progress_leave(progress_scope outer)
+{
+    progress_plan = outer.plan;
+    progress_what = outer.what;
+}
+void sh__rot_band_done(int done, int total)
+{
+    const sh_rot_plan *p = progress_plan;
+    if (p) p->progress(p->progress_ctx, done, total, progress_what);
+}
 
 static int check_args(int order, sh_rot_method method, sh_precision prec, sh_convention conv)
 {
@@ -285,6 +311,12 @@ int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_co
 int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
                               sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out)
 {
+    return sh_rot_plan_create_progress(order, method, prec, conv, kernel, NULL, NULL, out);
+}
+
+int sh_rot_plan_create_progress(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
+                                sh_rot_kernel kernel, sh_progress_fn progress, void *ctx, sh_rot_plan **out)
+{
     *out = NULL;
     int st = check_args(order, method, prec, conv);
     if (st) return st;
@@ -300,6 +332,8 @@ int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec
     p->conv = conv;
     p->ops = methods[method];
     p->kernel = kernel == SH_KERNEL_AUTO ? kernel_auto() : kernel;
+    p->progress = progress;
+    p->progress_ctx = ctx;
     kernel_tables(p->kernel, &p->fd1, &p->fdv, &p->ff1, &p->ffv);
     p->fmeth = fast_method(method);
     if (p->kernel == SH_KERNEL_SCALAR || p->fmeth < 0 || order > p->fd1->max_order ||
@@ -329,7 +363,12 @@ int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec
     int (*tnew)(int, void **) = prec == SH_PREC_FLOAT ? p->ops->tables_new_f : p->ops->tables_new_d;
     /* tables for the loop kernels (and for unrolled ivanic's batches, which
      * build the blocks once per rotation) */
-    if ((p->fmeth < 0 || p->fmeth == SH__FAST_IVANIC) && tnew && (st = tnew(order, &p->tables)) != SH_OK) {
+    if (p->fmeth < 0 || p->fmeth == SH__FAST_IVANIC) {
+        const progress_scope outer = progress_enter(p, "bands of the plan's tables");
+        if (tnew) st = tnew(order, &p->tables);
+        progress_leave(outer);
+    }
+    if (st) {
         sh_rot_plan_free(p);
         return st;
     }
@@ -388,7 +427,7 @@ static void fast_par_done(sh_rot_plan *p, const double *pd)
 static uint64_t fast_mults(const sh_rot_plan *p) { return p->fn_mults; }
 static int need_beta(const sh_rot_plan *p) { return p->nb; }
 
-int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
+static int set_angles(sh_rot_plan *p, const sh_rotation *rot)
 {
     p->rot = *rot;
     p->have_rot = 0;
@@ -443,7 +482,24 @@ ALL_FINITE(all_finite_d, double, uint64_t, 0x7fffffffffffffffULL, 0x7ff000000000
 ALL_FINITE(all_finite_f, float, uint32_t, 0x7fffffffu, 0x7f800000u)
 #undef ALL_FINITE
 
+int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
+{
+    const progress_scope outer = progress_enter(p, "bands of the rotation");
+    const int st = set_angles(p, rot);
+    progress_leave(outer);
+    return st;
+}
+
+static int set_rot_in(sh_rot_plan *p, const double *rd, const float *rf, int quat);
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
+{
+    const progress_scope outer = progress_enter(p, "bands of the rotation");
+    const int st = set_rot_in(p, rd, rf, quat);
+    progress_leave(outer);
+    return st;
+}
+
+static int set_rot_in(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 {
     const int n = quat ? 4 : 9, nb = need_beta(p);
     if (!(rf ? all_finite_f(rf, (size_t)n) : all_finite_d(rd, (size_t)n)))
@@ -520,7 +576,7 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
         if (p->ops->matrix_only) r.alpha = r.beta = r.gamma = 0; /* not read */
         else sh_euler_from_matrix(v, &r.alpha, &r.beta, &r.gamma);
     }
-    st = sh_rot_plan_set(p, &r);
+    st = set_angles(p, &r);
     p->have_angles = quat || !p->ops->matrix_only;
     return st;
 }

@@ -144,6 +144,13 @@ int sh_rot_kernel_available(sh_rot_kernel k);
 /* sh_rot_plan_create with a kernel; SH_ENOTSUP if it is not available. */
 int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
                               sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out);
+/* sh_rot_plan_create_kernel with progress: fn(ctx, done, order,
+ * what) as bands of the long steps finish — the per-order tables (zxzxz,
+ * ivanic, choi, blanco) here, and the blocks of each rotation later
+ * (ivanic, choi, blanco) in sh_rot_plan_set and the set_matrix/quat calls.
+ * These are O(order³) or more: seconds from order ~300, minutes at 1000. */
+int sh_rot_plan_create_progress(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
+                                sh_rot_kernel kernel, sh_progress_fn fn, void *ctx, sh_rot_plan **out);
 sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
 
 /* The rotation as a row-major 3×3 matrix or a quaternion (w, x, y, z; any
