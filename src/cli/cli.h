@@ -116,10 +116,8 @@ void cli_progress_step(void *ctx, int done, int total, const char *what);
  * no progress on the way (a single step that took a second, say). */
 void cli_progress_step_est(void *ctx, int done, int total, const char *what);
 
-/* Memory this process could still get: MemAvailable, or the address-space
- * limit (ulimit -v) when lower; in bytes, 0 if unknown. */
-double cli_mem_available(void);
-/* 0 if `bytes` fit; otherwise one line "cmd: WHAT needs X GB of memory, only
+/* 0 if `bytes` fit in the memory this process could still get
+ * (sh__mem_available: MemAvailable, or ulimit -v when lower); otherwise one line "cmd: WHAT needs X GB of memory, only
  * Y GB is available" and CLI_EXIT_USAGE.  Call before allocating. */
 int cli_mem_check(const char *cmd, double bytes, const char *what);
 

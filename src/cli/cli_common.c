@@ -14,7 +14,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 /* The one error line.  Messages quote arguments and file contents, so the
@@ -514,34 +513,11 @@ void cli_progress_step_est(void *ctx, int done, int total, const char *what)
     cli_progress_step(ctx, done, total, what);
 }
 
-double cli_mem_available(void)
-{
-    double avail = 0.0;
-    FILE *f = fopen("/proc/meminfo", "r");
-    if (f) {
-        char line[256];
-        unsigned long long kb;
-        while (fgets(line, sizeof line, f))
-            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
-                avail = (double)kb * 1024.0;
-                break;
-            }
-        fclose(f);
-    }
-    if (avail <= 0.0) {
-        const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-        avail = pages > 0 && size > 0 ? (double)pages * size : 0.0;
-    }
-    /* an address-space limit (ulimit -v) binds first */
-    struct rlimit rl;
-    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && (avail <= 0.0 || (double)rl.rlim_cur < avail))
-        avail = (double)rl.rlim_cur;
-    return avail;
-}
-
 int cli_mem_check(const char *cmd, double bytes, const char *what)
 {
-    const double avail = cli_mem_available();
+    /* the library's rule: what is available (sh__mem_available) */
+    const size_t a = sh__mem_available();
+    const double avail = a == SIZE_MAX ? 0.0 : (double)a;
     if (avail > 0.0 && bytes > avail)
         return cli_fail("%s: %s needs %.3g GB of memory, only %.3g GB is available", cmd, what, bytes / 1e9,
                         avail / 1e9);

@@ -466,22 +466,41 @@ static int run(int argc, char **argv)
     }
     if (instructions && bo.count == 0) bo.count = 64;
 
-    /* every plan once before the first progress line: an order that cannot
-     * be planned (memory) fails before any work is reported; the kernel each
-     * plan uses is kept for the rows */
+    /* the entries of one order live at once: their memory together, at the
+     * order that needs most, against what is available (one line naming
+     * both), before any plan is made */
+    double most = 0;
+    int most_q = 0;
+    for (int q = 0; q < no; q++) {
+        double need = 0;
+        for (int i = 0; i < ne; i++) {
+            sh_bench_opts eo = bo;
+            eo.input = slot[i].in ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
+            need += sh_rot_bench_entry_bytes(orders[q], ms[slot[i].k], prec, mode_of[slot[i].md], &eo);
+        }
+        if (need > most) most = need, most_q = q;
+    }
+    char what[96];
+    snprintf(what, sizeof what, "timing order %d (%d entries at once)", orders[most_q], ne);
+    if (cli_mem_check("bench", most, what)) {
+        free(slot);
+        return CLI_EXIT_USAGE;
+    }
+    /* every plan checked before the first progress line (arguments and its
+     * own memory, sh_rot_plan_check, without building its tables): an order
+     * that cannot be planned fails before any work is reported; the kernel
+     * each plan will use is kept for the rows */
     sh_rot_kernel *plan_kernel = malloc((size_t)nm * nk * no * sizeof *plan_kernel);
     if (!plan_kernel) { free(slot); return cli_fail("out of memory"); }
     for (int k = 0; k < nm; k++)
         for (int kk = 0; kk < nk; kk++)
             for (int q = 0; q < no; q++) {
-                sh_rot_plan *p;
-                if (sh_rot_plan_create_kernel(orders[q], ms[k], prec, com.conv, kernels[kk], &p)) {
+                if (sh_rot_plan_check(orders[q], ms[k], prec)) {
                     free(slot);
                     free(plan_kernel);
                     return cli_fail("bench: %s", sh_last_error());
                 }
-                plan_kernel[((size_t)k * nk + kk) * no + q] = sh_rot_plan_kernel(p);
-                sh_rot_plan_free(p);
+                plan_kernel[((size_t)k * nk + kk) * no + q] = sh_rot_plan_kernel_for(orders[q], ms[k], kernels[kk]);
             }
 
     const int S = bo.repeat;
@@ -516,6 +535,9 @@ static int run(int argc, char **argv)
             bo.input = s->in ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
             rc = sh_rot_bench_entry(orders[q], ms[s->k], prec, mode_of[s->md], &bo, &ent[i]);
             used[q * ne + i] = plan_kernel[((size_t)s->k * nk + s->kk) * no + q];
+            char what[64];
+            snprintf(what, sizeof what, "entries of order %d set up", orders[q]);
+            cli_progress_step(&prog, i + 1, ne, what);
         }
         for (int i = 0; i < ne && !rc; i++) mults[q * ne + i] = ent[i].mults;
         if (!rc && instructions) rc = sh_bench_instructions(ent, ne, bo.count, cg_out, ins + (size_t)q * ne);

@@ -201,6 +201,27 @@ static int fast_method(sh_rot_method m)
     }
 }
 
+/* The kernel a plan of this order and method runs when `kernel` is asked
+ * (AUTO: the widest available): the loop kernels (SCALAR) where the
+ * method or the order has no unrolled kernel. */
+static sh_rot_kernel kernel_for(int order, sh_rot_method method, sh_rot_kernel kernel)
+{
+    const sh_rot_kernel k = kernel == SH_KERNEL_AUTO ? kernel_auto() : kernel;
+    const sh__rot_fast_d *d1, *dv;
+    const sh__rot_fast_f *f1, *fv;
+    kernel_tables(k, &d1, &dv, &f1, &fv);
+    const int fm = fast_method(method);
+    if (k == SH_KERNEL_SCALAR || fm < 0 || order > d1->max_order || !d1->fn[fm][order]) return SH_KERNEL_SCALAR;
+    return k;
+}
+
+sh_rot_kernel sh_rot_plan_kernel_for(int order, sh_rot_method method, sh_rot_kernel kernel)
+{
+    if (kernel < 0 || kernel >= SH_KERNEL_N || order < 1 || method < 0 || method >= SH_ROT_NMETHODS)
+        return SH_KERNEL_SCALAR;
+    return kernel_for(order, method, kernel);
+}
+
 struct sh_rot_plan {
     int order;
     sh_rot_method method;
@@ -331,16 +352,11 @@ int sh_rot_plan_create_progress(int order, sh_rot_method method, sh_precision pr
     p->prec = prec;
     p->conv = conv;
     p->ops = methods[method];
-    p->kernel = kernel == SH_KERNEL_AUTO ? kernel_auto() : kernel;
+    p->kernel = kernel_for(order, method, kernel);
     p->progress = progress;
     p->progress_ctx = ctx;
     kernel_tables(p->kernel, &p->fd1, &p->fdv, &p->ff1, &p->ffv);
-    p->fmeth = fast_method(method);
-    if (p->kernel == SH_KERNEL_SCALAR || p->fmeth < 0 || order > p->fd1->max_order ||
-        !p->fd1->fn[p->fmeth][order]) {
-        p->fmeth = -1; /* the loop kernels */
-        p->kernel = SH_KERNEL_SCALAR;
-    }
+    p->fmeth = p->kernel == SH_KERNEL_SCALAR ? -1 : fast_method(method); /* -1: the loop kernels */
     p->nb = method == SH_ROT_TAYLOR1 || method == SH_ROT_TAYLOR15 || method == SH_ROT_TAYLOR2;
     if (p->fmeth >= 0) {
         if (prec == SH_PREC_FLOAT) p->fn_f = p->ff1->fn[p->fmeth][order];

@@ -152,6 +152,9 @@ int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec
 int sh_rot_plan_create_progress(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                                 sh_rot_kernel kernel, sh_progress_fn fn, void *ctx, sh_rot_plan **out);
 sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
+/* The kernel a plan (order, method, kernel asked) would run, without making
+ * it: sh_rot_plan_kernel of the plan sh_rot_plan_create_kernel makes. */
+sh_rot_kernel sh_rot_plan_kernel_for(int order, sh_rot_method method, sh_rot_kernel kernel);
 
 /* The rotation as a row-major 3×3 matrix or a quaternion (w, x, y, z; any
  * non-zero norm), without trigonometric calls for zxzxz and the Taylor
