@@ -63,8 +63,11 @@ int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 
 /* Read a coefficient file: JSON with "coeffs" (array) or "channels"
  * ({name: array}), or plain text numbers.  Returns nchan vectors of length
- * *len concatenated in *out (malloc'd), channel names in names (may be NULL). */
-int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
+ * *len concatenated in *out (malloc'd), channel names in names (may be NULL).
+ * Bounded before reading by max_order (0: SHLAB_MAX_ORDER): a file larger
+ * than four channels of that order need is refused unread, and one whose
+ * text, or whose numbers once parsed, would not fit in memory. */
+int cli_read_coeffs_file(const char *path, int max_order, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8]);
 /* The same from memory (buf[n] must be '\0'; `path` names it in messages). */
 int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,

@@ -398,16 +398,49 @@ int cli_json_parse(const char *buf, size_t n, const char *name, json_t **root)
     return 0;
 }
 
-int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
+/* A coefficient file's size: four channels of the order in text, 40 bytes a
+ * number, and room for the JSON around them.  Memory: the text while it is
+ * read, then per number its double and, in JSON, the parsed value
+ * (CLI_JSON_NUMBER_BYTES). */
+#define COEFF_TEXT_BYTES 40
+#define COEFF_JSON_SLACK 4096
+#define CLI_JSON_NUMBER_BYTES 100
+#define CLI_PATH_WHAT 1200
+
+int cli_read_coeffs_file(const char *path, int max_order, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8])
 {
+    const int mo = max_order > 0 && max_order < SHLAB_MAX_ORDER ? max_order : SHLAB_MAX_ORDER;
+    const size_t max = (size_t)SH_IMAGE_MAX_CHANNELS * mo * mo * COEFF_TEXT_BYTES + COEFF_JSON_SLACK;
+    /* the size against the order and the memory before a byte is read */
+    sh_input in;
+    if (cli_input("coefficient file", path)) return CLI_EXIT_USAGE;
+    if (sh_input_open("coefficient file", path, -1, &in)) return cli_fail_status(SH_EIO);
+    const double size = (double)in.size;
+    sh_input_close(&in);
+    if (size > (double)max) {
+        char a[32], b[32];
+        return cli_fail("coefficient file '%s' has %s, more than the %s four channels of order %d take in text",
+                        path, sh__bytes_str(size, a, sizeof a), sh__bytes_str((double)max, b, sizeof b), mo);
+    }
+    char what[CLI_PATH_WHAT];
+    snprintf(what, sizeof what, "reading '%s'", path);
+    if (cli_mem_check("coefficient file", size, what)) return CLI_EXIT_USAGE;
     char *buf;
     size_t n;
-    /* four channels of order SHLAB_MAX_ORDER in text, 40 bytes a number */
-    if (cli_read_file("coefficient file", path, (size_t)CLI_MAX_NUMBERS * 40, &buf, &n)) return CLI_EXIT_USAGE;
+    if (cli_read_file("coefficient file", path, max, &buf, &n)) return CLI_EXIT_USAGE;
     const int rc = cli_read_coeffs_mem(buf, n, path, out, len, nchan, names);
     free(buf);
     return rc;
+}
+
+/* The numbers in a text: digits that do not continue a number. */
+static size_t count_numbers(const char *buf, size_t n)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isdigit((unsigned char)buf[i]) && (i == 0 || !strchr("0123456789.eE+-", buf[i - 1]) || !buf[i - 1])) k++;
+    return k;
 }
 
 int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,
@@ -417,6 +450,12 @@ int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **ou
         return cli_fail("%s: contains a NUL byte (not a text or JSON coefficient file)", path);
     const char *p = buf;
     while (*p && isspace((unsigned char)*p)) p++;
+    /* the parsed numbers' memory, before parsing */
+    const size_t count = count_numbers(buf, n);
+    char what[CLI_PATH_WHAT];
+    snprintf(what, sizeof what, "parsing the %zu numbers of '%s'", count, path);
+    if (cli_mem_check("coefficient file", (double)count * (*p == '{' ? CLI_JSON_NUMBER_BYTES : 8), what))
+        return CLI_EXIT_USAGE;
     int rc = 0;
     if (*p == '{') {
         json_t *root = NULL;

@@ -106,7 +106,8 @@ static int run(int argc, char **argv)
     if (coeff_arg) {
         if (cli_doubles("--coeffs", coeff_arg, &v, &len)) return CLI_EXIT_USAGE;
     } else {
-        if (cli_read_coeffs_file(in, &v, &len, &nchan, names)) return CLI_EXIT_USAGE;
+        /* the file may hold more bands than --order (truncated) */
+        if (cli_read_coeffs_file(in, 0, &v, &len, &nchan, names)) return CLI_EXIT_USAGE;
         have_names = nchan > 1;
     }
     const int vorder = (int)lround(sqrt((double)len));

@@ -118,7 +118,7 @@ static int run(int argc, char **argv)
     char names[SH_IMAGE_MAX_CHANNELS][8] = {"Y"};
     if (coeff_arg) {
         if (cli_doubles("--coeffs", coeff_arg, &c, &n)) return CLI_EXIT_USAGE;
-    } else if (cli_read_coeffs_file(in, &c, &n, &nchan, names)) {
+    } else if (cli_read_coeffs_file(in, com.order, &c, &n, &nchan, names)) {
         return CLI_EXIT_USAGE;
     }
     int order = com.order;

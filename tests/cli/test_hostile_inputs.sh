@@ -30,3 +30,46 @@ done
 expect_refused "plan --order 65" "--order: order 65 is outside 1\.\.64$" plan --order 65 --max-beta 0 --tolerance 1
 expect_refused "scene-plan --max-order 33" "--max-order: order 33 is outside 1\.\.32$" scene-plan --max-order 33
 expect_refused "scale --verify at order 9" "--order: order 9 is outside 1\.\.8 \(with --verify" scale --order 9 --verify --family linear --k 2
+
+# ---- memory as a whole before a command starts
+expect_refused "bench: the entries of one order together, before any plan" \
+    "bench: timing order 2048 \(20 entries at once\) needs [0-9.]+ GB of memory, only [0-9.]+ GB is available" \
+    bench --order 2048 --methods zxzxz --mode all --input euler,matrix --kernel scalar,sse2,avx2,avx512
+seq 1 1500 | tr '\n' ' ' >"$TMP/c1500.txt"
+expect_refused "rotate --order 1: a coefficient file bounded by the order before reading" \
+    "coefficient file '.*c1500.txt' has [0-9]+ kB, more than the 4 kB four channels of order 1 take in text" \
+    rotate --order 1 --euler 0,0,0 --in "$TMP/c1500.txt"
+
+# ---- one line on exit 2, the right reason
+zeros() { awk -v n="$1" 'BEGIN { for (i = 0; i < n; i++) printf "%s0", i ? " " : ""; print "" }'; }
+zeros 16384 >"$TMP/c128.txt"
+expect_refused "rotate --method z with β ≠ 0 at order 128: the error alone (no note before it)" \
+    "method z: rotation is not about z \(beta = 0.2\)" rotate --method z --euler 0.1,0.2,0.3 --in "$TMP/c128.txt"
+expect_refused "shadow-field --picture cone: (one line)" "--picture expects an integer, got ''" \
+    shadow-field --light const:1 --picture cone:
+expect_refused "transfer --check with no closed-form vertex is bad input" \
+    "transfer: --check: no vertex of box-open at this --res has a closed form" transfer --scene box-open --res 1 --check
+expect_refused "cache --bounce in the closed box: no light, not 'the reference'" \
+    "no light reaches the scene: the shading the errors are relative to is 0 at all [0-9]+ vertices" \
+    cache --scene box-closed --res 2 --bounce --light const:1 --rays 4 --quiet
+grep -q reference "$TMP/err" && notok "the message names no reference ($(cat "$TMP/err"))" || ok "the message names no reference"
+perl "$(dirname "$0")/mkexr.pl" 1 4 >"$TMP/w1.exr"
+perl "$(dirname "$0")/mkexr.pl" 4 2 >"$TMP/w4.exr"
+expect_refused "a 1-pixel-wide RGB environment is too small (not 'need a 1-channel or RGB image')" \
+    "w1.exr: a 1×4 environment is too small" render --scene bowl --res 2 --probe "$TMP/w1.exr" --quiet --out "$TMP/r.exr"
+expect_refused "a 4×2 probe cannot carry order 8 in a scene command" \
+    "a 4×2 image carries orders up to 2 \(2n − 1 pixels across, n down\), not 8" \
+    render --scene bowl --res 2 --probe "$TMP/w4.exr" --order 8 --quiet --out "$TMP/r.exr"
+expect_success "the same probe carries order 2" render --scene bowl --res 2 --probe "$TMP/w4.exr" --order 2 --rays 16 \
+    --width 16 --height 12 --quiet --out "$TMP/r.exr"
+# the independent truth of the image: a constant 1 projects to c0 = √(4π)
+"$SHLAB" project --order 1 --exr "$TMP/w4.exr" --format csv >"$TMP/out" 2>/dev/null
+close "$(csv_value "$TMP/out" 1 "$(head -1 "$TMP/out" | tr ',' '\n' | grep -n '^R$' | cut -d: -f1)")" 3.5449077018110318 1e-7 \
+    && ok "mkexr.pl writes what it says (constant 1: c0 = √(4π))" || notok "mkexr.pl image: $(cat "$TMP/out")"
+
+# ---- shadow-field: an absurd run refused before the scene is built
+start=$(date +%s)
+expect_refused "shadow-field --res 512 refused up front" \
+    "shadow-field: --res 512 makes 12582915 vertices; × --rays 4096 that is up to 5.2e\+10 rays, more than the 8.6e\+09" \
+    shadow-field --light const:1 --res 512
+[ $(( $(date +%s) - start )) -le 3 ] && ok "... within 3 s (nothing built)" || notok "--res 512 took $(( $(date +%s) - start )) s to refuse"
