@@ -73,3 +73,15 @@ expect_refused "shadow-field --res 512 refused up front" \
     "shadow-field: --res 512 makes 12582915 vertices; × --rays 4096 that is up to 5.2e\+10 rays, more than the 8.6e\+09" \
     shadow-field --light const:1 --res 512
 [ $(( $(date +%s) - start )) -le 3 ] && ok "... within 3 s (nothing built)" || notok "--res 512 took $(( $(date +%s) - start )) s to refuse"
+
+# ---- progress on long runs (stderr, "cmd: done of total what, T s"), none with --quiet
+zeros 65536 >"$TMP/c256.txt"
+"$SHLAB" rotate --method choi --euler 0.1,0.2,0.3 --in "$TMP/c256.txt" --format json >"$TMP/a" 2>"$TMP/err"; rc=$?
+if [ $rc = 0 ] && grep -Eq '^rotate: [0-9]+ of 256 bands of the rotation, [0-9.]+ s$' "$TMP/err" \
+    && tail -1 "$TMP/err" | grep -q '^rotate: 256 of 256 bands'; then
+    ok "rotate --method choi at order 256: progress by bands, the last line at 256"
+else
+    notok "rotate progress: rc $rc, $(cat "$TMP/err")"
+fi
+"$SHLAB" rotate --method choi --euler 0.1,0.2,0.3 --in "$TMP/c256.txt" --format json --quiet >"$TMP/b" 2>"$TMP/err"
+[ ! -s "$TMP/err" ] && cmp -s "$TMP/a" "$TMP/b" && ok "rotate --quiet: nothing on stderr, the same result" || notok "rotate --quiet: $(cat "$TMP/err")"
