@@ -152,6 +152,11 @@ void cli_signals_install(void);
  * signals are held), so a stopped run has printed nothing. */
 void cli_signals_commit(void);
 
+/* An option given where it does not apply is refused, never ignored — one
+ * rule for every command: "CMD: OPT applies only to WHAT".  Returns 0 when
+ * the option was not given or applies, else the exit code after the line. */
+int cli_applies(const char *cmd, int given, const char *opt, int applies, const char *what);
+
 /* Print help text to stdout; returns 0. */
 int cli_help(const cli_command *cmd);
 const cli_command *cli_find(const char *name);

@@ -86,6 +86,12 @@ int cli_getopt_long(int argc, char *const argv[], const char *shortopts,
     return o;
 }
 
+int cli_applies(const char *cmd, int given, const char *opt, int applies, const char *what)
+{
+    if (!given || applies) return 0;
+    return cli_fail("%s: %s applies only to %s", cmd, opt, what);
+}
+
 int cli_fail_status(int st)
 {
     const char *why = sh_last_error();

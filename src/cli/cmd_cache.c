@@ -175,7 +175,7 @@ static int run(int argc, char **argv)
     co.seed = 1;
     cli_picture_args pa = CLI_PICTURE_DEFAULTS;
     meth M[CACHE_MAX_METHODS];
-    int nm = 0, repeat = 5, nref = 0, noise = 0, quiet = 0;
+    int nm = 0, repeat = 5, nref = 0, noise = 0, quiet = 0, have_rays = 0;
     double beta_lim = 0;
     const char *png = NULL, *dpng = NULL, *epng = NULL, *pmeth = NULL;
     long seed = 1;
@@ -216,6 +216,7 @@ static int run(int argc, char **argv)
         case O_RAYS:
             if (cli_long("--rays", optarg, &co.rays)) return CLI_EXIT_USAGE;
             if (co.rays < 1 || co.rays > 1L << 20) return cli_fail("--rays: out of range 1..1048576");
+            have_rays = 1;
             break;
         case O_ALBEDO:
             if (cli_double("--albedo", optarg, &co.albedo)) return CLI_EXIT_USAGE;
@@ -262,6 +263,20 @@ static int run(int argc, char **argv)
     if ((co.rmin > 0 ? co.rmin : 0.01) >= (co.rmax > 0 ? co.rmax : 0.25)) return cli_fail("--rmin must be below --rmax");
     if (nref && (co.bounce || co.brdf.phong))
         return cli_fail("cache: --reference judges diffuse direct light only (not with --bounce or phong)");
+    /* options that do not apply are refused, as transfer refuses them */
+    int approx = 0;
+    for (int k = 0; k < nm; k++) approx |= !M[k].rot.ignore && !sh_rot_method_is_exact(M[k].rot.method);
+    const int pictures = png || dpng || epng;
+    if (cli_applies("cache", have_rays, "--rays", co.bounce, "--bounce (rays of the bounce)") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_REFS | CLI_PIC_REPL, nref > 0, "--reference K") ||
+        cli_applies("cache", pmeth != NULL, "--picture-method", png || epng, "--png and --error-png") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_EMAX, epng != NULL, "--error-png") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_WIDTH | CLI_PIC_HEIGHT, pictures,
+                            "the pictures (--png, --direct-png, --error-png)") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_VIEW, pictures || co.brdf.phong,
+                            "the pictures and --brdf phong (the eye)") ||
+        cli_applies("cache", beta_lim > 0, "--beta-lim", approx, "the Taylor methods in --methods"))
+        return CLI_EXIT_USAGE;
     int pic = -1;
     for (int k = 0; k < nm; k++) {
         M[k].rot.beta_lim = sh_rot_method_is_exact(M[k].rot.method) || M[k].rot.ignore ? 0 : beta_lim;

@@ -119,7 +119,7 @@ static int run(int argc, char **argv)
     double d0 = 0, cone = M_PI / 4, albedo = 0.8; /* cone: 45° unless --cone-angle */
     int have_cone = 0;
     int cone_tangent = 0, nsamp = 5, samples[SF_MAX_SAMPLES] = {0, 2, 5, 10, 40}, reference = 0, nbins = 5, quiet = 0;
-    int pic_samples = 0;
+    int pic_samples = 0, have_picture = 0;
     sh_sf_scaling pic_scaling = SH_SF_CONE;
     long rays = 4096, seed = 1;
     const char *png = NULL, *rpng = NULL, *epng = NULL;
@@ -182,6 +182,7 @@ static int run(int argc, char **argv)
             if (colon && cli_int("--picture", colon + 1, &pic_samples)) return CLI_EXIT_USAGE;
             if (pic_samples < 0 || pic_samples == 1) return cli_fail("--picture: samples must be 0 or >= 2");
             if (pic_scaling == SH_SF_EXACT && pic_samples) return cli_fail("--picture: the exact field has no samples");
+            have_picture = 1;
             break;
         }
         case O_ALBEDO:
@@ -201,6 +202,14 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("shadow-field: unexpected argument '%s'", argv[optind]);
     if (sa.mesh) return cli_fail("shadow-field: the occluder is the sphere of --scene sphere-plane (no --mesh)");
+    /* options that do not apply are refused, as transfer refuses them */
+    const int any_picture = png || rpng || epng;
+    if (cli_picture_applies("shadow-field", &pa, CLI_PIC_REFS | CLI_PIC_REPL, reference, "--reference") ||
+        cli_applies("shadow-field", have_picture, "--picture", png || epng, "--png and --error-png") ||
+        cli_picture_applies("shadow-field", &pa, CLI_PIC_EMAX, epng != NULL, "--error-png") ||
+        cli_picture_applies("shadow-field", &pa, CLI_PIC_VIEW | CLI_PIC_WIDTH | CLI_PIC_HEIGHT, any_picture,
+                            "the pictures (--png, --ray-png, --error-png)"))
+        return CLI_EXIT_USAGE;
     if (!sa.scene) sa.scene = "sphere-plane";
     const int order = com.order ? com.order : 4;
     const double deg = com.degrees ? M_PI / 180 : 1.0;

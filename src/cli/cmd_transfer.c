@@ -160,10 +160,11 @@ static int run(int argc, char **argv)
     if (optind < argc) return cli_fail("transfer: unexpected argument '%s'", argv[optind]);
     to.order = com.order ? com.order : 4;
     to.conv = com.conv;
-    if (to.closed_form && to.kind != SH_TRANSFER_UNSHADOWED) return cli_fail("transfer: --closed-form applies to unshadowed only");
+    if (cli_applies("transfer", to.closed_form, "--closed-form", to.kind == SH_TRANSFER_UNSHADOWED, "--transfer unshadowed"))
+        return CLI_EXIT_USAGE;
     if (check && !sa.scene) return cli_fail("transfer: --check needs a procedural --scene");
     if (check && to.closed_form) return cli_fail("transfer: --check compares the ray estimator; drop --closed-form");
-    if (have_repl && !check) return cli_fail("transfer: --replications applies to --check only");
+    if (cli_applies("transfer", have_repl, "--replications", check, "--check")) return CLI_EXIT_USAGE;
     if (check && repeat > 1) return cli_fail("transfer: --repeat and --check do not go together");
     to.threads = sa.threads;
 

@@ -85,3 +85,30 @@ else
 fi
 "$SHLAB" rotate --method choi --euler 0.1,0.2,0.3 --in "$TMP/c256.txt" --format json --quiet >"$TMP/b" 2>"$TMP/err"
 [ ! -s "$TMP/err" ] && cmp -s "$TMP/a" "$TMP/b" && ok "rotate --quiet: nothing on stderr, the same result" || notok "rotate --quiet: $(cat "$TMP/err")"
+
+# ---- an option that does not apply is refused (one rule: transfer, render, cache, shadow-field)
+B="--scene bowl --res 2 --light const:1 --quiet"
+expect_refused "transfer --replications without --check" "transfer: --replications applies only to --check$" transfer --scene bowl --replications 3
+expect_refused "render --exposure without --png" "render: --exposure applies only to --png" render $B --out "$TMP/r.exr" --exposure 2
+expect_refused "render --error-max without --error-png" "render: --error-max applies only to --error-png$" render $B --out "$TMP/r.exr" --error-max 0.5
+expect_refused "render --ref-samples without an error image" "render: --ref-samples applies only to --error-out and --error-png" \
+    render $B --out "$TMP/r.exr" --ref-samples 64
+expect_refused "render --method without a rotation" "render: --method applies only to a rotation of the lighting" \
+    render $B --out "$TMP/r.exr" --method zxzxz
+expect_refused "cache --rays without --bounce" "cache: --rays applies only to --bounce" cache $B --rays 16
+expect_refused "cache --replications without --reference" "cache: --replications applies only to --reference K$" cache $B --replications 3
+expect_refused "cache --width without a picture" "cache: --width applies only to the pictures" cache $B --width 64
+expect_refused "cache --view without a picture or phong" "cache: --view applies only to the pictures and --brdf phong" cache $B --view 1,0,0
+expect_refused "cache --picture-method without a picture" "cache: --picture-method applies only to --png and --error-png$" \
+    cache $B --picture-method zxzxz
+expect_refused "cache --beta-lim with exact methods only" "cache: --beta-lim applies only to the Taylor methods" \
+    cache $B --methods zxzxz,ivanic --beta-lim 0.2
+expect_refused "shadow-field --ref-samples without --reference" "shadow-field: --ref-samples applies only to --reference$" \
+    shadow-field --light const:1 --ref-samples 64
+expect_refused "shadow-field --picture without --png" "shadow-field: --picture applies only to --png and --error-png$" \
+    shadow-field --light const:1 --picture sphere:0
+expect_refused "shadow-field --height without a picture" "shadow-field: --height applies only to the pictures" \
+    shadow-field --light const:1 --height 64
+expect_refused "transfer --compute-normals on a procedural scene" "transfer: --compute-normals applies only to --mesh$" \
+    transfer --scene bowl --compute-normals
+expect_success "cache --rays with --bounce" cache $B --order 2 --bounce --rays 4 --env-samples 16 --repeat 1 --methods zxzxz
