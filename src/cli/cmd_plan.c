@@ -240,9 +240,11 @@ static int run(int argc, char **argv)
     if (!have_beta) return cli_fail("plan: --max-beta is required");
     if (!have_tol) return cli_fail("plan: --tolerance is required");
     if (order_auto && !exr) return cli_fail("plan: --order auto needs --exr FILE");
-    if (!order_auto && (exr || have_layout || have_max_order))
-        return cli_fail("plan: --exr, --layout and --max-order apply to --order auto only");
-    if (!order_auto && rot_tol > 0) return cli_fail("plan: --rot-tolerance applies to --order auto only");
+    if (cli_applies("plan", exr != NULL, "--exr", order_auto, "--order auto") ||
+        cli_applies("plan", have_layout, "--layout", order_auto, "--order auto") ||
+        cli_applies("plan", have_max_order, "--max-order", order_auto, "--order auto") ||
+        cli_applies("plan", rot_tol > 0, "--rot-tolerance", order_auto, "--order auto"))
+        return CLI_EXIT_USAGE;
     co.conv = com.conv;
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;

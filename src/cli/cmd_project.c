@@ -243,11 +243,14 @@ static int run(int argc, char **argv)
     if (spec && exr) return cli_fail("project: give --light or --exr, not both");
     if (!spec && !exr) return cli_fail("project: give --light SPEC or --exr FILE");
     if (exr) {
-        if (have_method || have_samples || have_seed || degrees)
-            return cli_fail("project: --method, --samples, --seed and --degrees apply to --light only");
+        if (cli_applies("project", have_method, "--method", 0, "--light") ||
+            cli_applies("project", have_samples, "--samples", 0, "--light") ||
+            cli_applies("project", have_seed, "--seed", 0, "--light") ||
+            cli_applies("project", degrees, "--degrees", 0, "--light"))
+            return CLI_EXIT_USAGE;
         return run_exr(order, conv, exr, layout, threads, quiet, fmt);
     }
-    if (have_layout) return cli_fail("project: --layout applies to --exr only");
+    if (cli_applies("project", have_layout, "--layout", 0, "--exr")) return CLI_EXIT_USAGE;
     if ((have_samples || have_seed) && !have_method) {
         sh_light L;
         if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());

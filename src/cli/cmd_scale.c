@@ -106,7 +106,7 @@ static int run(int argc, char **argv)
     if (sh_scale_family_parse(family, &s.family)) return cli_fail("--family: %s", sh_last_error());
     if (!have_k) return cli_fail("scale: --k is required");
     if (have_cone) {
-        if (s.family != SH_SCALE_CONE) return cli_fail("scale: --cone-angle applies to --family cone only");
+        if (cli_applies("scale", 1, "--cone-angle", s.family == SH_SCALE_CONE, "--family cone")) return CLI_EXIT_USAGE;
         s.cone_angle = com.degrees ? cone * M_PI / 180.0 : cone;
         if (!(s.cone_angle > 0.0 && s.cone_angle < M_PI))
             return cli_fail("--cone-angle: %g is outside (0, %s)", cone, com.degrees ? "180" : "pi");

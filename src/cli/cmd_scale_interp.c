@@ -133,7 +133,8 @@ static int run(int argc, char **argv)
     if (sh_scale_interp_parse(interp, &ik)) return cli_fail("--interp: %s", sh_last_error());
     if (!have_min || !have_max) return cli_fail("scale-interp: --kmin and --kmax are required");
     if (have_cone) {
-        if (s.family != SH_SCALE_CONE) return cli_fail("scale-interp: --cone-angle applies to --family cone only");
+        if (cli_applies("scale-interp", 1, "--cone-angle", s.family == SH_SCALE_CONE, "--family cone"))
+            return CLI_EXIT_USAGE;
         s.cone_angle = com.degrees ? cone * M_PI / 180.0 : cone;
         if (!(s.cone_angle > 0.0 && s.cone_angle < M_PI))
             return cli_fail("--cone-angle: %g is outside (0, %s)", cone, com.degrees ? "180" : "pi");

@@ -129,12 +129,15 @@ static int run(int argc, char **argv)
     if (!order) return cli_fail("scale-scene: --order is required");
     if (!klist) return cli_fail("scale-scene: --k is required (comma-separated list)");
     const double deg = com.degrees ? M_PI / 180.0 : 1.0;
-    if (occ >= 0 && sc.kind != SH_SCENE_CONE) return cli_fail("scale-scene: --occluder-angle applies to --scene cone");
-    if ((light || probe) && sc.kind != SH_SCENE_MIDRANGE)
-        return cli_fail("scale-scene: --light/--probe apply to --scene midrange");
+    const int midrange = sc.kind == SH_SCENE_MIDRANGE;
+    if (cli_applies("scale-scene", occ >= 0, "--occluder-angle", sc.kind == SH_SCENE_CONE, "--scene cone") ||
+        cli_applies("scale-scene", light != NULL, "--light", midrange, "--scene midrange") ||
+        cli_applies("scale-scene", probe != NULL, "--probe", midrange, "--scene midrange"))
+        return CLI_EXIT_USAGE;
     if (light && probe) return cli_fail("scale-scene: give --light or --probe, not both");
-    if ((have_dir || rotm) && sc.kind != SH_SCENE_MIDRANGE)
-        return cli_fail("scale-scene: --dir/--rotation-method apply to --scene midrange (occluders lie along +z)");
+    if (cli_applies("scale-scene", have_dir, "--dir", midrange, "--scene midrange (occluders lie along +z)") ||
+        cli_applies("scale-scene", rotm != NULL, "--rotation-method", midrange, "--scene midrange (occluders lie along +z)"))
+        return CLI_EXIT_USAGE;
     double unit[3] = {0.0, 0.0, 1.0};
     if (have_dir) {
         if (sh_scale_axis_unit(dir, unit)) return cli_fail("--dir: %s", sh_last_error());
