@@ -327,6 +327,23 @@ void cli_light_warn(const char *cmd, const sh_light *L, int degrees);
  * command prints, byte for byte: both go through the kind's finish().
  * A kind may stop the sweep at a row (stops()): the rows after the first
  * such row are dropped, and a shard stops after its own first one. */
+/* The fields of a row or of the parameters: key, JSON type (a real is a
+ * JSON real: 1.0, never 1), whether it may be absent, and for integers
+ * their range.  A list ends with key NULL. */
+typedef enum {
+    CLI_FIELD_INT, CLI_FIELD_REAL, CLI_FIELD_REAL_OR_NULL, CLI_FIELD_BOOL, CLI_FIELD_STRING,
+    CLI_FIELD_REALS,        /* an array of reals (its length: check_row) */
+    CLI_FIELD_INTS_OR_NULL, /* null, or an array of integers in [min, max] */
+    CLI_FIELD_STRINGS,      /* an array of strings */
+    CLI_FIELD_OBJECT
+} cli_field_type;
+typedef struct {
+    const char *key;
+    cli_field_type type;
+    int optional;
+    long long min, max; /* CLI_FIELD_INT, CLI_FIELD_INTS_OR_NULL (both 0: any) */
+} cli_sweep_field;
+
 typedef struct {
     const char *command;
     /* The command's result from its parameters and its rows (in item order,
@@ -337,7 +354,27 @@ typedef struct {
     /* The exit status of a result (NULL: 0), e.g. CLI_EXIT_CHECK when plan
      * finds no method. */
     int (*exit_code)(const json_t *result);
+    /* What a shard file may hold, checked by merge on every line it reads
+     * (and by the sweep on what it writes): the parameters' fields, a row's
+     * fields (exactly these, of these types), and check_row: 0 if `row` is
+     * item j's row of a sweep of nitems (the band, angle or point item j
+     * stands for, its arrays' lengths), else non-zero with the reason in why
+     * (NULL: the fields only). */
+    const cli_sweep_field *params_fields, *row_fields;
+    int (*check_row)(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n);
 } cli_sweep_kind;
+/* 0 if obj has exactly the fields (types, ranges), else non-zero with the
+ * reason in why ("field 'orth' is a string, not a real", ...). */
+int cli_sweep_fields_ok(const cli_sweep_field *fields, const json_t *obj, char *why, size_t n);
+/* A row of kind for item j: its fields and check_row.  0 or non-zero (why). */
+int cli_sweep_row_ok(const cli_sweep_kind *kind, const json_t *params, long nitems, long j, const json_t *row,
+                     char *why, size_t n);
+/* `shlab merge` of shard files in memory (its fuzz harness): buf[q] of
+ * len[q] bytes, named name[q] in messages.  0 with *result the merged
+ * result (not printed) and *code its exit status; else the exit code after
+ * the one error line. */
+int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, json_t **result,
+                  int *code);
 
 enum { CLI_OPT_SHARD = 0x1c1 };
 #define CLI_LONGOPT_SHARD {"shard", required_argument, 0, CLI_OPT_SHARD}

@@ -140,7 +140,33 @@ static int exit_code(const json_t *result)
     return json_is_null(json_object_get(result, "choice")) ? CLI_EXIT_CHECK : CLI_EXIT_OK;
 }
 
-const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code};
+/* item j is step j of the β grid (the same formula in run) */
+static double beta_of(double max_beta, long nsteps, long j) { return nsteps > 1 ? max_beta * j / (nsteps - 1) : 0; }
+
+static const cli_sweep_field params_fields[] = {
+    {"order", CLI_FIELD_INT, 0, 1, PLAN_MAX_ORDER}, {"convention", CLI_FIELD_STRING, 0, 0, 0},
+    {"max_beta", CLI_FIELD_REAL, 0, 0, 0},          {"degrees", CLI_FIELD_BOOL, 0, 0, 0},
+    {"max_beta_shown", CLI_FIELD_REAL, 0, 0, 0},    {"tolerance", CLI_FIELD_REAL, 0, 0, 0},
+    {"measure", CLI_FIELD_STRING, 0, 0, 0},         {"lobe_exp", CLI_FIELD_REAL, 0, 0, 0},
+    {"precision", CLI_FIELD_STRING, 0, 0, 0},       {"image_tolerance", CLI_FIELD_REAL, 1, 0, 0},
+    {"order_residual", CLI_FIELD_REAL, 1, 0, 0},    {"image", CLI_FIELD_OBJECT, 1, 0, 0},
+    {"beta_step", CLI_FIELD_REAL, 0, 0, 0},         {"methods", CLI_FIELD_STRINGS, 0, 0, 0},
+    {NULL, 0, 0, 0, 0}};
+static const cli_sweep_field row_fields[] = {{"beta", CLI_FIELD_REAL, 0, 0, 0}, {"errors", CLI_FIELD_REALS, 0, 0, 0},
+                                             {NULL, 0, 0, 0, 0}};
+
+static int check_row(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n)
+{
+    const double want = beta_of(json_real_value(json_object_get(params, "max_beta")), nitems, j);
+    const double got = json_real_value(json_object_get(row, "beta"));
+    if (got != want) return snprintf(why, n, "beta %.17g, but item %ld is the step β = %.17g", got, j, want), 1;
+    const size_t ne = json_array_size(json_object_get(row, "errors")),
+                 nm = json_array_size(json_object_get(params, "methods"));
+    if (ne != nm) return snprintf(why, n, "%zu errors for %zu methods", ne, nm), 1;
+    return 0;
+}
+
+const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code, params_fields, row_fields, check_row};
 
 static int run(int argc, char **argv)
 {
@@ -342,7 +368,7 @@ static int run(int argc, char **argv)
     for (int j = 0; j < nsteps; j++) {
         if (!cli_sweep_owns(&sw, j)) continue;
         json_t *r = json_object();
-        r = cli_put(r, "beta", json_real(nsteps > 1 ? co.max_beta * j / (nsteps - 1) : 0));
+        r = cli_put(r, "beta", json_real(beta_of(co.max_beta, nsteps, j)));
         r = cli_put(r, "errors", cli_json_array(err + (size_t)j * nm, (size_t)nm));
         if (cli_sweep_add(&sw, j, r) == CLI_EXIT_USAGE) { free(err); cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
     }

@@ -65,7 +65,34 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "worst_k", json_real(r.worst_k));
 }
 
-const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL, NULL};
+static const cli_sweep_field params_fields[] = {
+    {"order", CLI_FIELD_INT, 0, 1, SH_SCALE_MAX_ORDER}, {"family", CLI_FIELD_STRING, 0, 0, 0},
+    {"energy", CLI_FIELD_BOOL, 0, 0, 0},                {"convention", CLI_FIELD_STRING, 0, 0, 0},
+    {"cone_angle", CLI_FIELD_REAL, 1, 0, 0},            {"unit", CLI_FIELD_STRING, 1, 0, 0},
+    {"samples", CLI_FIELD_INT, 0, 0, 1LL << 31},       {"spacing", CLI_FIELD_STRING, 0, 0, 0},
+    {"interp", CLI_FIELD_STRING, 0, 0, 0},              {"kmin", CLI_FIELD_REAL, 0, 0, 0},
+    {"kmax", CLI_FIELD_REAL, 0, 0, 0},                  {"dense", CLI_FIELD_INT, 0, 2, 100000},
+    {NULL, 0, 0, 0, 0}};
+static const cli_sweep_field row_fields[] = {{"k", CLI_FIELD_REAL, 0, 0, 0}, {"max_error", CLI_FIELD_REAL, 0, 0, 0},
+                                             {"sum_sq", CLI_FIELD_REAL, 0, 0, 0}, {"weight", CLI_FIELD_REAL, 0, 0, 0},
+                                             {NULL, 0, 0, 0, 0}};
+
+/* item d is point d of the dense grid, the library's sh_scale_grid_point */
+static int check_row(const json_t *params, long nitems, long d, const json_t *row, char *why, size_t n)
+{
+    sh_scale_spacing sp;
+    const long dense = (long)json_integer_value(json_object_get(params, "dense"));
+    if (sh_scale_spacing_parse(json_string_value(json_object_get(params, "spacing")), &sp))
+        return snprintf(why, n, "the parameters' spacing: %s", sh_last_error()), 1;
+    if (nitems != dense) return snprintf(why, n, "the sweep has %ld items, its dense grid %ld points", nitems, dense), 1;
+    const double want = sh_scale_grid_point(sp, json_real_value(json_object_get(params, "kmin")),
+                                            json_real_value(json_object_get(params, "kmax")), (int)d, (int)dense);
+    const double got = json_real_value(json_object_get(row, "k"));
+    if (got != want) return snprintf(why, n, "k %.17g, but item %ld is the point k = %.17g", got, d, want), 1;
+    return 0;
+}
+
+const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL, NULL, params_fields, row_fields, check_row};
 
 static int run(int argc, char **argv)
 {

@@ -112,3 +112,29 @@ expect_refused "shadow-field --height without a picture" "shadow-field: --height
 expect_refused "transfer --compute-normals on a procedural scene" "transfer: --compute-normals applies only to --mesh$" \
     transfer --scene bowl --compute-normals
 expect_success "cache --rays with --bounce" cache $B --order 2 --bounce --rays 4 --env-samples 16 --repeat 1 --methods zxzxz
+
+# ---- merge checks every line it passes (types, fields, the band sequence, no
+# NUL), refusing a bad one in one line naming the file and the line
+for i in 0 1; do "$SHLAB" stability --method zxzxz --lmax 6 --ref-max 2 --shard $i/2 >"$TMP/st$i" 2>/dev/null; done
+"$SHLAB" merge "$TMP/st0" "$TMP/st1" >"$TMP/merged" 2>"$TMP/err" && [ ! -s "$TMP/err" ] && ok "the shards merge" || notok "merge: $(cat "$TMP/err")"
+"$SHLAB" stability --method zxzxz --lmax 6 --ref-max 2 >"$TMP/whole" 2>/dev/null
+cmp -s "$TMP/whole" "$TMP/merged" && ok "... to the unsharded output" || notok "merged output differs"
+sed 's/"band":3/"band":5/' "$TMP/st0" >"$TMP/x"
+expect_refused "merge: a relabelled band" "merge: .*/x line 3: the row of item 3: band 5, but item 3 is band 3$" merge "$TMP/x" "$TMP/st1"
+sed 's/"orth":[-0-9.e]*,"orth_exact":true,"hom"/"orth":"x","orth_exact":true,"hom"/' "$TMP/st1" >"$TMP/x"
+expect_refused "merge: \"orth\":\"x\"" "merge: .*/x line 2: the row of item 1: field 'orth' is a string, not a real or null$" \
+    merge "$TMP/st0" "$TMP/x"
+sed 's/,"hom":[-0-9.e]*//' "$TMP/st1" >"$TMP/x"
+expect_refused "merge: a missing field" "line 2: the row of item 1: field 'hom' is missing$" merge "$TMP/st0" "$TMP/x"
+sed 's/"broken":false}}/"broken":false,"note":"hi"}}/' "$TMP/st1" >"$TMP/x"
+expect_refused "merge: an extra field" "line 2: the row of item 1: unexpected field 'note'$" merge "$TMP/st0" "$TMP/x"
+sed 's/"band":3,"orth":[-0-9.e]*,/"band":3,"orth":1,/' "$TMP/st0" >"$TMP/x"
+expect_refused "merge: an integer where a real was written" "line 3: the row of item 3: field 'orth' is an integer" merge "$TMP/x" "$TMP/st1"
+perl -pe 's/\}\}$/}}\0junk/ if $. == 2' "$TMP/st0" >"$TMP/x"
+expect_refused "merge: a NUL byte inside a line" "merge: .*/x line 2: a NUL byte" merge "$TMP/x" "$TMP/st1"
+sed 's/{"end":{"rows":[0-9]*,"stopped":false}}/{"end":{}}/' "$TMP/st0" >"$TMP/x"
+expect_refused "merge: {\"end\":{}} (was 'counts -1 rows')" "line 5: the end line: field 'rows' is missing$" merge "$TMP/x" "$TMP/st1"
+grep -q -- '-1 rows' "$TMP/err" && notok "the message still counts -1 rows" || ok "no '-1 rows'"
+sed 's/"lmax":6/"lmax":7/' "$TMP/st0" >"$TMP/x"; sed 's/"lmax":6/"lmax":7/' "$TMP/st1" >"$TMP/y"
+expect_refused "merge: parameters edited in every file" "line [0-9]+: the row of item [0-9]+: the sweep has 7 items, its parameters 8 bands" \
+    merge "$TMP/x" "$TMP/y"
