@@ -362,6 +362,7 @@ typedef struct {
      * (NULL: the fields only). */
     const cli_sweep_field *params_fields, *row_fields;
     int (*check_row)(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n);
+    int timed; /* finish times something (plan times the methods: a second or more) */
 } cli_sweep_kind;
 /* 0 if obj has exactly the fields (types, ranges), else non-zero with the
  * reason in why ("field 'orth' is a string, not a real", ...). */
@@ -372,9 +373,10 @@ int cli_sweep_row_ok(const cli_sweep_kind *kind, const json_t *params, long nite
 /* `shlab merge` of shard files in memory (its fuzz harness): buf[q] of
  * len[q] bytes, named name[q] in messages.  0 with *result the merged
  * result (not printed) and *code its exit status; else the exit code after
- * the one error line. */
-int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, json_t **result,
-                  int *code);
+ * the one error line.  timed 0: a sweep whose finish times something
+ * (kind->timed) gives {"params","rows"}, checked and joined, instead. */
+int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, int timed,
+                  json_t **result, int *code);
 
 enum { CLI_OPT_SHARD = 0x1c1 };
 #define CLI_LONGOPT_SHARD {"shard", required_argument, 0, CLI_OPT_SHARD}

@@ -201,7 +201,7 @@ static void files_free(shard_file *f, int nf)
 /* The files, read, joined: one sweep, every shard once, every item once, in
  * order.  0 with *result (the kind's finish) and *kind, or the exit code
  * after the error line. */
-static int join(shard_file *f, int nf, const cli_sweep_kind **kind_out, cli_format *fmt, json_t **result)
+static int join(shard_file *f, int nf, int timed, const cli_sweep_kind **kind_out, cli_format *fmt, json_t **result)
 {
     json_t **slot = NULL, *rows = NULL;
     int rc = 0;
@@ -265,13 +265,17 @@ static int join(shard_file *f, int nf, const cli_sweep_kind **kind_out, cli_form
         return rc;
     }
     *kind_out = kind;
+    if (kind->timed && !timed) {
+        *result = json_pack("{s:O,s:o}", "params", f[0].params, "rows", rows);
+        return *result ? 0 : cli_fail("out of memory");
+    }
     *result = kind->finish(f[0].params, rows);
     if (!*result) return cli_fail("merge: %s", *sh_last_error() ? sh_last_error() : "out of memory");
     return 0;
 }
 
-int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, json_t **result,
-                  int *code)
+int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, int timed,
+                  json_t **result, int *code)
 {
     *result = NULL;
     *code = CLI_EXIT_USAGE;
@@ -290,8 +294,8 @@ int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char 
     }
     const cli_sweep_kind *kind = NULL;
     cli_format fmt;
-    if (!rc) rc = join(f, nf, &kind, &fmt, result);
-    if (!rc) *code = kind->exit_code ? kind->exit_code(*result) : CLI_EXIT_OK;
+    if (!rc) rc = join(f, nf, timed, &kind, &fmt, result);
+    if (!rc) *code = kind->exit_code && (timed || !kind->timed) ? kind->exit_code(*result) : CLI_EXIT_OK;
     files_free(f, nf);
     return rc;
 }
@@ -320,7 +324,7 @@ static int run(int argc, char **argv)
     const cli_sweep_kind *kind = NULL;
     cli_format fmt;
     json_t *result = NULL;
-    if (!rc) rc = join(f, nf, &kind, &fmt, &result);
+    if (!rc) rc = join(f, nf, 1, &kind, &fmt, &result);
     files_free(f, nf);
     if (rc) return rc;
     return cli_sweep_emit(kind, result, have_fmt ? com.fmt : fmt);

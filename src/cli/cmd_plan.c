@@ -166,7 +166,7 @@ static int check_row(const json_t *params, long nitems, long j, const json_t *ro
     return 0;
 }
 
-const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code, params_fields, row_fields, check_row};
+const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code, params_fields, row_fields, check_row, 1};
 
 static int run(int argc, char **argv)
 {

@@ -114,7 +114,7 @@ static int check_row(const json_t *params, long nitems, long j, const json_t *ro
     return 0;
 }
 
-const cli_sweep_kind sweep_stability = {"stability", finish, stops, NULL, params_fields, row_fields, check_row};
+const cli_sweep_kind sweep_stability = {"stability", finish, stops, NULL, params_fields, row_fields, check_row, 0};
 
 static json_t *num_or_null(double x, int ok) { return ok ? json_real(x) : json_null(); }
 

@@ -79,7 +79,7 @@ static int check_row(const json_t *params, long nitems, long j, const json_t *ro
     return 0;
 }
 
-const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL, params_fields, row_fields, check_row};
+const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL, params_fields, row_fields, check_row, 0};
 
 static int run(int argc, char **argv)
 {
