@@ -95,7 +95,7 @@ CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 # fuzz harnesses (tests/fuzz/fuzz_<h>.c); make check replays their corpora
-FUZZ_HARNESS := exr fixture candidate coeffs light rotation mesh
+FUZZ_HARNESS := exr fixture candidate coeffs light rotation mesh merge
 FUZZ_REPLAY  := $(FUZZ_HARNESS:%=$(BUILD)/fuzz/replay_%)
 REV      := $(shell git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD 2>/dev/null || echo -dirty)
 

@@ -404,6 +404,88 @@ START_TEST(test_shadowed_sphere_plane)
 }
 END_TEST
 
+/* sh_proc_closed_forms (the sphere's inscribed radius once) against the
+ * brute force, kept here as the independent truth: per vertex, every
+ * triangle of the polyhedral sphere walked for its least distance from the
+ * centre, and the bound of coefficient 0 from it, (ρ/π)·2π·(cos w_in −
+ * cos w)/√(4π) (ρ/π times the cap's zonal difference, scaled to y_0^0). */
+START_TEST(test_closed_forms_batch)
+{
+    pscene p;
+    pscene_make(&p, "sphere-plane", 3);
+    const int order = 3, n2 = 9, nv = p.m.nvert;
+    const double rho = 0.7, lift = 1e-4 * sh_scene_diag(p.s), R = p.ps.p[0], H = p.ps.p[1];
+    double *t = malloc(sizeof(double) * nv * n2), *b = malloc(sizeof(double) * nv * n2);
+    int *known = malloc(sizeof(int) * nv), cnt = 0;
+    ck_assert_int_eq(sh_proc_closed_forms(&p.ps, &p.m, nv, NULL, order, SH_CS, rho, lift, t, b, known), SH_OK);
+    for (int v = 0; v < nv; v++) {
+        double t1[9], b1[9];
+        int k1;
+        ck_assert_int_eq(sh_proc_closed_form(&p.ps, &p.m, v, order, SH_CS, rho, lift, t1, b1, &k1), SH_OK);
+        ck_assert_int_eq(k1, known[v]);
+        ck_assert_mem_eq(t1, t + (size_t)v * n2, sizeof t1);
+        ck_assert_mem_eq(b1, b + (size_t)v * n2, sizeof b1);
+        if (!known[v]) continue;
+        cnt++;
+        double r_in = R; /* brute force, for this vertex */
+        for (int f = 0; f < p.m.ntri; f++) {
+            const double *c[3];
+            int on = 1;
+            for (int j = 0; j < 3; j++) {
+                c[j] = p.m.pos + 3 * p.m.tri[3 * f + j];
+                on &= fabs(sqrt(c[j][0] * c[j][0] + c[j][1] * c[j][1] + (c[j][2] - H) * (c[j][2] - H)) - R) < 1e-9;
+            }
+            if (!on) continue;
+            double e1[3], e2[3], g[3];
+            for (int j = 0; j < 3; j++) e1[j] = c[1][j] - c[0][j], e2[j] = c[2][j] - c[0][j];
+            g[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            g[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            g[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            const double gl = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+            r_in = fmin(r_in, fabs(g[0] * c[0][0] + g[1] * c[0][1] + g[2] * (c[0][2] - H)) / gl);
+        }
+        const double *q = p.m.pos + 3 * v;
+        const double d = sqrt(q[0] * q[0] + q[1] * q[1] + (H - lift) * (H - lift));
+        const double want = rho / M_PI * 2 * M_PI * (cos(asin(r_in / d)) - cos(asin(R / d))) / sqrt(4 * M_PI);
+        ck_close(b[(size_t)v * n2], want, 1e-12, 1, "bound of t_0 at vertex %d", v);
+    }
+    ck_assert_int_gt(cnt, 50);
+    /* a subset by index, and no bound asked: the same vectors */
+    int verts[3] = {nv - 1, 0, nv / 2}, k3[3];
+    double t3[27];
+    ck_assert_int_eq(sh_proc_closed_forms(&p.ps, &p.m, 3, verts, order, SH_CS, rho, lift, t3, NULL, k3), SH_OK);
+    for (int k = 0; k < 3; k++) {
+        ck_assert_int_eq(k3[k], known[verts[k]]);
+        ck_assert_mem_eq(t3 + 9 * k, t + (size_t)verts[k] * n2, sizeof(double) * 9);
+    }
+    free(t);
+    free(b);
+    free(known);
+    pscene_free(&p);
+}
+END_TEST
+
+/* sh_proc_size counts what sh_mesh_procedural makes (vertices before the
+ * mesh check drops unused ones: those inside box-open's hole) */
+START_TEST(test_proc_size)
+{
+    const char *specs[] = {"sphere-plane", "sphere-plane:0.3,2", "bowl", "box-open", "box-open:0.5", "box-closed"};
+    for (size_t k = 0; k < sizeof specs / sizeof *specs; k++)
+        for (int res = 1; res <= 9; res += 4) {
+            sh_proc_scene ps;
+            sh_mesh m;
+            long long nv, nt;
+            ck_assert_int_eq(sh_proc_parse(specs[k], &ps), SH_OK);
+            ps.res = res;
+            ck_assert_int_eq(sh_proc_size(&ps, &nv, &nt), SH_OK);
+            ck_assert_int_eq(sh_mesh_procedural(&ps, &m), SH_OK);
+            ck_assert_msg(nv >= m.nvert && nv <= m.nvert + (res + 1) * (res + 1) && nt == m.ntri, "%s res %d: counted %lld/%lld, made %d/%d", specs[k], res,
+                          nv, nt, m.nvert, m.ntri);
+            sh_mesh_free(&m);
+        }
+}
+END_TEST
+
 START_TEST(test_shadowed_bowl_box)
 {
     const char *specs[2] = {"bowl", "box-open"};
@@ -717,6 +799,8 @@ static Suite *suite(void)
     tcase_add_test(t, test_unshadowed_mc);
     tcase_add_test(t, test_shadowed_sphere_plane);
     tcase_add_test(t, test_shadowed_bowl_box);
+    tcase_add_test(t, test_closed_forms_batch);
+    tcase_add_test(t, test_proc_size);
     tcase_add_test(t, test_furnace);
     tcase_add_test(t, test_threads_deterministic);
     tcase_add_test(t, test_reference_constant_image);

@@ -41,20 +41,33 @@ int cli_int(const char *opt, const char *s, int *out);
 int cli_long(const char *opt, const char *s, long *out);
 int cli_double(const char *opt, const char *s, double *out);
 /* Comma/space separated list; *out is malloc'd (caller frees).  At most
- * CLI_MAX_NUMBERS values (four channels of order SHLAB_MAX_ORDER). */
+ * CLI_MAX_NUMBERS values (four channels of order SHLAB_MAX_ORDER).  An
+ * empty element (",,", a comma first or last) is an error, in every list. */
 #define CLI_MAX_NUMBERS (SH_IMAGE_MAX_CHANNELS * SHLAB_MAX_ORDER * SHLAB_MAX_ORDER)
 int cli_doubles(const char *opt, const char *s, double **out, int *n);
+/* A list of words (methods, kernels, orders, ...) split as cli_doubles
+ * splits numbers: *items[0..*n) point into one malloc'd block (free(*items)
+ * frees it all); at least one element, none empty. */
+int cli_split(const char *opt, const char *s, char ***items, int *n);
 int cli_vec3(const char *opt, const char *s, double v[3]);
 int cli_format_parse(const char *s, cli_format *out);
 int cli_convention(const char *s, sh_convention *out);
 int cli_order(const char *opt, const char *s, int *out);
+/* The one wording for an order out of a command's range: "OPT: order N is
+ * outside 1..MAX" (and " (why)" when given); max 0 means SHLAB_MAX_ORDER.
+ * cli_order_max parses s first (an integer). */
+int cli_order_check(const char *opt, int order, int max, const char *why);
+int cli_order_max(const char *opt, const char *s, int max, const char *why, int *out);
 /* A comma-separated list of at most max orders, each checked as cli_order does. */
 int cli_orders(const char *opt, const char *s, int *out, int max, int *n);
 
 /* Read a coefficient file: JSON with "coeffs" (array) or "channels"
  * ({name: array}), or plain text numbers.  Returns nchan vectors of length
- * *len concatenated in *out (malloc'd), channel names in names (may be NULL). */
-int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
+ * *len concatenated in *out (malloc'd), channel names in names (may be NULL).
+ * Bounded before reading by max_order (0: SHLAB_MAX_ORDER): a file larger
+ * than four channels of that order need is refused unread, and one whose
+ * text, or whose numbers once parsed, would not fit in memory. */
+int cli_read_coeffs_file(const char *path, int max_order, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8]);
 /* The same from memory (buf[n] must be '\0'; `path` names it in messages). */
 int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,
@@ -106,10 +119,8 @@ void cli_progress_step(void *ctx, int done, int total, const char *what);
  * no progress on the way (a single step that took a second, say). */
 void cli_progress_step_est(void *ctx, int done, int total, const char *what);
 
-/* Memory this process could still get: MemAvailable, or the address-space
- * limit (ulimit -v) when lower; in bytes, 0 if unknown. */
-double cli_mem_available(void);
-/* 0 if `bytes` fit; otherwise one line "cmd: WHAT needs X GB of memory, only
+/* 0 if `bytes` fit in the memory this process could still get
+ * (sh__mem_available: MemAvailable, or ulimit -v when lower); otherwise one line "cmd: WHAT needs X GB of memory, only
  * Y GB is available" and CLI_EXIT_USAGE.  Call before allocating. */
 int cli_mem_check(const char *cmd, double bytes, const char *what);
 
@@ -143,6 +154,11 @@ void cli_signals_commit(void);
 
 /* The closing paragraph of every --help (where the conventions are written). */
 extern const char cli_conventions_note[];
+/* An option given where it does not apply is refused, never ignored — one
+ * rule for every command: "CMD: OPT applies only to WHAT".  Returns 0 when
+ * the option was not given or applies, else the exit code after the line. */
+int cli_applies(const char *cmd, int given, const char *opt, int applies, const char *what);
+
 /* Print help text to stdout; returns 0. */
 int cli_help(const cli_command *cmd);
 const cli_command *cli_find(const char *name);
@@ -184,8 +200,12 @@ typedef struct {
     sh_precision prec;    /* --precision (default double) */
     sh_rot_kernel kernel; /* --kernel (default auto) */
     int have_kernel;      /* --kernel was given */
+    /* the command's limits of --order, set before parsing (0: SHLAB_MAX_ORDER),
+     * and why, for the message (NULL: no reason given) */
+    int max_order;
+    const char *max_order_why;
 } cli_common;
-#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0}
+#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0, 0, NULL}
 
 /* Handle getopt_long's result o for command cmd: --help (prints the help),
  * the shared options, and unknown options or missing values (one error
@@ -309,6 +329,23 @@ void cli_light_warn(const char *cmd, const sh_light *L, int degrees);
  * command prints, byte for byte: both go through the kind's finish().
  * A kind may stop the sweep at a row (stops()): the rows after the first
  * such row are dropped, and a shard stops after its own first one. */
+/* The fields of a row or of the parameters: key, JSON type (a real is a
+ * JSON real: 1.0, never 1), whether it may be absent, and for integers
+ * their range.  A list ends with key NULL. */
+typedef enum {
+    CLI_FIELD_INT, CLI_FIELD_REAL, CLI_FIELD_REAL_OR_NULL, CLI_FIELD_BOOL, CLI_FIELD_STRING,
+    CLI_FIELD_REALS,        /* an array of reals (its length: check_row) */
+    CLI_FIELD_INTS_OR_NULL, /* null, or an array of integers in [min, max] */
+    CLI_FIELD_STRINGS,      /* an array of strings */
+    CLI_FIELD_OBJECT
+} cli_field_type;
+typedef struct {
+    const char *key;
+    cli_field_type type;
+    int optional;
+    long long min, max; /* CLI_FIELD_INT, CLI_FIELD_INTS_OR_NULL (both 0: any) */
+} cli_sweep_field;
+
 typedef struct {
     const char *command;
     /* The command's result from its parameters and its rows (in item order,
@@ -319,7 +356,29 @@ typedef struct {
     /* The exit status of a result (NULL: 0), e.g. CLI_EXIT_CHECK when plan
      * finds no method. */
     int (*exit_code)(const json_t *result);
+    /* What a shard file may hold, checked by merge on every line it reads
+     * (and by the sweep on what it writes): the parameters' fields, a row's
+     * fields (exactly these, of these types), and check_row: 0 if `row` is
+     * item j's row of a sweep of nitems (the band, angle or point item j
+     * stands for, its arrays' lengths), else non-zero with the reason in why
+     * (NULL: the fields only). */
+    const cli_sweep_field *params_fields, *row_fields;
+    int (*check_row)(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n);
+    int timed; /* finish times something (plan times the methods: a second or more) */
 } cli_sweep_kind;
+/* 0 if obj has exactly the fields (types, ranges), else non-zero with the
+ * reason in why ("field 'orth' is a string, not a real", ...). */
+int cli_sweep_fields_ok(const cli_sweep_field *fields, const json_t *obj, char *why, size_t n);
+/* A row of kind for item j: its fields and check_row.  0 or non-zero (why). */
+int cli_sweep_row_ok(const cli_sweep_kind *kind, const json_t *params, long nitems, long j, const json_t *row,
+                     char *why, size_t n);
+/* `shlab merge` of shard files in memory (its fuzz harness): buf[q] of
+ * len[q] bytes, named name[q] in messages.  0 with *result the merged
+ * result (not printed) and *code its exit status; else the exit code after
+ * the one error line.  timed 0: a sweep whose finish times something
+ * (kind->timed) gives {"params","rows"}, checked and joined, instead. */
+int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, int timed,
+                  json_t **result, int *code);
 
 enum { CLI_OPT_SHARD = 0x1c1 };
 #define CLI_LONGOPT_SHARD {"shard", required_argument, 0, CLI_OPT_SHARD}

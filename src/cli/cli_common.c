@@ -14,7 +14,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 /* The one error line.  Messages quote arguments and file contents, so the
@@ -87,6 +86,12 @@ int cli_getopt_long(int argc, char *const argv[], const char *shortopts,
     return o;
 }
 
+int cli_applies(const char *cmd, int given, const char *opt, int applies, const char *what)
+{
+    if (!given || applies) return 0;
+    return cli_fail("%s: %s applies only to %s", cmd, opt, what);
+}
+
 int cli_fail_status(int st)
 {
     const char *why = sh_last_error();
@@ -108,7 +113,8 @@ int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
     case CLI_OPT_REPEATED: return CLI_EXIT_USAGE; /* the error is printed */
     case 'h': return cli_help(cmd);
     case CLI_OPT_FORMAT: return cli_format_parse(optarg, &c->fmt) ? CLI_EXIT_USAGE : -1;
-    case CLI_OPT_ORDER: return cli_order("--order", optarg, &c->order) ? CLI_EXIT_USAGE : -1;
+    case CLI_OPT_ORDER:
+        return cli_order_max("--order", optarg, c->max_order, c->max_order_why, &c->order) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
     case CLI_OPT_DEGREES: c->degrees = 1; return -1;
     case CLI_OPT_METHOD:
@@ -150,12 +156,23 @@ int cli_int(const char *opt, const char *s, int *out)
     return 0;
 }
 
-int cli_order(const char *opt, const char *s, int *out)
+int cli_order_check(const char *opt, int order, int max, const char *why)
 {
-    if (cli_int(opt, s, out)) return CLI_EXIT_USAGE;
-    if (sh_check_order(*out)) return cli_fail("%s: %s", opt, sh_last_error());
+    if (max <= 0 || max > SHLAB_MAX_ORDER) max = SHLAB_MAX_ORDER;
+    if (order >= 1 && order <= max) return 0;
+    return cli_fail("%s: order %d is outside 1..%d%s%s%s", opt, order, max, why ? " (" : "", why ? why : "",
+                    why ? ")" : "");
+}
+
+int cli_order_max(const char *opt, const char *s, int max, const char *why, int *out)
+{
+    int v;
+    if (cli_int(opt, s, &v) || cli_order_check(opt, v, max, why)) return CLI_EXIT_USAGE;
+    *out = v;
     return 0;
 }
+
+int cli_order(const char *opt, const char *s, int *out) { return cli_order_max(opt, s, 0, NULL, out); }
 
 /* Numbers: sh__parse_double's rule everywhere (finite, no overflow, and no
  * underflow of a non-zero value to 0 or a subnormal). */
@@ -173,14 +190,35 @@ int cli_double(const char *opt, const char *s, double *out)
     return 0;
 }
 
+/* Lists: elements separated by a comma (white space around it allowed) or
+ * by white space alone.  An empty element — two commas in a row, a comma
+ * first or last — is an error, not dropped ("0.1,,0.2" is not two numbers,
+ * "taylor1," not one method). */
+static int fail_empty(const char *opt, const char *s, size_t at)
+{
+    return cli_fail("%s: empty element at character %zu of '%.40s%s' (two commas in a row, or a comma first or "
+                    "last)",
+                    opt, at + 1, s, strlen(s) > 40 ? "..." : "");
+}
+
 int cli_doubles(const char *opt, const char *s, double **out, int *n)
 {
     size_t cap = 16, k = 0;
     double *v = malloc(cap * sizeof *v);
     if (!v) return cli_fail("out of memory");
     const char *p = s;
+    int after_value = 0; /* a value since the last comma (or the start) */
     for (;;) {
-        while (*p && (isspace((unsigned char)*p) || *p == ',' || *p == '[' || *p == ']')) p++;
+        while (*p && (isspace((unsigned char)*p) || *p == '[' || *p == ']')) p++;
+        if (*p == ',' || (!*p && k > 0 && !after_value)) {
+            if (!after_value) {
+                free(v);
+                return fail_empty(opt, s, (size_t)(p - s));
+            }
+            after_value = 0;
+            p++;
+            continue;
+        }
         if (!*p) break;
         char *end;
         double x = 0;
@@ -205,6 +243,7 @@ int cli_doubles(const char *opt, const char *s, double **out, int *n)
             cap *= 2;
         }
         v[k++] = x;
+        after_value = 1;
         p = end;
         if (*p && !(isspace((unsigned char)*p) || *p == ',' || *p == ']')) {
             free(v);
@@ -214,6 +253,43 @@ int cli_doubles(const char *opt, const char *s, double **out, int *n)
     if (k == 0) { free(v); return cli_fail("%s: no numbers given", opt); }
     *out = v;
     *n = (int)k;
+    return 0;
+}
+
+int cli_split(const char *opt, const char *s, char ***items, int *n)
+{
+    /* one block: the pointers, then a copy of s cut into the elements */
+    const size_t len = strlen(s), most = len / 2 + 2;
+    char **t = malloc(most * sizeof *t + len + 1);
+    if (!t) return cli_fail("out of memory");
+    char *buf = (char *)(t + most);
+    memcpy(buf, s, len + 1);
+    int k = 0, after_value = 0;
+    char *p = buf;
+    for (;;) {
+        while (isspace((unsigned char)*p)) p++;
+        if (*p == ',' || (!*p && k > 0 && !after_value)) {
+            if (!after_value) {
+                const size_t at = (size_t)(p - buf);
+                free(t);
+                return fail_empty(opt, s, at);
+            }
+            after_value = 0;
+            *p++ = '\0';
+            continue;
+        }
+        if (!*p) break;
+        t[k++] = p;
+        after_value = 1;
+        while (*p && *p != ',' && !isspace((unsigned char)*p)) p++;
+        if (isspace((unsigned char)*p)) *p++ = '\0';
+    }
+    if (k == 0) {
+        free(t);
+        return cli_fail("%s: empty list", opt);
+    }
+    *items = t;
+    *n = k;
     return 0;
 }
 
@@ -328,16 +404,49 @@ int cli_json_parse(const char *buf, size_t n, const char *name, json_t **root)
     return 0;
 }
 
-int cli_read_coeffs_file(const char *path, double **out, int *len, int *nchan,
+/* A coefficient file's size: four channels of the order in text, 40 bytes a
+ * number, and room for the JSON around them.  Memory: the text while it is
+ * read, then per number its double and, in JSON, the parsed value
+ * (CLI_JSON_NUMBER_BYTES). */
+#define COEFF_TEXT_BYTES 40
+#define COEFF_JSON_SLACK 4096
+#define CLI_JSON_NUMBER_BYTES 100
+#define CLI_PATH_WHAT 1200
+
+int cli_read_coeffs_file(const char *path, int max_order, double **out, int *len, int *nchan,
                          char names[SH_IMAGE_MAX_CHANNELS][8])
 {
+    const int mo = max_order > 0 && max_order < SHLAB_MAX_ORDER ? max_order : SHLAB_MAX_ORDER;
+    const size_t max = (size_t)SH_IMAGE_MAX_CHANNELS * mo * mo * COEFF_TEXT_BYTES + COEFF_JSON_SLACK;
+    /* the size against the order and the memory before a byte is read */
+    sh_input in;
+    if (cli_input("coefficient file", path)) return CLI_EXIT_USAGE;
+    if (sh_input_open("coefficient file", path, -1, &in)) return cli_fail_status(SH_EIO);
+    const double size = (double)in.size;
+    sh_input_close(&in);
+    if (size > (double)max) {
+        char a[32], b[32];
+        return cli_fail("coefficient file '%s' has %s, more than the %s four channels of order %d take in text",
+                        path, sh__bytes_str(size, a, sizeof a), sh__bytes_str((double)max, b, sizeof b), mo);
+    }
+    char what[CLI_PATH_WHAT];
+    snprintf(what, sizeof what, "reading '%s'", path);
+    if (cli_mem_check("coefficient file", size, what)) return CLI_EXIT_USAGE;
     char *buf;
     size_t n;
-    /* four channels of order SHLAB_MAX_ORDER in text, 40 bytes a number */
-    if (cli_read_file("coefficient file", path, (size_t)CLI_MAX_NUMBERS * 40, &buf, &n)) return CLI_EXIT_USAGE;
+    if (cli_read_file("coefficient file", path, max, &buf, &n)) return CLI_EXIT_USAGE;
     const int rc = cli_read_coeffs_mem(buf, n, path, out, len, nchan, names);
     free(buf);
     return rc;
+}
+
+/* The numbers in a text: digits that do not continue a number. */
+static size_t count_numbers(const char *buf, size_t n)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isdigit((unsigned char)buf[i]) && (i == 0 || !strchr("0123456789.eE+-", buf[i - 1]) || !buf[i - 1])) k++;
+    return k;
 }
 
 int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **out, int *len,
@@ -347,6 +456,12 @@ int cli_read_coeffs_mem(const char *buf, size_t n, const char *path, double **ou
         return cli_fail("%s: contains a NUL byte (not a text or JSON coefficient file)", path);
     const char *p = buf;
     while (*p && isspace((unsigned char)*p)) p++;
+    /* the parsed numbers' memory, before parsing */
+    const size_t count = count_numbers(buf, n);
+    char what[CLI_PATH_WHAT];
+    snprintf(what, sizeof what, "parsing the %zu numbers of '%s'", count, path);
+    if (cli_mem_check("coefficient file", (double)count * (*p == '{' ? CLI_JSON_NUMBER_BYTES : 8), what))
+        return CLI_EXIT_USAGE;
     int rc = 0;
     if (*p == '{') {
         json_t *root = NULL;
@@ -400,16 +515,12 @@ int cli_orders(const char *opt, const char *s, int *out, int max, int *n)
 {
     /* each element through cli_order, so that a list words its errors as a
      * single --order does */
-    char *copy = strdup(s);
-    if (!copy) return cli_fail("out of memory");
-    int k = 0, rc = 0;
-    char *save = NULL;
-    for (char *t = strtok_r(copy, ", \t", &save); t && !rc; t = strtok_r(NULL, ", \t", &save)) {
-        if (k == max) rc = cli_fail("%s: at most %d orders", opt, max);
-        else rc = cli_order(opt, t, &out[k++]);
-    }
-    free(copy);
-    if (!rc && k == 0) rc = cli_fail("%s: no orders given", opt);
+    char **t;
+    int k, rc = 0;
+    if (cli_split(opt, s, &t, &k)) return CLI_EXIT_USAGE;
+    if (k > max) rc = cli_fail("%s: at most %d orders", opt, max);
+    for (int i = 0; i < k && !rc; i++) rc = cli_order(opt, t[i], &out[i]);
+    free(t);
     if (!rc) *n = k;
     return rc;
 }
@@ -447,34 +558,11 @@ void cli_progress_step_est(void *ctx, int done, int total, const char *what)
     cli_progress_step(ctx, done, total, what);
 }
 
-double cli_mem_available(void)
-{
-    double avail = 0.0;
-    FILE *f = fopen("/proc/meminfo", "r");
-    if (f) {
-        char line[256];
-        unsigned long long kb;
-        while (fgets(line, sizeof line, f))
-            if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) {
-                avail = (double)kb * 1024.0;
-                break;
-            }
-        fclose(f);
-    }
-    if (avail <= 0.0) {
-        const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-        avail = pages > 0 && size > 0 ? (double)pages * size : 0.0;
-    }
-    /* an address-space limit (ulimit -v) binds first */
-    struct rlimit rl;
-    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && (avail <= 0.0 || (double)rl.rlim_cur < avail))
-        avail = (double)rl.rlim_cur;
-    return avail;
-}
-
 int cli_mem_check(const char *cmd, double bytes, const char *what)
 {
-    const double avail = cli_mem_available();
+    /* the library's rule: what is available (sh__mem_available) */
+    const size_t a = sh__mem_available();
+    const double avail = a == SIZE_MAX ? 0.0 : (double)a;
     if (avail > 0.0 && bytes > avail)
         return cli_fail("%s: %s needs %.3g GB of memory, only %.3g GB is available", cmd, what, bytes / 1e9,
                         avail / 1e9);

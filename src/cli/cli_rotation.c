@@ -4,6 +4,7 @@
 #include "cli.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,7 +15,9 @@ static int take_form(const char *cmd, cli_rotation_args *r, const char *form, co
         return cli_fail("%s: give one rotation (--%s and --%s both given)", cmd, r->form, opt);
     double *v = NULL;
     int n = 0;
-    if (cli_doubles(opt, arg, &v, &n)) return CLI_EXIT_USAGE;
+    char name[16];
+    snprintf(name, sizeof name, "--%s", opt);
+    if (cli_doubles(name, arg, &v, &n)) return CLI_EXIT_USAGE;
     if (n != count) {
         free(v);
         return cli_fail("%s: --%s expects %d numbers, got %d", cmd, opt, count, n);

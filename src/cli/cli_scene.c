@@ -49,9 +49,11 @@ int cli_scene_build(const char *cmd, const cli_scene_args *a, sh_mesh *m, sh_pro
     *is_proc = 0;
     memset(m, 0, sizeof *m);
     if (!a->mesh == !a->scene) return cli_fail("%s: give exactly one of --mesh FILE and --scene SPEC", cmd);
-    if (a->scene && (a->flags & (SH_MESH_Y_UP | SH_MESH_COMPUTE_NORMALS | SH_MESH_ALLOW_NONMANIFOLD)))
-        return cli_fail("%s: --up, --compute-normals and --allow-nonmanifold apply to --mesh only", cmd);
-    if (a->mesh && a->res) return cli_fail("%s: --res applies to --scene only", cmd);
+    if (cli_applies(cmd, a->flags & SH_MESH_Y_UP, "--up y", !a->scene, "--mesh") ||
+        cli_applies(cmd, a->flags & SH_MESH_COMPUTE_NORMALS, "--compute-normals", !a->scene, "--mesh") ||
+        cli_applies(cmd, a->flags & SH_MESH_ALLOW_NONMANIFOLD, "--allow-nonmanifold", !a->scene, "--mesh") ||
+        cli_applies(cmd, a->res, "--res", !a->mesh, "--scene"))
+        return CLI_EXIT_USAGE;
     sh_mesh_report rep;
     memset(&rep, 0, sizeof rep);
     int st;
@@ -129,8 +131,20 @@ int cli_env_build(const char *cmd, const cli_scene_args *a, int degrees, int opt
     return 0;
 }
 
+int cli_picture_applies(const char *cmd, const cli_picture_args *p, unsigned bits, int applies, const char *what)
+{
+    static const char *const name[] = {"--view", "--width", "--height", "--error-max", "--ref-samples", "--replications"};
+    for (int k = 0; k < 6; k++)
+        if (cli_applies(cmd, p->given & bits & (1u << k), name[k], applies, what)) return CLI_EXIT_USAGE;
+    return 0;
+}
+
 int cli_picture_opt(int o, const char *arg, cli_picture_args *p)
 {
+    static const int bit[] = {[CLI_OPT_VIEW - CLI_OPT_VIEW] = CLI_PIC_VIEW, [CLI_OPT_WIDTH - CLI_OPT_VIEW] = CLI_PIC_WIDTH,
+                              [CLI_OPT_HEIGHT - CLI_OPT_VIEW] = CLI_PIC_HEIGHT, [CLI_OPT_EMAX - CLI_OPT_VIEW] = CLI_PIC_EMAX,
+                              [CLI_OPT_REFS - CLI_OPT_VIEW] = CLI_PIC_REFS, [CLI_OPT_REPL - CLI_OPT_VIEW] = CLI_PIC_REPL};
+    if (o >= CLI_OPT_VIEW && o <= CLI_OPT_REPL) p->given |= (unsigned)bit[o - CLI_OPT_VIEW];
     switch (o) {
     case CLI_OPT_VIEW:
         if (cli_vec3("--view", arg, p->view)) return CLI_EXIT_USAGE;

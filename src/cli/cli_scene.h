@@ -32,6 +32,10 @@ enum { CLI_OPT_MESH = 0x201, CLI_OPT_SCENE, CLI_OPT_UP, CLI_OPT_ALLOW_NM, CLI_OP
     "  --probe FILE         lat-long OpenEXR environment (e.g. data/probes/*.exr, `make probes`)\n" \
     "  --light SPEC         an analytic light instead (see `shlab project --help`; --degrees)\n"
 
+/* The largest --order of the scene commands (transfer, render, cache,
+ * scene-plan's --max-order); shadow-field's is SH_SF_MAX_ORDER. */
+#define CLI_SCENE_MAX_ORDER 32
+
 typedef struct {
     const char *mesh, *scene, *probe, *light;
     int flags, res, threads;
@@ -57,15 +61,20 @@ enum { CLI_OPT_VIEW = 0x221, CLI_OPT_WIDTH, CLI_OPT_HEIGHT, CLI_OPT_EMAX, CLI_OP
         {"height", required_argument, 0, CLI_OPT_HEIGHT}, {"error-max", required_argument, 0, CLI_OPT_EMAX}, \
         {"ref-samples", required_argument, 0, CLI_OPT_REFS},                                           \
         {"replications", required_argument, 0, CLI_OPT_REPL}
+enum { CLI_PIC_VIEW = 1, CLI_PIC_WIDTH = 2, CLI_PIC_HEIGHT = 4, CLI_PIC_EMAX = 8, CLI_PIC_REFS = 16, CLI_PIC_REPL = 32 };
 typedef struct {
     double view[3];
     int width, height;
     double error_max;
     long ref_samples;
     int replications;
+    unsigned given; /* CLI_PIC_* of the options given (cli_applies: refused where they do not apply) */
 } cli_picture_args;
-#define CLI_PICTURE_DEFAULTS {{1, -1.4, 0.9}, 640, 480, 0.1, 16384, 4}
+#define CLI_PICTURE_DEFAULTS {{1, -1.4, 0.9}, 640, 480, 0.1, 16384, 4, 0}
 /* Handle one of those options: -1 if o is not one, 0 if handled, else an exit code. */
 int cli_picture_opt(int o, const char *arg, cli_picture_args *p);
+/* cli_applies for each of the options in `bits` (CLI_PIC_*) that was given:
+ * refused, naming it, unless `applies`. */
+int cli_picture_applies(const char *cmd, const cli_picture_args *p, unsigned bits, int applies, const char *what);
 
 #endif

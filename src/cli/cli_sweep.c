@@ -17,6 +17,96 @@
 
 static const char *const format_names[] = {"table", "csv", "json"};
 
+static const char *type_name(const json_t *v)
+{
+    switch (json_typeof(v)) {
+    case JSON_OBJECT: return "an object";
+    case JSON_ARRAY: return "an array";
+    case JSON_STRING: return "a string";
+    case JSON_INTEGER: return "an integer";
+    case JSON_REAL: return "a real";
+    case JSON_TRUE:
+    case JSON_FALSE: return "a boolean";
+    default: return "null";
+    }
+}
+
+static const char *const want_name[] = {"an integer", "a real", "a real or null", "a boolean", "a string",
+                                        "an array of reals", "null or an array of integers",
+                                        "an array of strings", "an object"};
+
+static int int_in(const json_t *v, const cli_sweep_field *f)
+{
+    if (!json_is_integer(v)) return 0;
+    const long long x = json_integer_value(v);
+    return (f->min == 0 && f->max == 0) || (x >= f->min && x <= f->max);
+}
+
+static int field_ok(const cli_sweep_field *f, const json_t *v)
+{
+    size_t i;
+    json_t *e;
+    switch (f->type) {
+    case CLI_FIELD_INT: return int_in(v, f);
+    case CLI_FIELD_REAL: return json_is_real(v);
+    case CLI_FIELD_REAL_OR_NULL: return json_is_real(v) || json_is_null(v);
+    case CLI_FIELD_BOOL: return json_is_boolean(v);
+    case CLI_FIELD_STRING: return json_is_string(v);
+    case CLI_FIELD_OBJECT: return json_is_object(v);
+    case CLI_FIELD_REALS:
+        if (!json_is_array(v)) return 0;
+        json_array_foreach(v, i, e) if (!json_is_real(e)) return 0;
+        return 1;
+    case CLI_FIELD_STRINGS:
+        if (!json_is_array(v)) return 0;
+        json_array_foreach(v, i, e) if (!json_is_string(e)) return 0;
+        return 1;
+    case CLI_FIELD_INTS_OR_NULL:
+        if (json_is_null(v)) return 1;
+        if (!json_is_array(v)) return 0;
+        json_array_foreach(v, i, e) if (!int_in(e, f)) return 0;
+        return 1;
+    }
+    return 0;
+}
+
+int cli_sweep_fields_ok(const cli_sweep_field *fields, const json_t *obj, char *why, size_t n)
+{
+    if (!json_is_object(obj)) return snprintf(why, n, "not an object"), 1;
+    size_t known = 0;
+    for (const cli_sweep_field *f = fields; f && f->key; f++) {
+        const json_t *v = json_object_get(obj, f->key);
+        if (!v) {
+            if (f->optional) continue;
+            return snprintf(why, n, "field '%s' is missing", f->key), 1;
+        }
+        known++;
+        if (!field_ok(f, v)) {
+            if ((f->type == CLI_FIELD_INT && json_is_integer(v)) || f->type == CLI_FIELD_INTS_OR_NULL)
+                return snprintf(why, n, "field '%s' is not %s in %lld..%lld", f->key, want_name[f->type], f->min,
+                                f->max), 1;
+            return snprintf(why, n, "field '%s' is %s, not %s", f->key, type_name(v), want_name[f->type]), 1;
+        }
+    }
+    if (json_object_size(obj) != known) {
+        const char *key;
+        json_t *v;
+        json_object_foreach((json_t *)obj, key, v) {
+            int found = 0;
+            for (const cli_sweep_field *f = fields; f && f->key && !found; f++) found = !strcmp(f->key, key);
+            if (!found) return snprintf(why, n, "unexpected field '%.40s'", key), 1;
+        }
+    }
+    return 0;
+}
+
+int cli_sweep_row_ok(const cli_sweep_kind *kind, const json_t *params, long nitems, long j, const json_t *row,
+                     char *why, size_t n)
+{
+    if (cli_sweep_fields_ok(kind->row_fields, row, why, n)) return 1;
+    return kind->check_row ? kind->check_row(params, nitems, j, row, why, n) : 0;
+}
+
 int cli_shard(const char *opt, const char *s, sh_shard *out)
 {
     if (sh_shard_parse(s, out)) return cli_fail("%s: %s", opt, sh_last_error());
@@ -55,9 +145,19 @@ int cli_sweep_add(cli_sweep *s, long j, json_t *row)
         json_decref(row);
         return cli_fail("%s: out of memory or a non-finite value in a row", s->kind->command);
     }
+    char why[160];
     if (!cli_sweep_owns(s, j) || j <= s->last) { /* a bug in the command, not the user's */
         json_decref(row);
         return cli_fail("%s: internal error: item %ld out of turn", s->kind->command, j);
+    }
+    /* what merge will check, checked here first (a bug in the command too) */
+    if ((j == 0 || s->done == 0) && cli_sweep_fields_ok(s->kind->params_fields, s->params, why, sizeof why)) {
+        json_decref(row);
+        return cli_fail("%s: internal error: the sweep's parameters: %s", s->kind->command, why);
+    }
+    if (cli_sweep_row_ok(s->kind, s->params, s->nitems, j, row, why, sizeof why)) {
+        json_decref(row);
+        return cli_fail("%s: internal error: the row of item %ld: %s", s->kind->command, j, why);
     }
     const int stop = s->kind->stops && s->kind->stops(s->params, row);
     json_t *rec = row;

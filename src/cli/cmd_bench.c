@@ -120,20 +120,17 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
             if (sh_rot_method_max_order((sh_rot_method)m) > 0) ms[(*nm)++] = (sh_rot_method)m;
         return 0;
     }
-    char *dup = strdup(s);
-    if (!dup) return cli_fail("out of memory");
-    int rc = 0;
-    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t; t = strtok_r(NULL, ", ", &save)) {
+    char **t;
+    int n, rc = 0;
+    if (cli_split("--methods", s, &t, &n)) return CLI_EXIT_USAGE;
+    for (int i = 0; i < n && !rc; i++) {
         sh_rot_method m;
-        if (sh_rot_method_parse(t, &m)) { rc = cli_fail("--methods: %s", sh_last_error()); break; }
-        for (int k = 0; k < *nm; k++)
-            if (ms[k] == m) { rc = cli_fail("--methods: '%s' given twice", t); break; }
-        if (rc) break;
-        if (*nm >= SH_ROT_NMETHODS) { rc = cli_fail("--methods: too many"); break; }
-        ms[(*nm)++] = m;
+        if (sh_rot_method_parse(t[i], &m)) { rc = cli_fail("--methods: %s", sh_last_error()); break; }
+        for (int k = 0; k < *nm && !rc; k++)
+            if (ms[k] == m) rc = cli_fail("--methods: '%s' given twice", t[i]);
+        if (!rc) ms[(*nm)++] = m; /* distinct methods: at most SH_ROT_NMETHODS */
     }
-    free(dup);
-    if (!rc && *nm == 0) rc = cli_fail("--methods: empty list");
+    free(t);
     return rc;
 }
 
@@ -141,36 +138,34 @@ static int parse_methods(const char *s, sh_rot_method *ms, int *nm)
  * would otherwise quietly time another kernel) */
 static int parse_kernels(const char *s, sh_rot_kernel *ks, int *nk)
 {
-    char *dup = strdup(s);
-    if (!dup) return cli_fail("out of memory");
-    int rc = 0;
+    char **t;
+    int n, rc = 0;
+    if (cli_split("--kernel", s, &t, &n)) return CLI_EXIT_USAGE;
     *nk = 0;
-    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t && !rc; t = strtok_r(NULL, ", ", &save)) {
+    for (int j = 0; j < n && !rc; j++) {
         sh_rot_kernel k;
-        if (sh_rot_kernel_parse(t, &k)) rc = cli_fail("--kernel: %s", sh_last_error());
-        else if (!sh_rot_kernel_available(k)) rc = cli_fail("--kernel: %s is not available on this machine", t);
+        if (sh_rot_kernel_parse(t[j], &k)) rc = cli_fail("--kernel: %s", sh_last_error());
+        else if (!sh_rot_kernel_available(k)) rc = cli_fail("--kernel: %s is not available on this machine", t[j]);
         for (int i = 0; !rc && i < *nk; i++)
-            if (ks[i] == k) rc = cli_fail("--kernel: '%s' given twice", t);
+            if (ks[i] == k) rc = cli_fail("--kernel: '%s' given twice", t[j]);
         if (!rc) ks[(*nk)++] = k;
     }
-    free(dup);
-    if (!rc && *nk == 0) rc = cli_fail("--kernel: empty list");
+    free(t);
     return rc;
 }
 
 static int parse_inputs(const char *s, int *bits)
 {
-    char *dup = strdup(s);
-    if (!dup) return cli_fail("out of memory");
-    int rc = 0;
+    char **t;
+    int n, rc = 0;
+    if (cli_split("--input", s, &t, &n)) return CLI_EXIT_USAGE;
     *bits = 0;
-    for (char *save = NULL, *t = strtok_r(dup, ", ", &save); t && !rc; t = strtok_r(NULL, ", ", &save)) {
-        if (!strcmp(t, "euler")) *bits |= 1;
-        else if (!strcmp(t, "matrix")) *bits |= 2;
-        else rc = cli_fail("--input: '%s' (euler or matrix)", t);
+    for (int i = 0; i < n && !rc; i++) {
+        if (!strcmp(t[i], "euler")) *bits |= 1;
+        else if (!strcmp(t[i], "matrix")) *bits |= 2;
+        else rc = cli_fail("--input: '%s' (euler or matrix)", t[i]);
     }
-    free(dup);
-    if (!rc && !*bits) rc = cli_fail("--input: empty list");
+    free(t);
     return rc;
 }
 
@@ -471,22 +466,41 @@ static int run(int argc, char **argv)
     }
     if (instructions && bo.count == 0) bo.count = 64;
 
-    /* every plan once before the first progress line: an order that cannot
-     * be planned (memory) fails before any work is reported; the kernel each
-     * plan uses is kept for the rows */
+    /* the entries of one order live at once: their memory together, at the
+     * order that needs most, against what is available (one line naming
+     * both), before any plan is made */
+    double most = 0;
+    int most_q = 0;
+    for (int q = 0; q < no; q++) {
+        double need = 0;
+        for (int i = 0; i < ne; i++) {
+            sh_bench_opts eo = bo;
+            eo.input = slot[i].in ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
+            need += sh_rot_bench_entry_bytes(orders[q], ms[slot[i].k], prec, mode_of[slot[i].md], &eo);
+        }
+        if (need > most) most = need, most_q = q;
+    }
+    char what[96];
+    snprintf(what, sizeof what, "timing order %d (%d entries at once)", orders[most_q], ne);
+    if (cli_mem_check("bench", most, what)) {
+        free(slot);
+        return CLI_EXIT_USAGE;
+    }
+    /* every plan checked before the first progress line (arguments and its
+     * own memory, sh_rot_plan_check, without building its tables): an order
+     * that cannot be planned fails before any work is reported; the kernel
+     * each plan will use is kept for the rows */
     sh_rot_kernel *plan_kernel = malloc((size_t)nm * nk * no * sizeof *plan_kernel);
     if (!plan_kernel) { free(slot); return cli_fail("out of memory"); }
     for (int k = 0; k < nm; k++)
         for (int kk = 0; kk < nk; kk++)
             for (int q = 0; q < no; q++) {
-                sh_rot_plan *p;
-                if (sh_rot_plan_create_kernel(orders[q], ms[k], prec, com.conv, kernels[kk], &p)) {
+                if (sh_rot_plan_check(orders[q], ms[k], prec)) {
                     free(slot);
                     free(plan_kernel);
                     return cli_fail("bench: %s", sh_last_error());
                 }
-                plan_kernel[((size_t)k * nk + kk) * no + q] = sh_rot_plan_kernel(p);
-                sh_rot_plan_free(p);
+                plan_kernel[((size_t)k * nk + kk) * no + q] = sh_rot_plan_kernel_for(orders[q], ms[k], kernels[kk]);
             }
 
     const int S = bo.repeat;
@@ -521,6 +535,9 @@ static int run(int argc, char **argv)
             bo.input = s->in ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
             rc = sh_rot_bench_entry(orders[q], ms[s->k], prec, mode_of[s->md], &bo, &ent[i]);
             used[q * ne + i] = plan_kernel[((size_t)s->k * nk + s->kk) * no + q];
+            char what[64];
+            snprintf(what, sizeof what, "entries of order %d set up", orders[q]);
+            cli_progress_step(&prog, i + 1, ne, what);
         }
         for (int i = 0; i < ne && !rc; i++) mults[q * ne + i] = ent[i].mults;
         if (!rc && instructions) rc = sh_bench_instructions(ent, ne, bo.count, cg_out, ins + (size_t)q * ne);

@@ -102,24 +102,25 @@ typedef struct {
 
 static int parse_methods(const char *arg, meth *m, int *n)
 {
-    char buf[256];
-    if (strlen(arg) >= sizeof buf) return cli_fail("--methods: list too long");
-    strcpy(buf, arg);
+    char **t;
+    int nt, rc = 0;
+    if (cli_split("--methods", arg, &t, &nt)) return CLI_EXIT_USAGE;
     *n = 0;
-    for (char *tok = strtok(buf, ", "); tok; tok = strtok(NULL, ", ")) {
-        if (*n == CACHE_MAX_METHODS) return cli_fail("--methods: at most %d", CACHE_MAX_METHODS);
+    for (int i = 0; i < nt && !rc; i++) {
+        const char *tok = t[i];
+        if (*n == CACHE_MAX_METHODS) { rc = cli_fail("--methods: at most %d", CACHE_MAX_METHODS); break; }
         meth *x = &m[*n];
         memset(x, 0, sizeof *x);
         snprintf(x->name, sizeof x->name, "%s", tok);
         if (!strcmp(tok, "ignore")) x->rot.ignore = 1;
-        else if (sh_rot_method_parse(tok, &x->rot.method)) return cli_fail("--methods: %s", sh_last_error());
-        else if (x->rot.method == SH_ROT_Z) return cli_fail("--methods: z rotates about z only");
-        for (int k = 0; k < *n; k++)
-            if (!strcmp(m[k].name, tok)) return cli_fail("--methods: %s given twice", tok);
-        (*n)++;
+        else if (sh_rot_method_parse(tok, &x->rot.method)) rc = cli_fail("--methods: %s", sh_last_error());
+        else if (x->rot.method == SH_ROT_Z) rc = cli_fail("--methods: z rotates about z only");
+        for (int k = 0; k < *n && !rc; k++)
+            if (!strcmp(m[k].name, tok)) rc = cli_fail("--methods: %s given twice", tok);
+        if (!rc) (*n)++;
     }
-    if (!*n) return cli_fail("--methods: empty list");
-    return 0;
+    free(t);
+    return rc;
 }
 
 /* picture of 3-channel (or 1-channel) vertex values */
@@ -166,6 +167,7 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = CLI_SCENE_MAX_ORDER;
     cli_scene_args sa = {0};
     sh_cache_opts co = {0};
     co.a = 0.2;
@@ -173,7 +175,7 @@ static int run(int argc, char **argv)
     co.seed = 1;
     cli_picture_args pa = CLI_PICTURE_DEFAULTS;
     meth M[CACHE_MAX_METHODS];
-    int nm = 0, repeat = 5, nref = 0, noise = 0, quiet = 0;
+    int nm = 0, repeat = 5, nref = 0, noise = 0, quiet = 0, have_rays = 0;
     double beta_lim = 0;
     const char *png = NULL, *dpng = NULL, *epng = NULL, *pmeth = NULL;
     long seed = 1;
@@ -214,6 +216,7 @@ static int run(int argc, char **argv)
         case O_RAYS:
             if (cli_long("--rays", optarg, &co.rays)) return CLI_EXIT_USAGE;
             if (co.rays < 1 || co.rays > 1L << 20) return cli_fail("--rays: out of range 1..1048576");
+            have_rays = 1;
             break;
         case O_ALBEDO:
             if (cli_double("--albedo", optarg, &co.albedo)) return CLI_EXIT_USAGE;
@@ -254,13 +257,26 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("cache: unexpected argument '%s'", argv[optind]);
     co.order = com.order ? com.order : 6;
-    if (co.order > 32) return cli_fail("--order: %d > 32", co.order);
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     beta_lim *= deg;
     if (beta_lim > M_PI) return cli_fail("--beta-lim: must be <= π");
     if ((co.rmin > 0 ? co.rmin : 0.01) >= (co.rmax > 0 ? co.rmax : 0.25)) return cli_fail("--rmin must be below --rmax");
     if (nref && (co.bounce || co.brdf.phong))
         return cli_fail("cache: --reference judges diffuse direct light only (not with --bounce or phong)");
+    /* options that do not apply are refused, as transfer refuses them */
+    int approx = 0;
+    for (int k = 0; k < nm; k++) approx |= !M[k].rot.ignore && !sh_rot_method_is_exact(M[k].rot.method);
+    const int pictures = png || dpng || epng;
+    if (cli_applies("cache", have_rays, "--rays", co.bounce, "--bounce (rays of the bounce)") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_REFS | CLI_PIC_REPL, nref > 0, "--reference K") ||
+        cli_applies("cache", pmeth != NULL, "--picture-method", png || epng, "--png and --error-png") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_EMAX, epng != NULL, "--error-png") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_WIDTH | CLI_PIC_HEIGHT, pictures,
+                            "the pictures (--png, --direct-png, --error-png)") ||
+        cli_picture_applies("cache", &pa, CLI_PIC_VIEW, pictures || co.brdf.phong,
+                            "the pictures and --brdf phong (the eye)") ||
+        cli_applies("cache", beta_lim > 0, "--beta-lim", approx, "the Taylor methods in --methods"))
+        return CLI_EXIT_USAGE;
     int pic = -1;
     for (int k = 0; k < nm; k++) {
         M[k].rot.beta_lim = sh_rot_method_is_exact(M[k].rot.method) || M[k].rot.ignore ? 0 : beta_lim;

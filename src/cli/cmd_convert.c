@@ -63,7 +63,7 @@ static int run(int argc, char **argv)
     if (!have_from || !have_to) { free(c); return cli_fail("convert: --from and --to are required"); }
     if (c && in) { free(c); return cli_fail("convert: give --coeffs or --in, not both"); }
     if (!c && !in) return cli_fail("convert: give --coeffs or --in");
-    if (in && cli_read_coeffs_file(in, &c, &n, &nchan, names)) return CLI_EXIT_USAGE;
+    if (in && cli_read_coeffs_file(in, 0, &c, &n, &nchan, names)) return CLI_EXIT_USAGE;
     int order = (int)lround(sqrt((double)n));
     if (order * order != n) { free(c); return cli_fail("convert: %d coefficients is not a perfect square n²", n); }
     if (sh_check_order(order)) { free(c); return cli_fail_status(SH_EINVAL); }

@@ -47,6 +47,8 @@ static int run(int argc, char **argv)
                                          {"way", required_argument, 0, 'w'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = DERIV_PRINT_MAX_ORDER;
+    com.max_order_why = "a printed N²×N² matrix";
     int k = -1, generator = 0;
     double beta = 0;
     opterr = 0;
@@ -75,9 +77,6 @@ static int run(int argc, char **argv)
     if (optind < argc) return cli_fail("deriv: unexpected argument '%s'", argv[optind]);
     if (!com.order) return cli_fail("deriv: --order is required");
     if (k < 0) return cli_fail("deriv: --k is required");
-    if (com.order > DERIV_PRINT_MAX_ORDER)
-        return cli_fail("deriv: --order %d too large for a printed N²×N² matrix (max %d)", com.order,
-                        DERIV_PRINT_MAX_ORDER);
     beta = cli_angle_in("deriv", "--beta", beta, com.degrees);
     if (!isfinite(beta)) return cli_fail("deriv: --beta must be finite");
     beta = remainder(beta, 2.0 * M_PI); /* R_Y is 2π-periodic (exact reduction) */

@@ -55,6 +55,8 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, 'q'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SH_GRAM_MAX_ORDER;
+    com.max_order_why = "the Gram matrix has order⁴/2 entries";
     sh_rule rule = SH_RULE_QUAD;
     long samples = 0, seed = 1;
     double tol = 1e-12;
@@ -89,9 +91,6 @@ static int run(int argc, char **argv)
     if (optind < argc) return cli_fail("orthonormality: unexpected argument '%s'", argv[optind]);
     const int order = com.order;
     if (!order) return cli_fail("orthonormality: --order is required");
-    if (order > SH_GRAM_MAX_ORDER)
-        return cli_fail("orthonormality: --order %d exceeds %d (the Gram matrix has order⁴/2 entries)", order,
-                        SH_GRAM_MAX_ORDER);
     if (!samples) samples = rule == SH_RULE_QUAD ? order : ORTHO_DEFAULT_SAMPLES;
     const long used = sh_rule_samples_used(rule, samples);
     const double nodes_est = rule == SH_RULE_QUAD ? 2.0 * (double)used * (double)used : (double)used;

@@ -12,6 +12,9 @@
 extern const cli_command cmd_plan;
 extern const cli_sweep_kind sweep_plan;
 
+/* plan times every method at the order: up to 64 */
+#define PLAN_MAX_ORDER 64
+
 static const char help[] =
     "Usage: shlab plan --order N --max-beta B --tolerance E [OPTIONS]\n"
     "       shlab plan --order auto --exr FILE --tolerance E --max-beta B [OPTIONS]\n"
@@ -137,7 +140,33 @@ static int exit_code(const json_t *result)
     return json_is_null(json_object_get(result, "choice")) ? CLI_EXIT_CHECK : CLI_EXIT_OK;
 }
 
-const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code};
+/* item j is step j of the β grid (the same formula in run) */
+static double beta_of(double max_beta, long nsteps, long j) { return nsteps > 1 ? max_beta * j / (nsteps - 1) : 0; }
+
+static const cli_sweep_field params_fields[] = {
+    {"order", CLI_FIELD_INT, 0, 1, PLAN_MAX_ORDER}, {"convention", CLI_FIELD_STRING, 0, 0, 0},
+    {"max_beta", CLI_FIELD_REAL, 0, 0, 0},          {"degrees", CLI_FIELD_BOOL, 0, 0, 0},
+    {"max_beta_shown", CLI_FIELD_REAL, 0, 0, 0},    {"tolerance", CLI_FIELD_REAL, 0, 0, 0},
+    {"measure", CLI_FIELD_STRING, 0, 0, 0},         {"lobe_exp", CLI_FIELD_REAL, 0, 0, 0},
+    {"precision", CLI_FIELD_STRING, 0, 0, 0},       {"image_tolerance", CLI_FIELD_REAL, 1, 0, 0},
+    {"order_residual", CLI_FIELD_REAL, 1, 0, 0},    {"image", CLI_FIELD_OBJECT, 1, 0, 0},
+    {"beta_step", CLI_FIELD_REAL, 0, 0, 0},         {"methods", CLI_FIELD_STRINGS, 0, 0, 0},
+    {NULL, 0, 0, 0, 0}};
+static const cli_sweep_field row_fields[] = {{"beta", CLI_FIELD_REAL, 0, 0, 0}, {"errors", CLI_FIELD_REALS, 0, 0, 0},
+                                             {NULL, 0, 0, 0, 0}};
+
+static int check_row(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n)
+{
+    const double want = beta_of(json_real_value(json_object_get(params, "max_beta")), nitems, j);
+    const double got = json_real_value(json_object_get(row, "beta"));
+    if (got != want) return snprintf(why, n, "beta %.17g, but item %ld is the step β = %.17g", got, j, want), 1;
+    const size_t ne = json_array_size(json_object_get(row, "errors")),
+                 nm = json_array_size(json_object_get(params, "methods"));
+    if (ne != nm) return snprintf(why, n, "%zu errors for %zu methods", ne, nm), 1;
+    return 0;
+}
+
+const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code, params_fields, row_fields, check_row, 1};
 
 static int run(int argc, char **argv)
 {
@@ -181,8 +210,7 @@ static int run(int argc, char **argv)
         case 'o':
             if (!strcmp(optarg, "auto")) order_auto = 1;
             else {
-                if (cli_order("--order", optarg, &co.order)) return CLI_EXIT_USAGE;
-                if (co.order > 64) return cli_fail("--order: %d > 64", co.order);
+                if (cli_order_max("--order", optarg, PLAN_MAX_ORDER, NULL, &co.order)) return CLI_EXIT_USAGE;
                 order_auto = 0;
             }
             break;
@@ -219,8 +247,7 @@ static int run(int argc, char **argv)
             have_layout = 1;
             break;
         case 'M':
-            if (cli_int("--max-order", optarg, &max_order)) return CLI_EXIT_USAGE;
-            if (max_order < 1 || max_order > 64) return cli_fail("--max-order: out of range 1..64");
+            if (cli_order_max("--max-order", optarg, PLAN_MAX_ORDER, NULL, &max_order)) return CLI_EXIT_USAGE;
             have_max_order = 1;
             break;
         case 'q': quiet = 1; break;
@@ -239,9 +266,11 @@ static int run(int argc, char **argv)
     if (!have_beta) return cli_fail("plan: --max-beta is required");
     if (!have_tol) return cli_fail("plan: --tolerance is required");
     if (order_auto && !exr) return cli_fail("plan: --order auto needs --exr FILE");
-    if (!order_auto && (exr || have_layout || have_max_order))
-        return cli_fail("plan: --exr, --layout and --max-order apply to --order auto only");
-    if (!order_auto && rot_tol > 0) return cli_fail("plan: --rot-tolerance applies to --order auto only");
+    if (cli_applies("plan", exr != NULL, "--exr", order_auto, "--order auto") ||
+        cli_applies("plan", have_layout, "--layout", order_auto, "--order auto") ||
+        cli_applies("plan", have_max_order, "--max-order", order_auto, "--order auto") ||
+        cli_applies("plan", rot_tol > 0, "--rot-tolerance", order_auto, "--order auto"))
+        return CLI_EXIT_USAGE;
     co.conv = com.conv;
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     co.max_beta = max_beta * deg;
@@ -339,7 +368,7 @@ static int run(int argc, char **argv)
     for (int j = 0; j < nsteps; j++) {
         if (!cli_sweep_owns(&sw, j)) continue;
         json_t *r = json_object();
-        r = cli_put(r, "beta", json_real(nsteps > 1 ? co.max_beta * j / (nsteps - 1) : 0));
+        r = cli_put(r, "beta", json_real(beta_of(co.max_beta, nsteps, j)));
         r = cli_put(r, "errors", cli_json_array(err + (size_t)j * nm, (size_t)nm));
         if (cli_sweep_add(&sw, j, r) == CLI_EXIT_USAGE) { free(err); cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
     }

@@ -136,11 +136,9 @@ static int run_exr(int order, sh_convention conv, const char *path, sh_layout la
     if (cli_input("EXR image", path)) return CLI_EXIT_USAGE;
     int st = sh_exr_read(path, &img, &fallback);
     if (st) return cli_fail_status(st);
-    if (order > sh_image_max_order(&img, layout)) {
-        const int mx = sh_image_max_order(&img, layout), w = img.width, h = img.height;
+    if (sh_image_check_order(&img, layout, order)) {
         sh_image_free(&img);
-        return cli_fail("project: a %d×%d image carries orders up to %d (2n − 1 pixels across, n down), not %d", w,
-                        h, mx, order);
+        return cli_fail("project: %s", sh_last_error());
     }
     const int n = sh_ncoeff(order);
     char what[96];
@@ -245,11 +243,14 @@ static int run(int argc, char **argv)
     if (spec && exr) return cli_fail("project: give --light or --exr, not both");
     if (!spec && !exr) return cli_fail("project: give --light SPEC or --exr FILE");
     if (exr) {
-        if (have_method || have_samples || have_seed || degrees)
-            return cli_fail("project: --method, --samples, --seed and --degrees apply to --light only");
+        if (cli_applies("project", have_method, "--method", 0, "--light") ||
+            cli_applies("project", have_samples, "--samples", 0, "--light") ||
+            cli_applies("project", have_seed, "--seed", 0, "--light") ||
+            cli_applies("project", degrees, "--degrees", 0, "--light"))
+            return CLI_EXIT_USAGE;
         return run_exr(order, conv, exr, layout, threads, quiet, fmt);
     }
-    if (have_layout) return cli_fail("project: --layout applies to --exr only");
+    if (cli_applies("project", have_layout, "--layout", 0, "--exr")) return CLI_EXIT_USAGE;
     if ((have_samples || have_seed) && !have_method) {
         sh_light L;
         if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());

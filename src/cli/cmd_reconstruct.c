@@ -41,6 +41,13 @@ static const char help[] =
     "  angles: the most negative value, 0 if none, and the fraction of ∫f²dΩ\n"
     "  where f < 0)\n";
 
+/* the second transform (the ringing measure) in the progress lines */
+static void ringing_step(void *ctx, int done, int total, const char *what)
+{
+    (void)what;
+    cli_progress_step(ctx, done, total, "ring pairs of the ringing measure");
+}
+
 static int run(int argc, char **argv)
 {
     static const struct option opts[] = {
@@ -106,7 +113,8 @@ static int run(int argc, char **argv)
     if (coeff_arg) {
         if (cli_doubles("--coeffs", coeff_arg, &v, &len)) return CLI_EXIT_USAGE;
     } else {
-        if (cli_read_coeffs_file(in, &v, &len, &nchan, names)) return CLI_EXIT_USAGE;
+        /* the file may hold more bands than --order (truncated) */
+        if (cli_read_coeffs_file(in, 0, &v, &len, &nchan, names)) return CLI_EXIT_USAGE;
         have_names = nchan > 1;
     }
     const int vorder = (int)lround(sqrt((double)len));
@@ -146,7 +154,7 @@ static int run(int argc, char **argv)
     if (have_names)
         for (int ch = 0; ch < nchan; ch++) memcpy(img.names[ch], names[ch], 8);
     double mn = 0.0, frac = 0.0;
-    const sh_run_opts ropts = {threads, NULL, NULL};
+    const sh_run_opts ropts = {threads, ringing_step, &prog};
     st = sh_ringing_ex(order, conv, c, &win, width, &ropts, &mn, &frac);
     free(c);
     if (st) { sh_image_free(&img); return cli_fail_status(st); }
@@ -171,7 +179,7 @@ static int run(int argc, char **argv)
         return cli_fail("reconstruct: could not build the result");
     }
     /* write only once the result is known to be printable */
-    st = sh_exr_write(tmp_out, &img);
+    st = sh_exr_write_progress(tmp_out, &img, cli_progress_step, &prog);
     sh_image_free(&img);
     if (st) { json_decref(root); return cli_fail("reconstruct: cannot write '%s' (%s)", out, sh_last_error()); }
     return cli_emit(root, fmt);

@@ -59,8 +59,7 @@ static const char help[] =
 
 static int run(int argc, char **argv)
 {
-    enum { O_KIND = 0x301, O_RAYS, O_ALBEDO, O_OUT, O_PNG, O_EXPO, O_EOUT, O_EPNG, O_EMAX, O_REFS, O_REPL, O_VIEW,
-           O_W, O_H, O_FOV, O_SEED, O_QUIET };
+    enum { O_KIND = 0x301, O_RAYS, O_ALBEDO, O_OUT, O_PNG, O_EXPO, O_EOUT, O_EPNG, O_FOV, O_SEED, O_QUIET };
     static const struct option opts[] = {CLI_LONGOPTS_BASE,
                                          CLI_LONGOPTS_SCENE,
                                          CLI_LONGOPTS_ENV,
@@ -68,6 +67,7 @@ static int run(int argc, char **argv)
                                          CLI_LONGOPT_METHOD,
                                          CLI_LONGOPT_ORDER,
                                          CLI_LONGOPT_DEGREES,
+                                         CLI_LONGOPTS_PICTURE,
                                          {"transfer", required_argument, 0, O_KIND},
                                          {"rays", required_argument, 0, O_RAYS},
                                          {"albedo", required_argument, 0, O_ALBEDO},
@@ -76,17 +76,12 @@ static int run(int argc, char **argv)
                                          {"exposure", required_argument, 0, O_EXPO},
                                          {"error-out", required_argument, 0, O_EOUT},
                                          {"error-png", required_argument, 0, O_EPNG},
-                                         {"error-max", required_argument, 0, O_EMAX},
-                                         {"ref-samples", required_argument, 0, O_REFS},
-                                         {"replications", required_argument, 0, O_REPL},
-                                         {"view", required_argument, 0, O_VIEW},
-                                         {"width", required_argument, 0, O_W},
-                                         {"height", required_argument, 0, O_H},
                                          {"fov", required_argument, 0, O_FOV},
                                          {"seed", required_argument, 0, O_SEED},
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = CLI_SCENE_MAX_ORDER;
     cli_scene_args sa = {0};
     cli_rotation_args ra = {0};
     sh_transfer_opts to = {0};
@@ -94,17 +89,20 @@ static int run(int argc, char **argv)
     to.albedo = 0.8;
     to.seed = 1;
     sh_reference_opts ro = {0};
-    ro.samples = 8192;
-    ro.replications = 2;
+    cli_picture_args pa = CLI_PICTURE_DEFAULTS; /* render's own defaults: */
+    pa.ref_samples = 8192;
+    pa.replications = 2;
+    pa.error_max = 0; /* the largest error */
     const char *out = NULL, *png = NULL, *eout = NULL, *epng = NULL;
-    double exposure = 0, emax = 0, view[3] = {1, -1.4, 0.9}, fov = 35;
-    int W = 640, H = 480, quiet = 0;
+    double exposure = 0, fov = 35;
+    int quiet = 0, have_exposure = 0;
     long seed = 1;
     opterr = 0;
     optind = 1;
     int o;
     while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         int e = cli_scene_opt("render", o, optarg, &sa);
+        if (e < 0) e = cli_picture_opt(o, optarg, &pa);
         if (e > 0) return e;
         if (e == 0) continue;
         e = cli_rotation_opt("render", o, optarg, &ra);
@@ -129,29 +127,7 @@ static int run(int argc, char **argv)
         case O_EXPO:
             if (cli_double("--exposure", optarg, &exposure)) return CLI_EXIT_USAGE;
             if (!(exposure > 0)) return cli_fail("--exposure: must be > 0");
-            break;
-        case O_EMAX:
-            if (cli_double("--error-max", optarg, &emax)) return CLI_EXIT_USAGE;
-            if (!(emax > 0)) return cli_fail("--error-max: must be > 0");
-            break;
-        case O_REFS:
-            if (cli_long("--ref-samples", optarg, &ro.samples)) return CLI_EXIT_USAGE;
-            if (ro.samples < 16 || ro.samples > 1L << 22) return cli_fail("--ref-samples: out of range 16..4194304");
-            break;
-        case O_REPL:
-            if (cli_int("--replications", optarg, &ro.replications)) return CLI_EXIT_USAGE;
-            if (ro.replications < 2 || ro.replications > 1000) return cli_fail("--replications: out of range 2..1000");
-            break;
-        case O_VIEW:
-            if (cli_vec3("--view", optarg, view)) return CLI_EXIT_USAGE;
-            break;
-        case O_W:
-            if (cli_int("--width", optarg, &W)) return CLI_EXIT_USAGE;
-            if (W < 8 || W > 8192) return cli_fail("--width: out of range 8..8192");
-            break;
-        case O_H:
-            if (cli_int("--height", optarg, &H)) return CLI_EXIT_USAGE;
-            if (H < 8 || H > 8192) return cli_fail("--height: out of range 8..8192");
+            have_exposure = 1;
             break;
         case O_FOV:
             if (cli_double("--fov", optarg, &fov)) return CLI_EXIT_USAGE;
@@ -171,15 +147,23 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("render: unexpected argument '%s'", argv[optind]);
     if (!out) return cli_fail("render: --out FILE.exr is required");
-    const double vl = sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
-    if (!(vl > 0)) return cli_fail("--view: must be a non-zero vector");
+    const int W = pa.width, H = pa.height;
+    double emax = pa.error_max;
+    ro.samples = pa.ref_samples;
+    ro.replications = pa.replications;
+    /* options that do not apply are refused, as transfer refuses them */
+    if (cli_applies("render", have_exposure, "--exposure", png != NULL, "--png (it scales the PNG)") ||
+        cli_picture_applies("render", &pa, CLI_PIC_EMAX, epng != NULL, "--error-png") ||
+        cli_picture_applies("render", &pa, CLI_PIC_REFS | CLI_PIC_REPL, eout || epng,
+                            "--error-out and --error-png (the reference)"))
+        return CLI_EXIT_USAGE;
     to.order = com.order ? com.order : 4;
-    if (to.order > 32) return cli_fail("--order: %d > 32", to.order);
     int have_rot = 0;
     sh_rotation rot;
     int rc = cli_rotation_finish("render", &ra, com.degrees, 1, &have_rot, &rot);
     if (rc) return rc;
-    if (!have_rot && com.have_method) return cli_fail("render: --method needs a rotation (--euler ...)");
+    if (cli_applies("render", com.have_method, "--method", have_rot, "a rotation of the lighting (--euler, --quat, --matrix, --axis/--angle)"))
+        return CLI_EXIT_USAGE;
     const sh_rot_method method = com.have_method ? com.method : SH_ROT_IVANIC;
     if (have_rot && to.order > sh_rot_method_max_order(method))
         return cli_fail("render: --method %s accepts orders up to %d", sh_rot_method_name(method), sh_rot_method_max_order(method));
@@ -241,7 +225,7 @@ static int run(int argc, char **argv)
         }
     }
     sh_camera cam;
-    if (!e) e = sh_camera_frame(&m, view, fov, W, H, &cam);
+    if (!e) e = sh_camera_frame(&m, pa.view, fov, W, H, &cam);
     if (!e) e = sh_render(s, &cam, 3, col, env, sa.threads, &img);
     if (!e && (eout || epng)) {
         ref = malloc(sizeof(double) * (size_t)nv);

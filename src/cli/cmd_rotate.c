@@ -36,12 +36,15 @@ static const char help[] =
     "  (see shlab rotmat --help; --euler reaches the plan as angles, the other\n"
     "  forms as the matrix, sh_rot_plan_set_matrix)\n"
     "  --convention cs|nocs Condon-Shortley phase (cs, default) or not\n"
+    "  --quiet              no note and no progress on stderr\n"
     "  --format table|csv|json\n"
     "  --help               this text\n"
     "\n"
     "From order 128 on, one line on stderr says the method, threads and memory of\n"
-    "the rotation before it starts; a plan that would not fit in the memory\n"
-    "available is refused.  halfpi keeps O(order) scratch per thread (the\n"
+    "the rotation before it starts (after the rotation is checked against the\n"
+    "method), and progress lines follow while it runs (ivanic, choi, blanco and\n"
+    "zxzxz take O(order³) or more: minutes at order 1000); a plan that would not\n"
+    "fit in the memory available is refused.  halfpi keeps O(order) scratch per thread (the\n"
     "coefficients and their JSON text are the bulk); with --inverse it applies\n"
     "the transpose, so a round trip adds no rounding of the angles.\n"
     "\n"
@@ -63,13 +66,14 @@ static int run(int argc, char **argv)
                                          {"coeffs", required_argument, 0, 'k'},
                                          {"in", required_argument, 0, 'i'},
                                          {"threads", required_argument, 0, 't'},
+                                         {"quiet", no_argument, 0, 'q'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     cli_rotation_args ra = {0};
     sh_rot_method method;
     sh_precision prec = SH_PREC_DOUBLE;
     const char *coeff_arg = NULL, *in = NULL;
-    int threads = 0;
+    int threads = 0, quiet = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -90,6 +94,7 @@ static int run(int argc, char **argv)
             if (cli_int("--threads", optarg, &threads)) return CLI_EXIT_USAGE;
             if (threads < 1 || threads > 1024) return cli_fail("--threads: %d out of range 1..1024", threads);
             break;
+        case 'q': quiet = 1; break;
         default: {
             const int e = cli_common_opt(&cmd_rotate, o, argv, &com);
             if (e >= 0) return e;
@@ -113,7 +118,7 @@ static int run(int argc, char **argv)
     char names[SH_IMAGE_MAX_CHANNELS][8] = {"Y"};
     if (coeff_arg) {
         if (cli_doubles("--coeffs", coeff_arg, &c, &n)) return CLI_EXIT_USAGE;
-    } else if (cli_read_coeffs_file(in, &c, &n, &nchan, names)) {
+    } else if (cli_read_coeffs_file(in, com.order, &c, &n, &nchan, names)) {
         return CLI_EXIT_USAGE;
     }
     int order = com.order;
@@ -132,12 +137,16 @@ static int run(int argc, char **argv)
     }
     method = com.have_method ? com.method : sh_rot_method_default(order, 0);
     const double vec_bytes = (double)n * nchan * (sizeof(double) + ROTATE_JSON_BYTES);
+    const int euler_form = ra.form && !strcmp(ra.form, "euler");
+    const int note = order >= ROTATE_NOTE_ORDER && !quiet;
+    cli_progress pg;
+    cli_progress_start(&pg, "rotate", quiet);
     int st;
     sh_rot_kernel used = SH_KERNEL_SCALAR;
     if (method == SH_ROT_HALFPI && prec == SH_PREC_DOUBLE) { /* streamed, threads */
         sh_rot_stream *s = NULL;
         st = sh_rot_stream_create(order, com.conv, threads, &s);
-        if (!st && order >= ROTATE_NOTE_ORDER) {
+        if (!st && note) {
             const int t = sh_rot_stream_threads(s);
             const double sb = (double)sh_rot_stream_bytes(order, t);
             fprintf(stderr,
@@ -145,16 +154,21 @@ static int run(int argc, char **argv)
                     "scratch, about %.0f MB with the coefficients and their JSON\n",
                     order, nchan, nchan > 1 ? "s" : "", t, t > 1 ? "s" : "", sb / 1e6, (sb + vec_bytes) / 1e6);
         }
-        cli_progress pg;
-        cli_progress_start(&pg, "rotate", 0);
         if (!st) {
             sh_rot_stream_set_progress(s, cli_progress_step, &pg);
             st = sh_rot_stream_apply(s, 1, &rot_fwd, ra.inverse, nchan, c, c);
         }
         sh_rot_stream_free(s);
     } else {
+        /* the rotation checked against the method on a 2-band plan first (z
+         * refuses a tilted one), so that a refusal is the only line */
+        sh_rot_plan *p = NULL;
         st = sh_rot_plan_check(order, method, prec);
-        if (!st && order >= ROTATE_NOTE_ORDER) {
+        if (!st) st = sh_rot_plan_create(order < 2 ? order : 2, method, prec, com.conv, &p);
+        if (!st) st = euler_form ? sh_rot_plan_set(p, &rot) : sh_rot_plan_set_matrix(p, rot.R);
+        sh_rot_plan_free(p);
+        p = NULL;
+        if (!st && note) {
             const double pb = (double)sh_rot_plan_bytes(order, method, prec);
             fprintf(stderr,
                     "shlab: rotate: order %d, %d channel%s, method %s (%s, one thread): %.1f MB for the "
@@ -162,11 +176,9 @@ static int run(int argc, char **argv)
                     order, nchan, nchan > 1 ? "s" : "", sh_rot_method_name(method), sh_precision_name(prec),
                     pb / 1e6, (pb + vec_bytes) / 1e6);
         }
-        sh_rot_plan *p = NULL;
-        if (!st) st = sh_rot_plan_create_kernel(order, method, prec, com.conv, com.kernel, &p);
+        if (!st) st = sh_rot_plan_create_progress(order, method, prec, com.conv, com.kernel, cli_progress_step, &pg, &p);
         /* angles as angles, any other form as its matrix (sh_rot_plan_set_matrix) */
-        if (!st)
-            st = ra.form && !strcmp(ra.form, "euler") ? sh_rot_plan_set(p, &rot) : sh_rot_plan_set_matrix(p, rot.R);
+        if (!st) st = euler_form ? sh_rot_plan_set(p, &rot) : sh_rot_plan_set_matrix(p, rot.R);
         for (int k = 0; !st && k < nchan; k++) st = sh_rot_plan_apply(p, c + (size_t)k * n, c + (size_t)k * n);
         if (p) used = sh_rot_plan_kernel(p);
         sh_rot_plan_free(p);

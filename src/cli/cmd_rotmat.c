@@ -108,9 +108,8 @@ static int run(int argc, char **argv)
     if (band >= 0 && com.order && band >= com.order)
         return cli_fail("rotmat: --band %d is not below --order %d", band, com.order);
     if (band < 0 && !com.order) return cli_fail("rotmat: --order (or --band) is required");
-    if (band < 0 && com.order > ROTMAT_MAX_ORDER)
-        return cli_fail("rotmat: --order %d too large for a printed N²×N² matrix (max %d; use --band)",
-                        com.order, ROTMAT_MAX_ORDER);
+    if (band < 0 && cli_order_check("--order", com.order, ROTMAT_MAX_ORDER, "a printed N²×N² matrix; --band for one band"))
+        return CLI_EXIT_USAGE;
     const int order = com.order ? com.order : band + 1;
     method = com.have_method ? com.method : sh_rot_method_default(order, band >= 0);
     if ((band >= 0 ? band + 1 : order) > sh_rot_method_max_order(method))

@@ -66,6 +66,8 @@ static int run(int argc, char **argv)
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SCALE_PRINT_MAX_ORDER;
+    com.max_order_why = "a printed N²×N² matrix";
     const char *family = NULL;
     int have_k = 0, have_cone = 0, verify = 0;
     sh_scaling s = {SH_SCALE_LINEAR, 0.0, 0.0, 0};
@@ -100,21 +102,18 @@ static int run(int argc, char **argv)
     if (optind < argc) return cli_fail("scale: unexpected argument '%s'", argv[optind]);
     const int order = com.order;
     if (!order) return cli_fail("scale: --order is required");
-    if (order > SCALE_PRINT_MAX_ORDER)
-        return cli_fail("scale: --order %d too large for a printed N²×N² matrix (max %d)", order,
-                        SCALE_PRINT_MAX_ORDER);
     if (!family) return cli_fail("scale: --family is required (linear, cone, midrange)");
     if (sh_scale_family_parse(family, &s.family)) return cli_fail("--family: %s", sh_last_error());
     if (!have_k) return cli_fail("scale: --k is required");
     if (have_cone) {
-        if (s.family != SH_SCALE_CONE) return cli_fail("scale: --cone-angle applies to --family cone only");
+        if (cli_applies("scale", 1, "--cone-angle", s.family == SH_SCALE_CONE, "--family cone")) return CLI_EXIT_USAGE;
         s.cone_angle = com.degrees ? cone * M_PI / 180.0 : cone;
         if (!(s.cone_angle > 0.0 && s.cone_angle < M_PI))
             return cli_fail("--cone-angle: %g is outside (0, %s)", cone, com.degrees ? "180" : "pi");
     }
     if (sh_scaling_check(&s)) return cli_fail("scale: %s", sh_last_error());
-    if (verify && order > SCALE_VERIFY_MAX_ORDER)
-        return cli_fail("scale: --verify is limited to --order <= %d (it is O(N⁶) per node)", SCALE_VERIFY_MAX_ORDER);
+    if (verify && cli_order_check("--order", order, SCALE_VERIFY_MAX_ORDER, "with --verify: O(N⁶) per node"))
+        return CLI_EXIT_USAGE;
 
     const int n = sh_ncoeff(order);
     double *M = malloc(sizeof(double) * (size_t)n * n);

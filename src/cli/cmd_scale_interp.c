@@ -65,7 +65,34 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "worst_k", json_real(r.worst_k));
 }
 
-const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL, NULL};
+static const cli_sweep_field params_fields[] = {
+    {"order", CLI_FIELD_INT, 0, 1, SH_SCALE_MAX_ORDER}, {"family", CLI_FIELD_STRING, 0, 0, 0},
+    {"energy", CLI_FIELD_BOOL, 0, 0, 0},                {"convention", CLI_FIELD_STRING, 0, 0, 0},
+    {"cone_angle", CLI_FIELD_REAL, 1, 0, 0},            {"unit", CLI_FIELD_STRING, 1, 0, 0},
+    {"samples", CLI_FIELD_INT, 0, 0, 1LL << 31},       {"spacing", CLI_FIELD_STRING, 0, 0, 0},
+    {"interp", CLI_FIELD_STRING, 0, 0, 0},              {"kmin", CLI_FIELD_REAL, 0, 0, 0},
+    {"kmax", CLI_FIELD_REAL, 0, 0, 0},                  {"dense", CLI_FIELD_INT, 0, 2, 100000},
+    {NULL, 0, 0, 0, 0}};
+static const cli_sweep_field row_fields[] = {{"k", CLI_FIELD_REAL, 0, 0, 0}, {"max_error", CLI_FIELD_REAL, 0, 0, 0},
+                                             {"sum_sq", CLI_FIELD_REAL, 0, 0, 0}, {"weight", CLI_FIELD_REAL, 0, 0, 0},
+                                             {NULL, 0, 0, 0, 0}};
+
+/* item d is point d of the dense grid, the library's sh_scale_grid_point */
+static int check_row(const json_t *params, long nitems, long d, const json_t *row, char *why, size_t n)
+{
+    sh_scale_spacing sp;
+    const long dense = (long)json_integer_value(json_object_get(params, "dense"));
+    if (sh_scale_spacing_parse(json_string_value(json_object_get(params, "spacing")), &sp))
+        return snprintf(why, n, "the parameters' spacing: %s", sh_last_error()), 1;
+    if (nitems != dense) return snprintf(why, n, "the sweep has %ld items, its dense grid %ld points", nitems, dense), 1;
+    const double want = sh_scale_grid_point(sp, json_real_value(json_object_get(params, "kmin")),
+                                            json_real_value(json_object_get(params, "kmax")), (int)d, (int)dense);
+    const double got = json_real_value(json_object_get(row, "k"));
+    if (got != want) return snprintf(why, n, "k %.17g, but item %ld is the point k = %.17g", got, d, want), 1;
+    return 0;
+}
+
+const cli_sweep_kind sweep_scale_interp = {"scale-interp", finish, NULL, NULL, params_fields, row_fields, check_row, 0};
 
 static int run(int argc, char **argv)
 {
@@ -90,6 +117,7 @@ static int run(int argc, char **argv)
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SH_SCALE_MAX_ORDER;
     const char *family = NULL, *spacing = NULL, *interp = "linear";
     int samples = 0, dense = INTERP_DEFAULT_DENSE, have_min = 0, have_max = 0, have_cone = 0, quiet = 0;
     double kmin = 0, kmax = 0, cone = 0;
@@ -122,7 +150,6 @@ static int run(int argc, char **argv)
     if (optind < argc) return cli_fail("scale-interp: unexpected argument '%s'", argv[optind]);
     const int order = com.order;
     if (!order) return cli_fail("scale-interp: --order is required");
-    if (order > SH_SCALE_MAX_ORDER) return cli_fail("scale-interp: --order %d is above %d", order, SH_SCALE_MAX_ORDER);
     if (!family) return cli_fail("scale-interp: --family is required (linear, cone, midrange)");
     if (sh_scale_family_parse(family, &s.family)) return cli_fail("--family: %s", sh_last_error());
     if (!samples) return cli_fail("scale-interp: --samples is required");
@@ -133,7 +160,8 @@ static int run(int argc, char **argv)
     if (sh_scale_interp_parse(interp, &ik)) return cli_fail("--interp: %s", sh_last_error());
     if (!have_min || !have_max) return cli_fail("scale-interp: --kmin and --kmax are required");
     if (have_cone) {
-        if (s.family != SH_SCALE_CONE) return cli_fail("scale-interp: --cone-angle applies to --family cone only");
+        if (cli_applies("scale-interp", 1, "--cone-angle", s.family == SH_SCALE_CONE, "--family cone"))
+            return CLI_EXIT_USAGE;
         s.cone_angle = com.degrees ? cone * M_PI / 180.0 : cone;
         if (!(s.cone_angle > 0.0 && s.cone_angle < M_PI))
             return cli_fail("--cone-angle: %g is outside (0, %s)", cone, com.degrees ? "180" : "pi");

@@ -91,6 +91,7 @@ static int run(int argc, char **argv)
         CLI_LONGOPT_CONVENTION,
         {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SCENE_MAX_ORDER;
     const char *scene = NULL, *klist = NULL, *family = NULL, *light = NULL, *probe = NULL;
     double size = 0.5, wobble = 0.3, occ = -1, cone = -1;
     int nodes = SCENE_DEFAULT_NODES, have_dir = 0;
@@ -126,15 +127,17 @@ static int run(int argc, char **argv)
     if (sh_scale_scene_parse(scene, &sc.kind)) return cli_fail("--scene: %s", sh_last_error());
     const int order = com.order;
     if (!order) return cli_fail("scale-scene: --order is required");
-    if (order > SCENE_MAX_ORDER) return cli_fail("scale-scene: --order %d is above %d", order, SCENE_MAX_ORDER);
     if (!klist) return cli_fail("scale-scene: --k is required (comma-separated list)");
     const double deg = com.degrees ? M_PI / 180.0 : 1.0;
-    if (occ >= 0 && sc.kind != SH_SCENE_CONE) return cli_fail("scale-scene: --occluder-angle applies to --scene cone");
-    if ((light || probe) && sc.kind != SH_SCENE_MIDRANGE)
-        return cli_fail("scale-scene: --light/--probe apply to --scene midrange");
+    const int midrange = sc.kind == SH_SCENE_MIDRANGE;
+    if (cli_applies("scale-scene", occ >= 0, "--occluder-angle", sc.kind == SH_SCENE_CONE, "--scene cone") ||
+        cli_applies("scale-scene", light != NULL, "--light", midrange, "--scene midrange") ||
+        cli_applies("scale-scene", probe != NULL, "--probe", midrange, "--scene midrange"))
+        return CLI_EXIT_USAGE;
     if (light && probe) return cli_fail("scale-scene: give --light or --probe, not both");
-    if ((have_dir || rotm) && sc.kind != SH_SCENE_MIDRANGE)
-        return cli_fail("scale-scene: --dir/--rotation-method apply to --scene midrange (occluders lie along +z)");
+    if (cli_applies("scale-scene", have_dir, "--dir", midrange, "--scene midrange (occluders lie along +z)") ||
+        cli_applies("scale-scene", rotm != NULL, "--rotation-method", midrange, "--scene midrange (occluders lie along +z)"))
+        return CLI_EXIT_USAGE;
     double unit[3] = {0.0, 0.0, 1.0};
     if (have_dir) {
         if (sh_scale_axis_unit(dir, unit)) return cli_fail("--dir: %s", sh_last_error());

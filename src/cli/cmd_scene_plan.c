@@ -119,8 +119,10 @@ static int run(int argc, char **argv)
                 if (!(budgets[k] > 0 && budgets[k] < 1)) FAIL("--budget: each value must be in (0, 1)");
             break;
         case O_MAXORD:
-            if (cli_order("--max-order", optarg, &so.max_order)) { free(budgets); return CLI_EXIT_USAGE; }
-            if (so.max_order > 32) FAIL("--max-order: %d > 32", so.max_order);
+            if (cli_order_max("--max-order", optarg, CLI_SCENE_MAX_ORDER, NULL, &so.max_order)) {
+                free(budgets);
+                return CLI_EXIT_USAGE;
+            }
             break;
         case O_RAYS:
             if (cli_long("--rays", optarg, &so.rays)) { free(budgets); return CLI_EXIT_USAGE; }

@@ -14,6 +14,19 @@ extern const cli_command cmd_shadow_field;
 
 #define SF_MAX_SAMPLES 16
 #define SF_MAX_BINS 32
+/* The most rays one run may cast, counted as vertices × --rays (receivers
+ * only, or every vertex with pictures): about a quarter of an hour at 10⁷
+ * rays a second.  --res 512 with the default 4096 rays would be 5.2·10¹⁰. */
+#define SF_MAX_RAYS 8.6e9
+#define SF_DEFAULT_RES 8 /* sphere-plane's (sh_proc_scene res 0) */
+
+/* Progress of the fields: `nf` fields, each over every receiver. */
+typedef struct { cli_progress *p; int field, nf; } field_progress;
+static void on_receivers(void *ctx, int done, int total, const char *what)
+{
+    const field_progress *f = ctx;
+    cli_progress_step(f->p, f->field * total + done, f->nf * total, "receivers of the fields");
+}
 
 static const char help[] =
     "Usage: shlab shadow-field [--scene sphere-plane[:R,H]] (--probe FILE | --light SPEC)\n"
@@ -100,12 +113,13 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = SH_SF_MAX_ORDER;
     cli_scene_args sa = {0};
     cli_picture_args pa = CLI_PICTURE_DEFAULTS;
     double d0 = 0, cone = M_PI / 4, albedo = 0.8; /* cone: 45° unless --cone-angle */
     int have_cone = 0;
     int cone_tangent = 0, nsamp = 5, samples[SF_MAX_SAMPLES] = {0, 2, 5, 10, 40}, reference = 0, nbins = 5, quiet = 0;
-    int pic_samples = 0;
+    int pic_samples = 0, have_picture = 0;
     sh_sf_scaling pic_scaling = SH_SF_CONE;
     long rays = 4096, seed = 1;
     const char *png = NULL, *rpng = NULL, *epng = NULL;
@@ -165,9 +179,10 @@ static int run(int argc, char **argv)
             if (colon) *colon = 0;
             if (sh_sf_scaling_parse(buf, &pic_scaling)) return cli_fail("--picture: %s", sh_last_error());
             pic_samples = 0;
-            if (colon && (cli_int("--picture", colon + 1, &pic_samples) || pic_samples < 0 || pic_samples == 1))
-                return cli_fail("--picture: samples must be 0 or >= 2");
+            if (colon && cli_int("--picture", colon + 1, &pic_samples)) return CLI_EXIT_USAGE;
+            if (pic_samples < 0 || pic_samples == 1) return cli_fail("--picture: samples must be 0 or >= 2");
             if (pic_scaling == SH_SF_EXACT && pic_samples) return cli_fail("--picture: the exact field has no samples");
+            have_picture = 1;
             break;
         }
         case O_ALBEDO:
@@ -187,9 +202,16 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("shadow-field: unexpected argument '%s'", argv[optind]);
     if (sa.mesh) return cli_fail("shadow-field: the occluder is the sphere of --scene sphere-plane (no --mesh)");
+    /* options that do not apply are refused, as transfer refuses them */
+    const int any_picture = png || rpng || epng;
+    if (cli_picture_applies("shadow-field", &pa, CLI_PIC_REFS | CLI_PIC_REPL, reference, "--reference") ||
+        cli_applies("shadow-field", have_picture, "--picture", png || epng, "--png and --error-png") ||
+        cli_picture_applies("shadow-field", &pa, CLI_PIC_EMAX, epng != NULL, "--error-png") ||
+        cli_picture_applies("shadow-field", &pa, CLI_PIC_VIEW | CLI_PIC_WIDTH | CLI_PIC_HEIGHT, any_picture,
+                            "the pictures (--png, --ray-png, --error-png)"))
+        return CLI_EXIT_USAGE;
     if (!sa.scene) sa.scene = "sphere-plane";
     const int order = com.order ? com.order : 4;
-    if (order > 16) return cli_fail("--order: %d > 16", order);
     const double deg = com.degrees ? M_PI / 180 : 1.0;
     {
         sh_proc_scene chk;
@@ -201,6 +223,20 @@ static int run(int argc, char **argv)
         else if (have_cone) cone *= deg;
         if (!(cone > 0 && cone < M_PI))
             return cli_fail("--cone-angle: %g must be in (0, %s)", cone / deg, com.degrees ? "180" : "π");
+        /* what the run will take, from the scene's size before it is built:
+         * refused if absurd (rays: at most one set per vertex) or more than
+         * the memory available (the mesh twice, Embree's ~100 bytes a
+         * triangle, the arrays below) */
+        long long nvert, ntri;
+        chk.res = sa.res;
+        if (sh_proc_size(&chk, &nvert, &ntri)) return cli_fail_status(SH_EINVAL);
+        const double nrays = (double)nvert * (double)rays, n2 = (double)order * order;
+        const double bytes = (double)nvert * (96 + 8 * (11 + 5 * n2 + 2 * reference)) + (double)ntri * 124;
+        if (nrays > SF_MAX_RAYS)
+            return cli_fail("shadow-field: --res %d makes %lld vertices; × --rays %ld that is up to %.2g rays, more "
+                            "than the %.2g a run may cast (hours); lower --res or --rays",
+                            sa.res ? sa.res : SF_DEFAULT_RES, nvert, rays, nrays, SF_MAX_RAYS);
+        if (cli_mem_check("shadow-field", bytes, "the scene and its transfer vectors")) return CLI_EXIT_USAGE;
     }
     /* the pictures: temporaries beside their targets, renamed by cli_emit
      * once the result is out (all or none; cli_out_open) */
@@ -228,6 +264,7 @@ static int run(int argc, char **argv)
     int *pv = malloc(sizeof(int) * nv), np = 0;
     for (int v = 0; pv && v < nv; v++)
         if (m.pos[3 * v + 2] == 0 && m.normal[3 * v + 2] == 1) pv[np++] = v;
+
     double *pos = malloc(sizeof(double) * 3 * nv), *nor = malloc(sizeof(double) * 3 * nv);
     double *Tc = malloc(sizeof(double) * nv * n2), *Tr = malloc(sizeof(double) * nv * n2), *Tf = malloc(sizeof(double) * nv * n2);
     double *U = malloc(sizeof(double) * nv * n2), *L = malloc(sizeof(double) * 4 * n2);
@@ -248,6 +285,7 @@ static int run(int argc, char **argv)
             e = sh_error(SH_EINVAL, "shadow-field: plane vertex %d sees the sphere across its horizon (no closed form); lower R or raise H", pv[k]);
         if (!e) e = sh_transfer_unshadowed(order, SH_CS, albedo, nor + 3 * k, U + (size_t)k * n2);
         kk[k] = sqrt(pos[3 * k] * pos[3 * k] + pos[3 * k + 1] * pos[3 * k + 1] + Hc * Hc) / d0;
+        cli_progress_step(&prog, k + 1, np, "closed forms");
     }
     if (!e) e = sh_env_project(env, order, SH_CS, L);
     /* ray-cast transfer: the plane vertices (every vertex for pictures) */
@@ -304,6 +342,7 @@ static int run(int argc, char **argv)
     }
     if (!e) fields = json_array();
     const sh_sf_scaling sc[3] = {SH_SF_EXACT, SH_SF_CONE, SH_SF_SPHERE};
+    field_progress fp = {&prog, 0, 1 + 2 * nsamp};
     for (int a = 0; a < 3 && !e; a++)
         for (int q = 0; q < (a ? nsamp : 1) && !e; q++) {
             sh_sf_opts so = {0};
@@ -313,6 +352,8 @@ static int run(int argc, char **argv)
             so.d0 = d0;
             so.samples = a ? samples[q] : 0;
             so.albedo = albedo;
+            so.progress = on_receivers;
+            so.progress_ctx = &fp;
             sh_sf_stats st;
             if ((e = sh_shadow_field_transfer(&so, centre, R, np, pos, nor, Tf, &st))) break;
             if ((e = sh_shade(np, order, Tf, order, L, Bf))) break;
@@ -348,6 +389,7 @@ static int run(int argc, char **argv)
             r = cli_put(r, "matrices", json_integer(st.matrices));
             r = cli_put(r, "seconds", json_real(st.seconds));
             if (!r || json_array_append_new(fields, r)) { e = sh_error(SH_ENOMEM, "out of memory"); json_decref(r); }
+            fp.field++;
         }
     /* pictures: every vertex by rays, the plane's rows replaced (Tr) */
     if (!e && pictures) {

@@ -87,7 +87,34 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "rows", rows);
 }
 
-const cli_sweep_kind sweep_stability = {"stability", finish, stops, NULL};
+/* what a shard file of stability holds (merge checks it) */
+static const cli_sweep_field params_fields[] = {
+    {"method", CLI_FIELD_STRING, 0, 0, 0},        {"precision", CLI_FIELD_STRING, 0, 0, 0},
+    {"convention", CLI_FIELD_STRING, 0, 0, 0},    {"lmax", CLI_FIELD_INT, 0, 0, STABILITY_MAX_BAND},
+    {"bands", CLI_FIELD_INTS_OR_NULL, 0, 0, STABILITY_MAX_BAND},
+    {"ref_max", CLI_FIELD_INT, 0, -1, 300},      {"exact_max", CLI_FIELD_INT, 0, -1, 1LL << 31},
+    {"stop_above", CLI_FIELD_REAL_OR_NULL, 0, 0, 0}, {"degrees", CLI_FIELD_BOOL, 0, 0, 0},
+    {NULL, 0, 0, 0, 0}};
+static const cli_sweep_field row_fields[] = {
+    {"band", CLI_FIELD_INT, 0, 0, STABILITY_MAX_BAND}, {"orth", CLI_FIELD_REAL_OR_NULL, 0, 0, 0},
+    {"orth_exact", CLI_FIELD_BOOL, 0, 0, 0},        {"hom", CLI_FIELD_REAL_OR_NULL, 0, 0, 0},
+    {"ref", CLI_FIELD_REAL_OR_NULL, 0, 0, 0},       {"broken", CLI_FIELD_BOOL, 0, 0, 0},
+    {NULL, 0, 0, 0, 0}};
+
+/* item j is band j (--lmax) or the j-th of --bands */
+static int check_row(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n)
+{
+    const json_t *bands = json_object_get(params, "bands");
+    const long want = json_is_array(bands) ? (long)json_integer_value(json_array_get(bands, (size_t)j)) : j;
+    const long count = json_is_array(bands) ? (long)json_array_size(bands)
+                                            : (long)json_integer_value(json_object_get(params, "lmax")) + 1;
+    if (count != nitems) return snprintf(why, n, "the sweep has %ld items, its parameters %ld bands", nitems, count), 1;
+    const long band = (long)json_integer_value(json_object_get(row, "band"));
+    if (band != want) return snprintf(why, n, "band %ld, but item %ld is band %ld", band, j, want), 1;
+    return 0;
+}
+
+const cli_sweep_kind sweep_stability = {"stability", finish, stops, NULL, params_fields, row_fields, check_row, 0};
 
 static json_t *num_or_null(double x, int ok) { return ok ? json_real(x) : json_null(); }
 

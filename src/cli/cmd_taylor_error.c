@@ -50,7 +50,36 @@ static json_t *finish(const json_t *params, json_t *rows)
     return cli_put(root, "rows", rows);
 }
 
-const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL};
+/* item i is the angle i·B/S, or the one --beta (the same formula in run) */
+static double angle_of(int have_beta, double beta, double beta_max, long steps, long i)
+{
+    return have_beta ? beta : beta_max * i / steps;
+}
+
+static const cli_sweep_field params_fields[] = {
+    {"order", CLI_FIELD_INT, 0, 1, TE_MAX_ORDER}, {"taylor", CLI_FIELD_STRING, 0, 0, 0},
+    {"method", CLI_FIELD_STRING, 0, 0, 0},        {"convention", CLI_FIELD_STRING, 0, 0, 0},
+    {"lobe_exp", CLI_FIELD_REAL, 0, 0, 0},        {"unit", CLI_FIELD_STRING, 0, 0, 0},
+    {"beta", CLI_FIELD_REAL, 1, 0, 0},            {"beta_max", CLI_FIELD_REAL, 1, 0, 0},
+    {"steps", CLI_FIELD_INT, 1, 1, TE_MAX_STEPS}, {NULL, 0, 0, 0, 0}};
+static const cli_sweep_field row_fields[] = {{"beta", CLI_FIELD_REAL, 0, 0, 0}, {"max", CLI_FIELD_REAL, 0, 0, 0},
+                                             {"mean", CLI_FIELD_REAL, 0, 0, 0}, {"lobe", CLI_FIELD_REAL, 0, 0, 0},
+                                             {NULL, 0, 0, 0, 0}};
+
+static int check_row(const json_t *params, long nitems, long j, const json_t *row, char *why, size_t n)
+{
+    const json_t *b = json_object_get(params, "beta"), *bm = json_object_get(params, "beta_max"),
+                 *st = json_object_get(params, "steps");
+    if (!b == !bm || !bm != !st) return snprintf(why, n, "the parameters give neither one angle nor a grid"), 1;
+    const long steps = st ? (long)json_integer_value(st) : 0;
+    if (nitems != (b ? 1 : steps + 1)) return snprintf(why, n, "the sweep has %ld items, its grid %ld", nitems, b ? 1 : steps + 1), 1;
+    const double want = angle_of(b != NULL, json_real_value(b), json_real_value(bm), steps, j);
+    const double got = json_real_value(json_object_get(row, "beta"));
+    if (got != want) return snprintf(why, n, "beta %.17g, but item %ld is the angle %.17g", got, j, want), 1;
+    return 0;
+}
+
+const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL, params_fields, row_fields, check_row, 0};
 
 static int run(int argc, char **argv)
 {
@@ -67,6 +96,7 @@ static int run(int argc, char **argv)
                                          CLI_LONGOPT_SHARD,
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = TE_MAX_ORDER;
     sh_rot_method m = SH_ROT_NMETHODS;
     const char *tname = NULL;
     double beta = -1, beta_max = -1, lobe_exp = 7;
@@ -114,7 +144,6 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("taylor-error: unexpected argument '%s'", argv[optind]);
     if (!com.order) return cli_fail("taylor-error: --order is required");
-    if (com.order > TE_MAX_ORDER) return cli_fail("taylor-error: --order %d exceeds %d", com.order, TE_MAX_ORDER);
     if (!tname) return cli_fail("taylor-error: --taylor is required (1, 1.5 or 2)");
     if (have_beta == have_max) return cli_fail("taylor-error: give --beta, or --beta-max with --steps");
     if (have_max && steps < 0) return cli_fail("taylor-error: --beta-max needs --steps");
@@ -139,7 +168,7 @@ static int run(int argc, char **argv)
     cli_sweep_begin(&sw, &sweep_taylor_error, params, nrow, have_shard ? &shard : NULL, com.fmt, quiet, "angles");
     for (int i = 0; i < nrow; i++) {
         if (!cli_sweep_owns(&sw, i)) continue;
-        const double b = have_beta ? beta : beta_max * i / steps;
+        const double b = angle_of(have_beta, beta, beta_max, steps, i);
         sh_taylor_err e;
         int st = sh_taylor_error(com.order, m, fmin(b * unit, M_PI), lobe_exp, &e);
         if (st) { cli_sweep_free(&sw); return cli_fail_status(st); }

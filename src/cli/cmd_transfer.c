@@ -95,6 +95,7 @@ static int run(int argc, char **argv)
                                          {"quiet", no_argument, 0, O_QUIET},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = CLI_SCENE_MAX_ORDER;
     cli_scene_args sa = {0};
     sh_transfer_opts to = {0};
     to.kind = SH_TRANSFER_SHADOWED;
@@ -158,12 +159,12 @@ static int run(int argc, char **argv)
     }
     if (optind < argc) return cli_fail("transfer: unexpected argument '%s'", argv[optind]);
     to.order = com.order ? com.order : 4;
-    if (to.order > 32) return cli_fail("--order: %d > 32", to.order);
     to.conv = com.conv;
-    if (to.closed_form && to.kind != SH_TRANSFER_UNSHADOWED) return cli_fail("transfer: --closed-form applies to unshadowed only");
+    if (cli_applies("transfer", to.closed_form, "--closed-form", to.kind == SH_TRANSFER_UNSHADOWED, "--transfer unshadowed"))
+        return CLI_EXIT_USAGE;
     if (check && !sa.scene) return cli_fail("transfer: --check needs a procedural --scene");
     if (check && to.closed_form) return cli_fail("transfer: --check compares the ray estimator; drop --closed-form");
-    if (have_repl && !check) return cli_fail("transfer: --replications applies to --check only");
+    if (cli_applies("transfer", have_repl, "--replications", check, "--check")) return CLI_EXIT_USAGE;
     if (check && repeat > 1) return cli_fail("transfer: --repeat and --check do not go together");
     to.threads = sa.threads;
 
@@ -184,16 +185,37 @@ static int run(int argc, char **argv)
         return cli_fail("transfer: --check: %s", sh_last_error());
     }
     double *T = malloc(sizeof(double) * (size_t)nv * n2), *mean = NULL, *sq = NULL, *times = malloc(sizeof(double) * 100);
+    /* --check of the shadowed transfer: the closed forms first (a scene
+     * without one is refused before any ray is cast) */
+    double *CF = NULL, *BD = NULL;
+    int *KN = NULL, nknown = 0;
+    const int cf_first = check && to.kind == SH_TRANSFER_SHADOWED;
     if (check) {
         mean = calloc((size_t)nv * n2, sizeof(double));
         sq = calloc((size_t)nv * n2, sizeof(double));
     }
-    if (!T || !times || (check && (!mean || !sq))) {
-        free(T); free(times); free(mean); free(sq);
+    if (cf_first) {
+        CF = malloc(sizeof(double) * (size_t)nv * n2);
+        BD = malloc(sizeof(double) * (size_t)nv * n2);
+        KN = malloc(sizeof(int) * (size_t)nv);
+    }
+    int st = SH_OK;
+    if (!T || !times || (check && (!mean || !sq)) || (cf_first && (!CF || !BD || !KN)))
+        st = sh_error(SH_ENOMEM, "out of memory");
+    if (!st && cf_first) {
+        st = sh_proc_closed_forms(&ps, &m, nv, NULL, to.order, to.conv, rho,
+                                  (to.ray_eps > 0 ? to.ray_eps : 1e-4) * sh_scene_diag(s), CF, BD, KN);
+        for (int v = 0; v < nv && !st; v++) nknown += KN[v] > 0;
+        if (!st && !nknown)
+            st = sh_error(SH_EINVAL, "transfer: --check: no vertex of %s at this --res has a closed form to check against",
+                          sa.scene);
+    }
+    if (st) {
+        free(T); free(times); free(mean); free(sq); free(CF); free(BD); free(KN);
         json_decref(desc);
         sh_scene_free(s);
         sh_mesh_free(&m);
-        return cli_fail("out of memory");
+        return cli_fail_status(st);
     }
     cli_progress prog;
     cli_progress_start(&prog, "transfer", quiet);
@@ -201,7 +223,6 @@ static int run(int argc, char **argv)
     to.progress_ctx = &prog;
     sh_transfer_stats stats;
     const int runs = check ? repl : repeat;
-    int st = SH_OK;
     for (int r = 0; r < runs && !st; r++) {
         if (check) to.seed = (unsigned long)seed + (unsigned long)r;
         st = sh_transfer(s, &to, T, &stats);
@@ -213,7 +234,7 @@ static int run(int argc, char **argv)
             }
     }
     if (st) {
-        free(T); free(times); free(mean); free(sq);
+        free(T); free(times); free(mean); free(sq); free(CF); free(BD); free(KN);
         json_decref(desc);
         sh_scene_free(s);
         sh_mesh_free(&m);
@@ -277,8 +298,10 @@ static int run(int argc, char **argv)
                 if ((st = sh_transfer_unshadowed(to.order, to.conv, rho, m.normal + 3 * v, cf))) break;
                 for (int i = 0; i < n2; i++) bd[i] = 0;
                 known = to.order;
-            } else if ((st = sh_proc_closed_form(&ps, &m, v, to.order, to.conv, rho, (to.ray_eps > 0 ? to.ray_eps : 1e-4) * sh_scene_diag(s), cf, bd, &known))) {
-                break;
+            } else {
+                memcpy(cf, CF + (size_t)v * n2, sizeof(double) * n2);
+                memcpy(bd, BD + (size_t)v * n2, sizeof(double) * n2);
+                known = KN[v];
             }
             if (!known) continue;
             cr.vertices++;
@@ -288,7 +311,7 @@ static int run(int argc, char **argv)
         free(bd);
         if (st) {
             json_decref(root);
-            free(T); free(times); free(mean); free(sq);
+            free(T); free(times); free(mean); free(sq); free(CF); free(BD); free(KN);
             sh_scene_free(s);
             sh_mesh_free(&m);
             return cli_fail_status(st);
@@ -304,9 +327,8 @@ static int run(int argc, char **argv)
         c = cli_put(c, "ok", json_boolean(cr.failures == 0 && cr.vertices > 0));
         root = cli_put(root, "check", c);
         failed = cr.failures > 0 || cr.vertices == 0;
-        if (cr.vertices == 0) fprintf(stderr, "transfer: --check: no vertex of this scene has a closed form\n");
     }
-    free(T); free(times); free(mean); free(sq);
+    free(T); free(times); free(mean); free(sq); free(CF); free(BD); free(KN);
     sh_scene_free(s);
     sh_mesh_free(&m);
     rc = cli_emit(root, com.fmt);

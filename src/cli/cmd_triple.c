@@ -48,6 +48,8 @@ static int run(int argc, char **argv)
         {0, 0, 0, 0}};
     const char *spec = NULL;
     cli_common com = CLI_COMMON_DEFAULTS;
+    com.max_order = TRIPLE_MAX_ORDER;
+    com.max_order_why = "a printed N²×N² matrix";
     opterr = 0;
     optind = 1;
     int o;
@@ -68,9 +70,6 @@ static int run(int argc, char **argv)
     const cli_format fmt = com.fmt;
     if (optind < argc) return cli_fail("triple: unexpected argument '%s'", argv[optind]);
     if (!order) return cli_fail("triple: --order is required");
-    if (order > TRIPLE_MAX_ORDER)
-        return cli_fail("triple: --order %d too large for a printed N²×N² matrix (max %d)", order,
-                        TRIPLE_MAX_ORDER);
     if (!spec) return cli_fail("triple: --light is required");
     sh_light L;
     if (sh_light_parse(spec, degrees, &L)) return cli_fail("--light: %s", sh_last_error());

@@ -30,6 +30,7 @@ static const char help[] =
     "                       sse2 | avx2 | avx512, the code that runs (the fixture's\n"
     "                       Euler angles reach the plan as angles; --matrix-input:\n"
     "                       as the case's matrix, sh_rot_plan_set_matrix)\n"
+    "  --quiet              no progress on stderr\n"
     "  --matrix-input       with --method: give each case's rotation as its matrix\n"
     "  --diagnose           on failure, test what the candidate matches instead:\n"
     "                       the other CS-phase convention, the inverse (frame)\n"
@@ -169,6 +170,7 @@ static int run(int argc, char **argv)
                                          {"emit-candidate", required_argument, 0, 'E'},
                                          {"simulate", required_argument, 0, 'S'},
                                          {"matrix-input", no_argument, 0, 'X'},
+                                         {"quiet", no_argument, 0, 'q'},
                                          {0, 0, 0, 0}};
     cli_common com = CLI_COMMON_DEFAULTS;
     const char *fixture = NULL, *cand = NULL;
@@ -176,7 +178,7 @@ static int run(int argc, char **argv)
     sh_precision prec = SH_PREC_DOUBLE;
     int have_method = 0, diagnose = 0, simulate = -1; /* -1 none, T_COUNT = float */
     const char *emit = NULL;
-    int matrix_input = 0;
+    int matrix_input = 0, quiet = 0;
     opterr = 0;
     optind = 1;
     int o;
@@ -187,6 +189,7 @@ static int run(int argc, char **argv)
         case 'd': diagnose = 1; break;
         case 'E': emit = optarg; break;
         case 'X': matrix_input = 1; break;
+        case 'q': quiet = 1; break;
         case 'S':
             simulate = -2;
             for (int t = 0; t < T_COUNT; t++)
@@ -224,6 +227,8 @@ static int run(int argc, char **argv)
     for (int k = 0; got && k < fx.ncases; k++)
         if (!(got[k] = malloc((size_t)fx.cases[k].n * sizeof **got))) { free(got); got = NULL; }
     if (!got || !tmp) { rc = cli_fail("out of memory"); goto done; }
+    cli_progress prog;
+    cli_progress_start(&prog, "verify", quiet);
     if (cand) {
         if ((rc = fx_load_candidate(cand, &fx, got))) goto done;
     } else {
@@ -243,6 +248,7 @@ static int run(int argc, char **argv)
             else
                 st = fx_apply_kernel(method, simulate == T_COUNT ? SH_PREC_FLOAT : prec, com.kernel,
                                      matrix_input, c, &c->rot, c->conv, c->input, got[k]);
+            cli_progress_step(&prog, k + 1, fx.ncases, "cases rotated");
         }
         if (st) { rc = cli_fail("verify: %s", sh_last_error()); goto done; }
         if (emit && (rc = write_candidate(emit_tmp, emit, &fx, got))) goto done;
@@ -315,6 +321,8 @@ static int run(int argc, char **argv)
                     if (max_err(y, c->expected, c->n, &at) <= c->tol_float) continue;
                     n_seen++;
                     if (max_err(got[k], y, c->n, &at) <= c->tol_float) n_ok++;
+                    cli_progress_step(&prog, t * fx.ncases + k + 1, T_COUNT * fx.ncases,
+                                      "cases tried under the known mistakes (--diagnose)");
                 }
                 /* the transformation must explain every case it changes */
                 if (n_ok > best_n && n_ok == n_seen) { best_n = n_ok; best = t; best_seen = n_seen; }

@@ -7,11 +7,14 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 size_t sh__mem_available(void)
 {
-    /* MemAvailable (Linux ≥ 3.14): free memory plus what the page cache would give back */
+    /* MemAvailable (Linux ≥ 3.14): free memory plus what the page cache
+     * would give back; else the free pages */
+    size_t avail = SIZE_MAX;
     FILE *f = fopen("/proc/meminfo", "r");
     if (f) {
         char line[256];
@@ -20,11 +23,17 @@ size_t sh__mem_available(void)
         while (!found && fgets(line, sizeof line, f))
             found = sscanf(line, "MemAvailable: %llu kB", &kb) == 1;
         fclose(f);
-        if (found) return (size_t)kb * 1024;
+        if (found) avail = (size_t)kb * 1024;
     }
-    const long pages = sysconf(_SC_AVPHYS_PAGES), psz = sysconf(_SC_PAGESIZE);
-    if (pages > 0 && psz > 0) return (size_t)pages * (size_t)psz;
-    return SIZE_MAX;
+    if (avail == SIZE_MAX) {
+        const long pages = sysconf(_SC_AVPHYS_PAGES), psz = sysconf(_SC_PAGESIZE);
+        if (pages > 0 && psz > 0) avail = (size_t)pages * (size_t)psz;
+    }
+    /* an address-space limit (ulimit -v) binds first */
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && (size_t)rl.rlim_cur < avail)
+        avail = (size_t)rl.rlim_cur;
+    return avail;
 }
 
 const char *sh__bytes_str(double bytes, char *buf, size_t n)

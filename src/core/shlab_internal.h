@@ -66,7 +66,8 @@ void sh__temp_leave(const sigset_t *old);
 int sh__lobe_zonal_unit(double e, int order, double *z);
 
 /* memory.c: the memory the machine has available now (MemAvailable, else
- * free pages; SIZE_MAX if unknown); a size as "1.2 GB", "34.5 MB", "12 kB";
+ * free pages; the address-space limit, ulimit -v, when lower; SIZE_MAX if
+ * unknown); a size as "1.2 GB", "34.5 MB", "12 kB";
  * SH_OK if `bytes` fit in 7/8 of it, else SH_ENOMEM with "<what> needs X of
  * memory; Y is available". */
 size_t sh__mem_available(void);

@@ -670,7 +670,9 @@ static int check_image(const sh_image *img, const char *who)
     return SH_OK;
 }
 
-int sh_exr_write(const char *path, const sh_image *img)
+int sh_exr_write(const char *path, const sh_image *img) { return sh_exr_write_progress(path, img, NULL, NULL); }
+
+int sh_exr_write_progress(const char *path, const sh_image *img, sh_progress_fn progress, void *pctx)
 {
     int st = check_image(img, "sh_exr_write");
     if (st) return st;
@@ -726,6 +728,8 @@ int sh_exr_write(const char *path, const sh_image *img)
         if (rv != EXR_ERR_SUCCESS) break;
         rv = exr_encoding_choose_default_routines(ctxt, part, &enc);
         if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctxt, part, &enc);
+        if (rv == EXR_ERR_SUCCESS && progress)
+            progress(pctx, y + spc < img->height ? y + spc : img->height, img->height, "rows written");
     }
     if (enc_inited) exr_encoding_destroy(ctxt, &enc);
     exr_result_t frv = exr_finish(&ctxt);

@@ -500,6 +500,21 @@ int sh_rot_bench_entry(int order, sh_rot_method method, sh_precision prec, sh_be
     return SH_OK;
 }
 
+double sh_rot_bench_entry_bytes(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
+                                const sh_bench_opts *opts)
+{
+    const sh_bench_opts def = SH_BENCH_OPTS_DEFAULT;
+    const sh_bench_opts *o = opts ? opts : &def;
+    const double nc = (double)order * order, es = prec == SH_PREC_FLOAT ? sizeof(float) : sizeof(double);
+    const double K = mode == SH_BENCH_PER_ROTATION ? 1 : o->batch;
+    /* bench_ctx_new's pieces: the plan, bench_pool, bench_pool_matrix */
+    double b = sizeof(bench_ctx) + (double)sh_rot_plan_bytes(order, method, prec);
+    b += SH_BENCH_POOL * (9 + nc) * sizeof(double) + nc * sizeof(double);
+    if (o->input == SH_BENCH_INPUT_MATRIX || mode == SH_BENCH_KROT)
+        b += SH_BENCH_POOL * (9 + nc) * sizeof(float) + nc * sizeof(float) + K * (9 + 2 * nc) * es;
+    return b;
+}
+
 int sh_rot_bench_setup_entry(const sh_bench_opts *opts, sh_bench_entry *e)
 {
     const sh_bench_opts def = SH_BENCH_OPTS_DEFAULT;

@@ -399,6 +399,14 @@ int sh_image_max_order(const sh_image *img, sh_layout layout)
     return n > SHLAB_MAX_ORDER ? SHLAB_MAX_ORDER : n;
 }
 
+int sh_image_check_order(const sh_image *img, sh_layout layout, int order)
+{
+    const int mx = sh_image_max_order(img, layout);
+    if (order <= mx) return SH_OK;
+    return sh_error(SH_EINVAL, "a %d×%d image carries orders up to %d (2n − 1 pixels across, n down), not %d",
+                    img ? img->width : 0, img ? img->height : 0, mx, order);
+}
+
 int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_convention conv,
                      double *coeffs)
 {

@@ -699,6 +699,7 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
      * window σ_l and the recursion scale g (sht_kern.c) */
     alm_convert(p, conv, (double *)coeffs, sigma, 0); /* reads coeffs only */
     first_err err = {0, 0, ""};
+    int pairs_done = 0; /* progress: ring pairs handed out, counted by group */
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;
         const int npad = (n + SHT_LANES - 1) / SHT_LANES * SHT_LANES;
@@ -731,9 +732,17 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
                         break;
                     }
                 }
+            if (p->progress) {
+                /* by group, not by chunk: a low order makes one chunk of a
+                 * large map; reported from thread 0 only (one at a time) */
+                int d;
+#pragma omp atomic capture
+                d = pairs_done += (n - i0 < GRP ? n - i0 : GRP);
+                if (t == 0 && d < p->npairs) p->progress(p->pctx, d, p->npairs, "ring pairs");
+            }
         }
-        if (p->progress) p->progress(p->pctx, ch + 1, p->nchunks, "ring chunks");
     }
+    if (p->progress && !err.st) p->progress(p->pctx, p->npairs, p->npairs, "ring pairs");
     if (err.st) return sh_error(err.st, "%s", err.msg);
     return SH_OK;
 }

@@ -175,6 +175,7 @@ static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c
     count += SH_R(blanco_block)(1, dm1, L, W, csa, csg, blocks + sh_rot_block_offset(1), d);
 
     for (int l = 2; l < order; l++) {
+        sh__rot_band_done(l, order); /* bands 0..l−1 done */
         const int w = 2 * l + 1;
         const sh_real *ia = tab + 3 * (size_t)l * l, *bb = ia + w, *rr = bb + w;
         /* eq. 64, |m'| ≤ m ≤ l−2:
@@ -244,6 +245,7 @@ static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c
     }
 done:
 #undef IX
+    sh__rot_band_done(order, order);
     if (mults) *mults += count;
     return SH_OK;
 }

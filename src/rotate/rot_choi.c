@@ -146,6 +146,7 @@ static int choi_blocks(int order, const sh_rotation *rot, const void *tables, sh
         }
 
     for (int l = 1; l < order; l++) {
+        sh__rot_band_done(l, order); /* bands 0..l−1 done */
         const int w = 2 * l + 1;
         sh_real *Dl = prev; /* band l, complex */
         if (l >= 2) {
@@ -232,6 +233,7 @@ static int choi_blocks(int order, const sh_rotation *rot, const void *tables, sh
         }
     }
 #undef IDX
+    sh__rot_band_done(order, order);
     if (mults) *mults += count;
     if (imag_max) *imag_max = imax;
     return SH_OK;

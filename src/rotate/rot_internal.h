@@ -75,6 +75,11 @@ typedef struct {
                         void *work, uint64_t *mults);
 } sh__rot_ops;
 
+/* Progress of the long steps (rotator.c): a method whose tables or blocks
+ * cost O(order³) or more reports each band finished, done of total; nothing
+ * happens unless the rotator has a progress function. */
+void sh__rot_band_done(int done, int total);
+
 /* ---- the rotation as the sparse kernels use it ----------------------------
  * par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β) (ivanic's unrolled
  * kernel: the matrix R, row-major, 9 values), at most SH__PAR_N values,
@@ -260,6 +265,11 @@ struct sh_rotator {
     sh_progress_fn progress;
     void *progress_ctx;
 };
+/* Progress of the long steps (rotator.c): between enter and leave, this
+ * thread's sh__rot_band_done calls report to r's progress function. */
+typedef struct { const sh_rotator *r; const char *what; } sh__rot_progress_scope;
+sh__rot_progress_scope sh__rot_progress_enter(const sh_rotator *r, const char *what);
+void sh__rot_progress_leave(sh__rot_progress_scope outer);
 /* The checks every rotation front door makes once: order within the
  * library's and the method's limits, known method, precision, convention. */
 int sh__rot_check_args(int order, sh_rot_method method, sh_precision prec, sh_convention conv);

@@ -135,7 +135,10 @@ int SH_R(sh__rot_ivanic_tables_new)(int order, void **tables)
         free(T);
         return sh_error(SH_ENOMEM, "ivanic: out of memory (tables, order %d)", order);
     }
-    for (int l = 2; l < order; l++) SH_R(ivanic_coeffs)(l, T->uvw + 3 * sh_rot_block_offset(l));
+    for (int l = 2; l < order; l++) {
+        SH_R(ivanic_coeffs)(l, T->uvw + 3 * sh_rot_block_offset(l));
+        sh__rot_band_done(l + 1, order);
+    }
     *tables = T;
     return SH_OK;
 }
@@ -275,11 +278,13 @@ int SH_R(sh__rot_ivanic_blocks)(int order, const sh_rotation *rot, const void *t
     uint64_t count = 0;
     blocks[0] = 1;
     if (order > 1) SH_R(ivanic_band1)(rot, blocks + sh_rot_block_offset(1));
-    for (int l = 2; l < order; l++)
+    for (int l = 2; l < order; l++) {
         count += SH_R(ivanic_step)(l, blocks + sh_rot_block_offset(1),
                                    blocks + sh_rot_block_offset(l - 1),
                                    T->uvw + 3 * sh_rot_block_offset(l), blocks + sh_rot_block_offset(l),
                                    work);
+        sh__rot_band_done(l + 1, order);
+    }
     if (mults) *mults += count;
     return SH_OK;
 }

@@ -217,6 +217,7 @@ static int zx_tables_build(int order, double *xd, float *xf)
     for (int l = 0; l < order && st == SH_OK; l++) {
         zx_xplus_dense(l, ws, X);
         st = zx_compact(l, X, in, xd ? xd + zx_off(l) : NULL, xf ? xf + zx_off(l) : NULL);
+        sh__rot_band_done(l + 1, order);
     }
     free(ws);
     free(X);

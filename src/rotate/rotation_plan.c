@@ -153,6 +153,7 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
         fast_par_done(p, NULL);
         return SH_OK;
     }
+    const sh__rot_progress_scope outer = sh__rot_progress_enter(p->r, "bands of the rotation");
     if (p->r->ops->apply_d) {
         /* sparse methods: the per-rotation state (validates the rotation;
          * z refuses a tilted one here) */
@@ -163,6 +164,7 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
     } else {
         st = compute_blocks(p, p->blocks, &p->set_mults);
     }
+    sh__rot_progress_leave(outer);
     if (st == SH_OK) p->have_rot = 1;
     return st;
 }

@@ -95,6 +95,33 @@ int sh_rot_plan_check(int order, sh_rot_method method, sh_precision prec)
     return mem_check(order, method, prec, (double)sh_rot_plan_bytes(order, method, prec));
 }
 
+/* ---- progress of the long steps --------------------------------------------------
+ * The methods' band loops (tables and blocks: O(order³) or more) call
+ * sh__rot_band_done; it reports to the rotator whose tables or rotation this
+ * thread is computing, if that rotator has a progress function. */
+static _Thread_local const sh_rotator *progress_rotator;
+static _Thread_local const char *progress_what;
+
+sh__rot_progress_scope sh__rot_progress_enter(const sh_rotator *r, const char *what)
+{
+    const sh__rot_progress_scope outer = {progress_rotator, progress_what};
+    progress_rotator = r->progress ? r : NULL;
+    progress_what = what;
+    return outer;
+}
+
+void sh__rot_progress_leave(sh__rot_progress_scope outer)
+{
+    progress_rotator = outer.r;
+    progress_what = outer.what;
+}
+
+void sh__rot_band_done(int done, int total)
+{
+    const sh_rotator *r = progress_rotator;
+    if (r) r->progress(r->progress_ctx, done, total, progress_what);
+}
+
 /* ---- create ------------------------------------------------------------------- */
 
 /* The kernel: the unrolled code of (method, order) in the chosen variant, or
@@ -117,6 +144,15 @@ static void choose_kernel(sh_rotator *r, sh_rot_kernel kernel)
     }
 }
 
+sh_rot_kernel sh_rot_plan_kernel_for(int order, sh_rot_method method, sh_rot_kernel kernel)
+{
+    if (kernel < 0 || kernel >= SH_KERNEL_N || order < 1 || method < 0 || method >= SH_ROT_NMETHODS)
+        return SH_KERNEL_SCALAR;
+    sh_rotator r = {.order = order, .method = method};
+    choose_kernel(&r, kernel);
+    return r.kernel;
+}
+
 /* Both front doors: stream = 1 lets halfpi in double run as the stream. */
 static int rotator_new(const sh_rotator_opts *o, int stream, sh_rotator **out)
 {
@@ -137,11 +173,9 @@ static int rotator_new(const sh_rotator_opts *o, int stream, sh_rotator **out)
     r->ops = sh__rot_ops_of(method);
     r->stream = stream && method == SH_ROT_HALFPI && o->prec == SH_PREC_DOUBLE;
     r->threads = 1;
-    if (r->stream) {
-        r->threads = sh__rot_stream_resolve_threads(o->threads);
-        r->progress = o->progress;
-        r->progress_ctx = o->progress_ctx;
-    }
+    if (r->stream) r->threads = sh__rot_stream_resolve_threads(o->threads);
+    r->progress = o->progress;
+    r->progress_ctx = o->progress_ctx;
     choose_kernel(r, o->kernel);
     if ((st = mem_check(r->order, method, r->prec, sh__rot_plan_state_bytes(r) +
                                                          sh__rot_tables_bytes(r->order, r->ops, r->prec)))) {
@@ -151,9 +185,14 @@ static int rotator_new(const sh_rotator_opts *o, int stream, sh_rotator **out)
     int (*tnew)(int, void **) = r->prec == SH_PREC_FLOAT ? r->ops->tables_new_f : r->ops->tables_new_d;
     /* tables for the loop kernels (and for unrolled ivanic's batches, which
      * build the blocks once per rotation) */
-    if ((r->fmeth < 0 || r->fmeth == SH__FAST_IVANIC) && tnew && (st = tnew(r->order, &r->tables)) != SH_OK) {
-        free(r);
-        return st;
+    if ((r->fmeth < 0 || r->fmeth == SH__FAST_IVANIC) && tnew) {
+        const sh__rot_progress_scope outer = sh__rot_progress_enter(r, "bands of the tables");
+        st = tnew(r->order, &r->tables);
+        sh__rot_progress_leave(outer);
+        if (st) {
+            free(r);
+            return st;
+        }
     }
     *out = r;
     return SH_OK;
@@ -197,9 +236,16 @@ int sh_rot_plan_create(int order, sh_rot_method method, sh_precision prec, sh_co
 int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
                               sh_rot_kernel kernel, sh_rot_plan **out)
 {
+    return sh_rot_plan_create_progress(order, method, prec, conv, kernel, NULL, NULL, out);
+}
+
+int sh_rot_plan_create_progress(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
+                                sh_rot_kernel kernel, sh_progress_fn fn, void *ctx, sh_rot_plan **out)
+{
     *out = NULL;
     if (method == SH_ROT_AUTO) return sh_error(SH_EINVAL, "rotation plan: name a method (or use sh_rotator_create)");
-    const sh_rotator_opts o = {.order = order, .method = method, .prec = prec, .kernel = kernel, .conv = conv};
+    const sh_rotator_opts o = {.order = order, .method = method, .prec = prec, .kernel = kernel, .conv = conv,
+                               .progress = fn, .progress_ctx = ctx};
     sh_rotator *r;
     int st = rotator_new(&o, 0, &r); /* halfpi stays a plan: one thread, as it always was */
     if (st) return st;

@@ -13,7 +13,7 @@
  *      distance d, centre at angle α from the normal, wholly above the
  *      horizon: (R/d)² cos α = sin²ω cos α (a special case of the formula
  *      used below for every coefficient). */
-#include "shlab.h"
+#include "core/shlab_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -63,8 +63,9 @@ int sh_proc_parse(const char *spec, sh_proc_scene *out)
         const char *s = colon + 1;
         for (int k = 0; k < want; k++) {
             char *end;
-            const double v = strtod(s, &end);
-            if (end == s || !isfinite(v)) return sh_error(SH_EINVAL, "scene '%s': bad number '%s'", spec, s);
+            double v = 0;
+            if (sh__parse_double(s, &end, &v) != SH__NUM_OK)
+                return sh_error(SH_EINVAL, "scene '%s': bad number '%s'", spec, s);
             out->p[k] = v;
             s = end;
             if (k + 1 < want) {
@@ -87,10 +88,12 @@ typedef struct {
     sh_mesh m;
     int capv, capt;
     int err;
+    int count_only; /* sh_proc_size: count vertices and triangles, store nothing */
 } builder;
 
 static int b_vert(builder *b, double x, double y, double z, const double *n)
 {
+    if (b->count_only) return b->m.nvert++;
     if (b->m.nvert == b->capv) {
         b->capv = b->capv ? 2 * b->capv : 1024;
         double *p = realloc(b->m.pos, sizeof(double) * 3 * (size_t)b->capv);
@@ -107,6 +110,10 @@ static int b_vert(builder *b, double x, double y, double z, const double *n)
 
 static void b_tri(builder *b, int i, int j, int k)
 {
+    if (b->count_only) {
+        b->m.ntri++;
+        return;
+    }
     if (b->err) return;
     if (b->m.ntri == b->capt) {
         b->capt = b->capt ? 2 * b->capt : 2048;
@@ -148,13 +155,11 @@ static double box_hole(const sh_proc_scene *ps, int res)
     return ps->kind == SH_PROC_BOX_OPEN ? round(ps->p[0] * res) / res : 0.0;
 }
 
-int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out)
+/* The scene's vertices and triangles into b; 1 if the normals are to be
+ * computed (the box). */
+static int build(const sh_proc_scene *ps, int res, builder *b_)
 {
-    if (!ps || !out) return sh_error(SH_EINVAL, "sh_mesh_procedural: bad arguments");
-    memset(out, 0, sizeof *out);
-    const int res = ps->res > 0 ? ps->res : default_res(ps->kind);
-    if (res > 512) return sh_error(SH_EINVAL, "procedural scene: resolution %d > 512", res);
-    builder b = {0};
+    builder b = *b_;
     int compute_normals = 0;
     if (ps->kind == SH_PROC_SPHERE_PLANE) {
         const double R = ps->p[0], H = ps->p[1], up[3] = {0, 0, 1};
@@ -213,6 +218,31 @@ int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out)
             b_grid(&b, fo[f], fu[f], fv[f], res, res, NULL, f == 1 ? A : 0);
         compute_normals = 1;
     }
+    *b_ = b;
+    return compute_normals;
+}
+
+int sh_proc_size(const sh_proc_scene *ps, long long *nvert, long long *ntri)
+{
+    if (!ps || !nvert || !ntri) return sh_error(SH_EINVAL, "sh_proc_size: bad arguments");
+    const int res = ps->res > 0 ? ps->res : default_res(ps->kind);
+    if (res > 512) return sh_error(SH_EINVAL, "procedural scene: resolution %d > 512", res);
+    builder b = {0};
+    b.count_only = 1;
+    build(ps, res, &b);
+    *nvert = b.m.nvert;
+    *ntri = b.m.ntri;
+    return SH_OK;
+}
+
+int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out)
+{
+    if (!ps || !out) return sh_error(SH_EINVAL, "sh_mesh_procedural: bad arguments");
+    memset(out, 0, sizeof *out);
+    const int res = ps->res > 0 ? ps->res : default_res(ps->kind);
+    if (res > 512) return sh_error(SH_EINVAL, "procedural scene: resolution %d > 512", res);
+    builder b = {0};
+    const int compute_normals = build(ps, res, &b);
     if (b.err) {
         sh_mesh_free(&b.m);
         return sh_error(SH_ENOMEM, "out of memory building %s", sh_proc_name(ps->kind));
@@ -234,13 +264,33 @@ static double howell_b3(double a, double b, double c)
     return (A / sa * atan(B / sa) + B / sb * atan(A / sb)) / (2 * M_PI);
 }
 
-int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int order, sh_convention conv,
-                        double albedo, double lift, double *t, double *bound, int *known)
+/* The sphere-plane's polyhedral sphere lies between the spheres of radius
+ * r_in, its faces' least distance from the centre, and R (its vertices lie
+ * on the sphere of radius R; faces with a corner off it are the plane's). */
+static double sphere_r_in(const sh_proc_scene *ps, const sh_mesh *m)
 {
-    if (!ps || !m || !t || !known || v < 0 || v >= m->nvert || !(lift >= 0 && lift < 0.1))
-        return sh_error(SH_EINVAL, "sh_proc_closed_form: bad arguments");
-    int st = sh_check_order(order);
-    if (st) return st;
+    const double R = ps->p[0], H = ps->p[1];
+    double r_in = R;
+    for (int f = 0; f < m->ntri; f++) {
+        const double *a = m->pos + 3 * m->tri[3 * f], *b = m->pos + 3 * m->tri[3 * f + 1],
+                     *e = m->pos + 3 * m->tri[3 * f + 2];
+        const double ra = hypot(hypot(a[0], a[1]), a[2] - H), rb = hypot(hypot(b[0], b[1]), b[2] - H),
+                     re = hypot(hypot(e[0], e[1]), e[2] - H);
+        if (fabs(ra - R) > 1e-9 * R || fabs(rb - R) > 1e-9 * R || fabs(re - R) > 1e-9 * R) continue;
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {e[0] - a[0], e[1] - a[1], e[2] - a[2]};
+        const double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const double fl = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+        if (fl > 0) r_in = fmin(r_in, fabs(fn[0] * a[0] + fn[1] * a[1] + fn[2] * (a[2] - H)) / fl);
+    }
+    return r_in;
+}
+
+/* One vertex; r_in: sphere_r_in's value (read only when bound is asked). */
+static int closed_form_one(const sh_proc_scene *ps, const sh_mesh *m, int v, int order, sh_convention conv,
+                           double albedo, double lift, double r_in, double *t, double *bound, int *known)
+{
+    if (v < 0 || v >= m->nvert) return sh_error(SH_EINVAL, "sh_proc_closed_form: vertex %d of %d", v, m->nvert);
+    int st = SH_OK;
     *known = 0;
     const int n2 = order * order;
     const double *p = m->pos + 3 * v, *nv = m->normal + 3 * v;
@@ -284,21 +334,7 @@ int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int or
     const double u[3] = {c[0] / d, c[1] / d, c[2] / d};
     const double w = asin(R / d), alpha = acos(fmin(1.0, u[2]));
     if (!(alpha + w < 0.5 * M_PI - 1e-6)) return SH_OK; /* the cap dips below the horizon */
-    /* the (convex) polyhedral sphere lies between the spheres of radius
-     * r_in, its faces' least distance from the centre, and R */
-    double r_in = R;
-    for (int f = 0; f < m->ntri; f++) {
-        const double *a = m->pos + 3 * m->tri[3 * f], *b = m->pos + 3 * m->tri[3 * f + 1],
-                     *e = m->pos + 3 * m->tri[3 * f + 2];
-        const double ra = hypot(hypot(a[0], a[1]), a[2] - H), rb = hypot(hypot(b[0], b[1]), b[2] - H),
-                     re = hypot(hypot(e[0], e[1]), e[2] - H);
-        if (fabs(ra - R) > 1e-9 * R || fabs(rb - R) > 1e-9 * R || fabs(re - R) > 1e-9 * R) continue;
-        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {e[0] - a[0], e[1] - a[1], e[2] - a[2]};
-        const double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-        const double fl = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
-        if (fl > 0) r_in = fmin(r_in, fabs(fn[0] * a[0] + fn[1] * a[1] + fn[2] * (a[2] - H)) / fl);
-    }
-    const double w_in = asin(r_in / d);
+    const double w_in = bound ? asin(r_in / d) : 0;
     const int ob = order + 1; /* y_i · y_1m reaches band order */
     double *U = malloc(sizeof(double) * (size_t)n2), *z = malloc(sizeof(double) * (size_t)ob),
            *yu = malloc(sizeof(double) * (size_t)ob * ob), *y1 = malloc(sizeof(double) * 4);
@@ -334,6 +370,37 @@ int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int or
     free(U); free(z); free(yu); free(y1);
     *known = order;
     return SH_OK;
+}
+
+static int check_args(const sh_proc_scene *ps, const sh_mesh *m, int order, double lift, const double *t,
+                      const int *known)
+{
+    if (!ps || !m || !t || !known || !(lift >= 0 && lift < 0.1))
+        return sh_error(SH_EINVAL, "sh_proc_closed_form: bad arguments");
+    return sh_check_order(order);
+}
+
+int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int order, sh_convention conv,
+                        double albedo, double lift, double *t, double *bound, int *known)
+{
+    int st = check_args(ps, m, order, lift, t, known);
+    if (st) return st;
+    const double r_in = bound && ps->kind == SH_PROC_SPHERE_PLANE ? sphere_r_in(ps, m) : 0;
+    return closed_form_one(ps, m, v, order, conv, albedo, lift, r_in, t, bound, known);
+}
+
+int sh_proc_closed_forms(const sh_proc_scene *ps, const sh_mesh *m, int n, const int *verts, int order,
+                         sh_convention conv, double albedo, double lift, double *t, double *bound, int *known)
+{
+    int st = check_args(ps, m, order, lift, t, known);
+    if (st) return st;
+    if (n < 0) return sh_error(SH_EINVAL, "sh_proc_closed_forms: %d vertices", n);
+    const double r_in = bound && ps->kind == SH_PROC_SPHERE_PLANE ? sphere_r_in(ps, m) : 0;
+    const size_t n2 = (size_t)order * order;
+    for (int k = 0; k < n && !st; k++)
+        st = closed_form_one(ps, m, verts ? verts[k] : k, order, conv, albedo, lift, r_in, t + k * n2,
+                             bound ? bound + k * n2 : NULL, known + k);
+    return st;
 }
 
 int sh_proc_furnace(const sh_proc_scene *ps, double albedo, double *radiance)

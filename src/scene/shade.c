@@ -36,8 +36,12 @@ int sh_env_from_light(const sh_light *L, sh_env **out)
 
 int sh_env_from_image(const sh_image *img, sh_env **out)
 {
-    if (!img || !out || !img->data || img->width < 2 || img->height < 1 || (img->nchan != 1 && img->nchan < 3))
-        return sh_error(SH_EINVAL, "sh_env_from_image: need a 1-channel or RGB image");
+    if (!img || !out || !img->data) return sh_error(SH_EINVAL, "sh_env_from_image: bad arguments");
+    if (img->width < 2 || img->height < 1)
+        return sh_error(SH_EINVAL, "a %d×%d environment is too small: a lat-long environment needs at least 2×1 pixels",
+                        img->width, img->height);
+    if (img->nchan != 1 && img->nchan < 3)
+        return sh_error(SH_EINVAL, "an environment needs 1 channel (luminance) or 3 or more (RGB), not %d", img->nchan);
     if ((long long)img->width * img->height > SH_IMAGE_MAX_PIXELS) return sh_error(SH_EINVAL, "image too large");
     *out = NULL;
     sh_env *e = calloc(1, sizeof *e);
@@ -119,9 +123,10 @@ int sh_env_project(const sh_env *e, int order, sh_convention conv, double *coeff
         for (int c = 1; c < 4; c++) memcpy(coeffs + (size_t)c * n2, coeffs, sizeof(double) * n2);
         return SH_OK;
     }
-    /* channels Y, R, G, B as one 4-channel image */
+    /* channels Y, R, G, B as one 4-channel image, which must carry the order */
     const size_t np = (size_t)e->w * e->h;
     sh_image img = {.width = e->w, .height = e->h, .nchan = 4};
+    if ((st = sh_image_check_order(&img, SH_LAYOUT_LATLONG, order))) return st;
     img.data = malloc(sizeof(float) * 4 * np);
     if (!img.data) return sh_error(SH_ENOMEM, "out of memory");
     memcpy(img.data, e->lum, sizeof(float) * np);
@@ -155,7 +160,11 @@ int sh_shade_error(int n, const double *B, const double *ref, const double *se, 
         if (se) s2 += se[v] * se[v];
         dmax = fmax(dmax, fabs(d));
     }
-    if (!(r2 > 0)) return sh_error(SH_EINVAL, "sh_shade_error: the reference is zero everywhere");
+    if (!(r2 > 0))
+        return sh_error(SH_EINVAL,
+                        "no light reaches the scene: the shading the errors are relative to is 0 at all %d vertices, "
+                        "so a relative error is undefined",
+                        n);
     e->rel_l2 = sqrt(d2 / r2);
     e->rel_max = dmax / sqrt(r2 / n);
     e->ref_l2 = sqrt(s2 / r2);

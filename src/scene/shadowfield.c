@@ -45,7 +45,7 @@ static int check_opts(const sh_sf_opts *o, double radius)
     if (!o) return sh_error(SH_EINVAL, "shadow field: no options");
     int st = sh_check_order(o->order);
     if (st) return st;
-    if (o->order > 16) return sh_error(SH_EINVAL, "shadow field: order %d > 16", o->order);
+    if (o->order > SH_SF_MAX_ORDER) return sh_error(SH_EINVAL, "shadow field: order %d > %d", o->order, SH_SF_MAX_ORDER);
     if (o->scaling != SH_SF_EXACT && o->scaling != SH_SF_CONE && o->scaling != SH_SF_SPHERE)
         return sh_error(SH_EINVAL, "shadow field: unknown scaling");
     if (!(radius > 0) || !isfinite(radius)) return sh_error(SH_EINVAL, "shadow field: radius %g must be > 0", radius);
@@ -267,6 +267,7 @@ int sh_shadow_field_transfer(const sh_sf_opts *o, const double centre[3], double
         double *t = T + (size_t)p * n2;
         memset(t, 0, sizeof(double) * n2);
         for (int q = 0; q < G.n; q++) t[G.k[q]] += G.g[q] * V[G.i[q]] * c[G.j[q]];
+        if (o->progress && ((p & 255) == 255 || p == n - 1)) o->progress(o->progress_ctx, p + 1, n, "receivers");
     }
     stats->seconds = sh__now() - t0;
     gaunt_free(&G);

@@ -55,6 +55,9 @@ int sh_exr_read(const char *path, sh_image *img, int *used_fallback);
 /* Write a float EXR with OpenEXRCore; written to a temporary name and renamed,
  * so that a failure never leaves a partial file. */
 int sh_exr_write(const char *path, const sh_image *img);
+/* The same with progress: fn(ctx, rows written, height, "rows written") as
+ * chunks of rows are compressed and written (a 46340×23170 image: minutes). */
+int sh_exr_write_progress(const char *path, const sh_image *img, sh_progress_fn fn, void *ctx);
 /* Remove every temporary file that a writer of this library (sh_exr_write,
  * ...) has created and not yet renamed into place.  Async-signal-safe: meant
  * for SIGINT/SIGTERM handlers and atexit. */

@@ -150,6 +150,10 @@ double sh_machine_busy_s(void);
  * it with sh_bench_entry_free. */
 int sh_rot_bench_entry(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
                        const sh_bench_opts *opts, sh_bench_entry *e);
+/* Bytes sh_rot_bench_entry allocates for that entry (its plan and its pools
+ * of rotations and vectors); the entries of one order live at once. */
+double sh_rot_bench_entry_bytes(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
+                                const sh_bench_opts *opts);
 /* An entry for the matrix → ZYZ angles step alone (per rotation). */
 int sh_rot_bench_setup_entry(const sh_bench_opts *opts, sh_bench_entry *e);
 void sh_bench_entry_free(sh_bench_entry *e);

@@ -69,6 +69,10 @@ int sh_lobe_zonal(double e, int order, double *z);
  * sh_project_image computes the discrete sums at any order; above this one
  * they are not a projection (the CLI refuses them). */
 int sh_image_max_order(const sh_image *img, sh_layout layout);
+/* SH_OK if the image carries `order` (order <= sh_image_max_order), else
+ * SH_EINVAL with "a W×H image carries orders up to M (2n − 1 pixels across,
+ * n down), not N". */
+int sh_image_check_order(const sh_image *img, sh_layout layout, int order);
 /* Project each channel of an environment image: coeffs[c*n² + i]. */
 int sh_project_image(const sh_image *img, sh_layout layout, int order, sh_convention conv,
                      double *coeffs);

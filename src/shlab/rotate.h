@@ -170,7 +170,17 @@ int sh_rot_kernel_available(sh_rot_kernel k);
 /* sh_rot_plan_create with a kernel; SH_ENOTSUP if it is not available. */
 int sh_rot_plan_create_kernel(int order, sh_rot_method method, sh_precision prec,
                               sh_convention conv, sh_rot_kernel kernel, sh_rot_plan **out);
+/* sh_rot_plan_create_kernel with progress: fn(ctx, done, order,
+ * what) as bands of the long steps finish — the per-order tables (zxzxz,
+ * ivanic, choi, blanco) here, and the blocks of each rotation later
+ * (ivanic, choi, blanco) in sh_rot_plan_set and the set_matrix/quat calls.
+ * These are O(order³) or more: seconds from order ~300, minutes at 1000. */
+int sh_rot_plan_create_progress(int order, sh_rot_method method, sh_precision prec, sh_convention conv,
+                                sh_rot_kernel kernel, sh_progress_fn fn, void *ctx, sh_rot_plan **out);
 sh_rot_kernel sh_rot_plan_kernel(const sh_rot_plan *p);
+/* The kernel a plan (order, method, kernel asked) would run, without making
+ * it: sh_rot_plan_kernel of the plan sh_rot_plan_create_kernel makes. */
+sh_rot_kernel sh_rot_plan_kernel_for(int order, sh_rot_method method, sh_rot_kernel kernel);
 
 /* ---- the rotator: the front door of rotation (rotator.c) ---------------------
  * One immutable object per (order, method, precision, kernel, convention,
@@ -197,7 +207,8 @@ typedef struct {
     sh_rot_kernel kernel;   /* SH_KERNEL_AUTO: the widest this CPU runs */
     sh_convention conv;
     int threads;            /* the stream's threads (≤ 0: every core); 1 elsewhere */
-    sh_progress_fn progress; /* the stream's progress (bands done), or NULL */
+    sh_progress_fn progress; /* bands done in the long steps (the stream; the tables
+                                and blocks of zxzxz, ivanic, choi, blanco), or NULL */
     void *progress_ctx;
 } sh_rotator_opts;
 /* Options start from this (method auto; every other zero field is a default:

@@ -113,6 +113,10 @@ typedef struct {
 int sh_proc_parse(const char *spec, sh_proc_scene *out);
 const char *sh_proc_name(sh_proc_kind k);
 int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out);
+/* The number of vertices and triangles sh_mesh_procedural makes, without
+ * making them (the same builder, counting only; vertices before its mesh
+ * check drops unused ones, those inside box-open's hole: an upper bound). */
+int sh_proc_size(const sh_proc_scene *ps, long long *nvert, long long *ntri);
 /* The shadowed transfer vector (sh_transfer's definition, albedo ρ) of
  * vertex v of the mesh sh_mesh_procedural made, where a closed form exists:
  *   sphere-plane, a plane vertex whose view of the sphere lies wholly above
@@ -136,6 +140,13 @@ int sh_mesh_procedural(const sh_proc_scene *ps, sh_mesh *out);
  * ε·diagonal); taken into the sphere-plane and box closed forms. */
 int sh_proc_closed_form(const sh_proc_scene *ps, const sh_mesh *m, int v, int order,
                         sh_convention conv, double albedo, double lift, double *t, double *bound, int *known);
+/* The same for n vertices at once: vertex verts[k] (every vertex 0..n−1 when
+ * verts is NULL) into t + k·order², bound + k·order² (bound may be NULL)
+ * and known[k].  The sphere's bound needs the polyhedral sphere's inscribed
+ * radius, a pass over every triangle: sh_proc_closed_form makes it per call
+ * (when bound is asked), this function once. */
+int sh_proc_closed_forms(const sh_proc_scene *ps, const sh_mesh *m, int n, const int *verts, int order,
+                         sh_convention conv, double albedo, double lift, double *t, double *bound, int *known);
 /* The converged interreflected DC answer under a constant environment of
  * radiance 1 where one exists: bowl ρ/(2−ρ); box-open and sphere-plane with
  * ρ = 1: 1 (the furnace: every ray escapes or meets a surface of radiance
@@ -515,14 +526,17 @@ void sh_rgb_luminance(int n, const double *rgb, double *Y);
 typedef enum { SH_SF_EXACT = 0, SH_SF_CONE, SH_SF_SPHERE } sh_sf_scaling;
 const char *sh_sf_scaling_name(sh_sf_scaling s);
 int sh_sf_scaling_parse(const char *s, sh_sf_scaling *out);
+#define SH_SF_MAX_ORDER 16
 typedef struct {
-    int order;             /* ≤ 16 */
+    int order;             /* ≤ SH_SF_MAX_ORDER */
     sh_sf_scaling scaling;
     double cone_angle;     /* cone: θ0 (0: π/4) */
     double d0;             /* the distance the field is sampled at (> R) */
     int samples;           /* 0: M(k) at every receiver; ≥ 2: a table over k */
     double kmin, kmax;     /* the table's range (both 0: the receivers') */
     double albedo;         /* ρ (0: 1) */
+    sh_progress_fn progress; /* receivers done (may be NULL) */
+    void *progress_ctx;
 } sh_sf_opts;
 typedef struct {
     double kmin, kmax;     /* the receivers' k = d/d0 */

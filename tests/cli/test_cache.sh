@@ -20,7 +20,7 @@ expect_usage_error "cache picture method not listed" cache $S --light green --me
 expect_usage_error "cache order 40" cache $S --light green --order 40
 expect_usage_error "cache rmin above rmax" cache $S --light green --rmin 0.5 --rmax 0.1
 expect_usage_error "cache missing probe" cache $S --probe "$TMP/none.exr"
-expect_usage_error "cache png into a missing directory" cache $S --light green --env-samples 64 --rays 4 --repeat 1 --png "$TMP/no/x.png" --quiet
+expect_usage_error "cache png into a missing directory" cache $S --light green --env-samples 64 --repeat 1 --png "$TMP/no/x.png" --quiet
 [ ! -e "$TMP/no" ] && ok "no output directory created" || notok "no output directory created"
 expect_usage_error "shadow-field on the bowl" shadow-field --scene bowl --light green
 expect_usage_error "shadow-field on a mesh" shadow-field --mesh "$TMP/none.ply" --light green
@@ -31,14 +31,14 @@ expect_usage_error "shadow-field order 17" shadow-field --light green --order 17
 
 # ---- a record at every vertex (a tiny allowed error): the cache is the
 #      direct computation, for every rotation method, exactly
-expect_success "cache, a record everywhere" cache $S --light green --order 4 --allowed-error 1e-9 --env-samples 64 --rays 4 --repeat 1 --quiet --format json
+expect_success "cache, a record everywhere" cache $S --light green --order 4 --allowed-error 1e-9 --env-samples 64 --repeat 1 --quiet --format json
 n=$(grep -o '"rel_l2":[0-9.e+-]*' "$TMP/out" | grep -c '"rel_l2":0\(\.0\)\?$')
 [ "$n" = 6 ] && ok "every method: rel_l2 = 0" || notok "every method: rel_l2 = 0 ($n of 6): $(head -c 600 "$TMP/out")"
 grep -q '"records":195,' "$TMP/out" && grep -q '"vertices":195,' "$TMP/out" && ok "records = vertices" || notok "records = vertices"
 
 # ---- a cache with real reuse: the exact methods agree, Taylor differs a little,
 #      pictures written
-expect_success "cache" cache $S --light green --order 5 --allowed-error 0.5 --env-samples 128 --rays 16 --repeat 2 --methods ignore,taylor1.5,zxzxz,ivanic --png "$TMP/c.png" --direct-png "$TMP/d.png" --error-png "$TMP/e.png" --width 64 --height 48 --quiet --format csv
+expect_success "cache" cache $S --light green --order 5 --allowed-error 0.5 --env-samples 128 --repeat 2 --methods ignore,taylor1.5,zxzxz,ivanic --png "$TMP/c.png" --direct-png "$TMP/d.png" --error-png "$TMP/e.png" --width 64 --height 48 --quiet --format csv
 col() { head -1 "$TMP/out" | tr ',' '\n' | grep -n "^$1\$" | cut -d: -f1; }
 iv=$(awk -F, -v c="$(col rot_rel_l2)" -v m="$(col method)" '$m == "ivanic" { print $c }' "$TMP/out")
 t15=$(awk -F, -v c="$(col rot_rel_l2)" -v m="$(col method)" '$m == "taylor1.5" { print $c }' "$TMP/out")
@@ -47,7 +47,7 @@ awk -v a="$t15" 'BEGIN { exit !(a > 0 && a < 0.5) }' && ok "taylor1.5 differs a 
 [ -s "$TMP/c.png" ] && [ -s "$TMP/d.png" ] && [ -s "$TMP/e.png" ] && ok "cache pictures written" || notok "cache pictures written"
 expect_success "cache phong with bounce and noise" cache $S --light green --order 3 --brdf phong:7 --bounce --noise --env-samples 64 --rays 16 --repeat 1 --methods zxzxz --quiet --format json
 grep -q '"brdf":"phong:7"' "$TMP/out" && grep -q '"noise_l2":' "$TMP/out" && ok "phong, bounce, noise reported" || notok "phong, bounce, noise reported"
-expect_success "cache with the reference" cache $S --light green --order 3 --env-samples 64 --rays 16 --repeat 1 --methods zxzxz --reference 20 --ref-samples 256 --quiet --format json
+expect_success "cache with the reference" cache $S --light green --order 3 --env-samples 64 --repeat 1 --methods zxzxz --reference 20 --ref-samples 256 --quiet --format json
 grep -q '"reference":{"vertices":20,' "$TMP/out" && grep -q '"ref_rel_l2":' "$TMP/out" && ok "reference compared" || notok "reference compared"
 
 # ---- shadow fields

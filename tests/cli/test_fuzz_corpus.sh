@@ -4,7 +4,7 @@
 # make check SANITIZE=1 this runs every seed through ASan/UBSan.
 . "$(dirname "$0")/lib.inc"
 BUILD=${BUILD:-build}
-for h in exr fixture candidate coeffs light rotation mesh; do
+for h in exr fixture candidate coeffs light rotation mesh merge; do
     bin="$BUILD/fuzz/replay_$h"
     if [ ! -x "$bin" ]; then notok "replay $h: $bin not built"; continue; fi
     cnt=$(find "tests/fuzz/corpus/$h" -type f | wc -l)

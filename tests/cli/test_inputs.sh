@@ -63,5 +63,5 @@ within2 "render --png over its --probe (link)" render --scene bowl --res 4 --pro
 [ "$(cksum <"$TMP/p.exr")" = "$sum1" ] && ok "the probe is untouched" || notok "the probe was changed"
 [ ! -e "$TMP/x.exr" ] && ok "no other output written" || notok "an output was written although the run was refused"
 within2 "reconstruct --out over its --in" reconstruct --order 2 --in "$TMP/c.json" --out "$TMP/c.json"
-within2 "cache --png over its --probe" cache --scene bowl --res 4 --probe "$TMP/p.exr" --rays 16 --quiet --png "$TMP/p.exr"
+within2 "cache --png over its --probe" cache --scene bowl --res 4 --probe "$TMP/p.exr" --quiet --png "$TMP/p.exr"
 ls "$TMP" | grep -q '\.tmp\.' && notok "temporary files left: $(ls "$TMP" | grep '\.tmp\.')" || ok "no temporary file left"

@@ -85,7 +85,7 @@ expect_success "render replaces the files on success" $R --out "$TMP/k/a.exr" --
 [ "$(head -c 4 "$TMP/k/a.exr" | od -An -tx1 | tr -d ' ')" = 762f3101 ] && head -c 8 "$TMP/k/a.png" | od -An -c | grep -q 'P   N   G' \
     && no_tmp "$TMP/k" && ok "a.exr and a.png replaced, no temporary" || notok "a.exr/a.png not replaced"
 printf 'keep me' >"$TMP/k/c.png"
-"$SHLAB" cache --scene sphere-plane --res 2 --light green --order 3 --env-samples 64 --rays 4 --repeat 1 --methods zxzxz --png "$TMP/k/c.png" --width 16 --height 12 --quiet >/dev/full 2>"$TMP/err"; rc=$?
+"$SHLAB" cache --scene sphere-plane --res 2 --light green --order 3 --env-samples 64 --repeat 1 --methods zxzxz --png "$TMP/k/c.png" --width 16 --height 12 --quiet >/dev/full 2>"$TMP/err"; rc=$?
 [ "$rc" = 2 ] && [ "$(cat "$TMP/k/c.png")" = "keep me" ] && no_tmp "$TMP/k" && ok "cache > /dev/full keeps its picture" || notok "cache > /dev/full: exit $rc, $(cat "$TMP/err")"
 printf 'keep me' >"$TMP/k/s.png"
 "$SHLAB" shadow-field --res 2 --light green --order 3 --samples 0 --rays 16 --png "$TMP/k/s.png" --width 16 --height 12 --quiet >/dev/full 2>"$TMP/err"; rc=$?

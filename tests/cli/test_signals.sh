@@ -20,7 +20,7 @@
 RUNS=${SIGNAL_RUNS:-100}
 D="$TMP/sig"
 mkdir -p "$D"
-RENDER="render --scene sphere-plane --res 12 --light cie-clear:0.5,0.3 --rays 512 --order 5 --width 320 --height 240 --ref-samples 8192 --quiet --format json"
+RENDER="render --scene sphere-plane --res 12 --light cie-clear:0.5,0.3 --rays 512 --order 5 --width 320 --height 240 --quiet --format json"
 PLAN="scene-plan --scene sphere-plane --res 6 --light cie-clear:0.5,0.3 --budget 0.05 --vertices 60 --ref-samples 4096 --quiet --format json"
 
 # running time of each command, to spread the signals over it

@@ -6,7 +6,7 @@ set -eu
 cd "$(dirname "$0")/../.."
 B=${1:-build}
 C=tests/fuzz/corpus
-mkdir -p $C/exr $C/fixture $C/candidate $C/coeffs $C/light $C/rotation $C/mesh
+mkdir -p $C/exr $C/fixture $C/candidate $C/coeffs $C/light $C/rotation $C/mesh $C/merge
 
 # exr: written by OpenEXR's C++ library
 make -s "$B/tests/exr_writer.o"
@@ -99,4 +99,45 @@ fi
 # a frame: one triangle (0,0,0) (1,0,0) (0,1,0), no normals (mesh_internal.h)
 perl -e 'print "SHMESH\x01\n", pack("L l q q l l l L", 1, 0, 3, 1, 0, 1, 0, 0),
          pack("d9", 0, 0, 0, 1, 0, 0, 0, 1, 0), pack("l3", 0, 1, 2), "SHMESH-E", pack("Q", 84)' >$C/mesh/frame-triangle
+# merge: shard files written by the sweeps' --shard (small sweeps), the files
+# of one input separated by the byte 0x1e (see fuzz_merge.c); then damaged
+# variants, each of which merge must refuse in one line
+make -s "$B/shlab"
+M=$C/merge
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+join_files() { out=$1; shift; first=1; for f in "$@"; do [ $first = 1 ] || printf '\036'; cat "$f"; first=0; done > "$out"; }
+for i in 0 1; do
+    "$B/shlab" stability --method zxzxz --lmax 6 --ref-max 2 --shard $i/2 > "$T/stab$i" 2>/dev/null
+    "$B/shlab" taylor-error --order 4 --taylor 1.5 --beta-max 30 --steps 5 --degrees --format csv --shard $i/2 > "$T/te$i" 2>/dev/null
+    "$B/shlab" scale-interp --order 3 --family midrange --samples 4 --spacing uniform --kmin -0.5 --kmax 0.6 --dense 6 \
+        --interp cubic --format json --shard $i/2 > "$T/si$i" 2>/dev/null
+    "$B/shlab" plan --order 2 --max-beta 6 --degrees --quiet --tolerance 1e-3 --shard $i/2 > "$T/pl$i" 2>/dev/null
+done
+for i in 0 1 2; do
+    "$B/shlab" stability --method ivanic --bands 2,5,9,14,16,18 --ref-max -1 --stop-above 3e-15 --shard $i/3 > "$T/stop$i" 2>/dev/null
+done
+"$B/shlab" taylor-error --order 3 --taylor 2 --beta 0.5 --shard 0/1 > "$T/one" 2>/dev/null
+join_files $M/stability "$T/stab0" "$T/stab1"
+join_files $M/stability_reversed "$T/stab1" "$T/stab0"
+join_files $M/taylor_error "$T/te0" "$T/te1"
+join_files $M/scale_interp "$T/si1" "$T/si0"
+join_files $M/plan "$T/pl0" "$T/pl1"
+join_files $M/stopped "$T/stop0" "$T/stop1" "$T/stop2"
+cp "$T/one" $M/one_shard
+# damaged rows and lines (the issue's list, and their neighbours)
+sed 's/"band":3/"band":5/' "$T/stab0" > "$T/x"; join_files $M/bad_band_relabelled "$T/x" "$T/stab1"
+sed 's/"orth":\([-0-9.e]*\),"orth_exact":true,"hom":\([-0-9.e]*\),"ref":null/"orth":"x","orth_exact":true,"hom":\2,"ref":null/' "$T/stab0" > "$T/x"
+join_files $M/bad_orth_string "$T/x" "$T/stab1"
+sed 's/,"hom":[-0-9.e]*//' "$T/stab1" > "$T/x"; join_files $M/bad_missing_field "$T/stab0" "$T/x"
+sed 's/"broken":false}}/"broken":false,"extra":1}}/' "$T/stab1" > "$T/x"; join_files $M/bad_extra_field "$T/stab0" "$T/x"
+perl -pe 's/\}\}$/}}\0junk/ if $. == 2' "$T/stab0" > "$T/x"; join_files $M/bad_nul_in_line "$T/x" "$T/stab1"
+sed 's/{"end":{"rows":[0-9]*,"stopped":false}}/{"end":{}}/' "$T/te0" > "$T/x"; join_files $M/bad_end_empty "$T/x" "$T/te1"
+sed 's/"k":\([-0-9]*\)\.[0-9]*/"k":\1/' "$T/si0" > "$T/x"; join_files $M/bad_integer_for_real "$T/x" "$T/si1"
+sed 's/"item":1,/"item":99,/' "$T/te1" > "$T/x"; join_files $M/bad_item_range "$T/te0" "$T/x"
+sed 's/"beta":0.0,/"beta":0.0,"beta":1.0,/' "$T/te0" > "$T/x"; join_files $M/bad_duplicate_key "$T/x" "$T/te1"
+sed 's/"errors":\[[-0-9.e]*,/"errors":[/' "$T/pl1" > "$T/x"; join_files $M/bad_errors_short "$T/pl0" "$T/x"
+sed 's/"lmax":6/"lmax":"6"/' "$T/stab0" > "$T/x"; sed 's/"lmax":6/"lmax":"6"/' "$T/stab1" > "$T/y"; join_files $M/bad_params_type "$T/x" "$T/y"
+{ cat "$T/te0"; echo '{"end":{"rows":0,"stopped":false}}'; } > "$T/x"; join_files $M/bad_text_after_end "$T/x" "$T/te1"
+head -1 "$T/stab0" > $M/bad_header_only
+printf '{"shlab_shard":{"command":"stability"}}\n' > $M/bad_header_fields
 echo "make_seeds: $(find $C -type f | wc -l) files in $C"
