@@ -91,7 +91,6 @@ int main(int argc, char **argv)
             fprintf(f, "%d %s %llu %llu %ld\n", n, sh_rot_method_name(M[k]), (unsigned long long)s[k],
                     (unsigned long long)a[k], paper);
         }
-        if ((long)a[0] != nnz) nnz_ok = 0;
         zx_diff[n] = (long)a[1] - zx;
         if (n == 5) zx5 = (long)a[1];
         half[n] = (double)a[1] / (double)nnz;

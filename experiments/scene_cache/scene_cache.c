@@ -382,7 +382,7 @@ static void run_scene(const char *label, sh_mesh *m, sh_env *env, const double v
             for (int v = 0; v < nv; v++) yt[v] = fabs(yt[v] - yd[v]) / sqrt(r2 / nv);
             exp_check(sh_render(s, &cam, 1, yt, NULL, 0, &e), "render");
             exp_check(sh_image_colormap(&e, 0.1, &cm), "colormap");
-            snprintf(nm, sizeof nm, "%s_error.png", label);
+            snprintf(nm, sizeof nm, "%s_errormap.png", label); /* scene_cache.gp: + colour bar = _error.png */
             write_png(nm, &cm, 1);
             sh_image_free(&e);
             sh_image_free(&cm);
@@ -407,7 +407,7 @@ static void run_scene(const char *label, sh_mesh *m, sh_env *env, const double v
                 display_diff(s, &cam, nv, B, Bx, expg, &res->frac_phong[t], &res->p99_phong[t], t == 1 ? &dimg : NULL);
                 if (t == 1) {
                     exp_check(sh_image_colormap(&dimg, 0.02, &cm), "colormap");
-                    snprintf(nm, sizeof nm, "%s_phong_rotdiff.png", label);
+                    snprintf(nm, sizeof nm, "%s_phong_rotdiffmap.png", label); /* + colour bar: _phong_rotdiff.png */
                     write_png(nm, &cm, 1);
                     sh_image_free(&cm);
                     sh_image_free(&dimg);

@@ -140,7 +140,8 @@ static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_en
     snprintf(p, sizeof p, "%s/%s_sh.exr", exp_outdir(), tag);
     exp_check(sh_exr_write(p, &b), p);
     exp_check(sh_image_colormap(&e, 0.1, &cm), "colormap");
-    snprintf(p, sizeof p, "%s/%s_error.png", exp_outdir(), tag);
+    /* the picture as data: scene_shading.gp adds its colour bar (_error.png) */
+    snprintf(p, sizeof p, "%s/%s_errormap.png", exp_outdir(), tag);
     exp_check(sh_png_write(p, &cm, 1), p);
     exp_index("| ![reference](%s_reference.png) | ![SH order %d](%s_sh.png) | ![error](%s_error.png) |\n|---|---|---|\n"
               "| reference (direct integration; %d blocks × 2 replications, ref_l2 %.2f %%) | SH, order %d, shadowed "

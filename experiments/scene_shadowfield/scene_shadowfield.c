@@ -384,7 +384,7 @@ static void study(sh_env **envs, char names[][64], int ne, int have_probes, cons
         exp_check(sh_png_write(p, &a, expo), p);
         snprintf(p, sizeof p, "%s/sf_closed.png", exp_outdir());
         exp_check(sh_png_write(p, &b2, expo), p);
-        snprintf(p, sizeof p, "%s/sf_error.png", exp_outdir());
+        snprintf(p, sizeof p, "%s/sf_errormap.png", exp_outdir()); /* scene_shadowfield.gp: + colour bar = sf_error.png */
         exp_check(sh_png_write(p, &cm, 1), p);
         sh_image_free(&a); sh_image_free(&b2); sh_image_free(&e); sh_image_free(&cm);
         free(T); free(Tf); free(Tc); free(col); free(Y); free(Yc); free(Bv); free(colc);
