@@ -62,13 +62,17 @@ if [ "${ASSEMBLE_ONLY:-0}" != 1 ]; then
         mkdir -p "$out"
         echo "== experiment $name" >&2
         start=$(date +%s)
+        stamp=$(mktemp)
         if ! "$BUILD/experiments/$name" "$out"; then
             echo "experiment $name FAILED" >&2
             failed="$failed $name"
+            rm -f "$stamp"
             continue
         fi
-        # the machine of this run's timings (timing.md names it per section)
-        if [ -d "$out/timing" ]; then
+        # the machine of this run's timings (timing.md names it per section),
+        # when this run rewrote the timing part (a part it could not compute,
+        # e.g. without an input, is left as committed)
+        if [ -n "$(find "$out/timing" -maxdepth 1 -name index.md -newer "$stamp" 2>/dev/null)" ]; then
             cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
             cc_version=$(${CC:-cc} --version 2>/dev/null | head -1)
             printf '%s, code revision `%s`, %s, %s, %s cores, load average %s, compiled by %s (-O2)\n' \
@@ -76,6 +80,7 @@ if [ "${ASSEMBLE_ONLY:-0}" != 1 ]; then
                 "$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown)" \
                 "${cc_version:-an unknown compiler}" > "$out/timing/machine.txt"
         fi
+        rm -f "$stamp"
         render "$name"
         echo "   $name done in $(( $(date +%s) - start )) s" >&2
     done
