@@ -70,9 +70,9 @@ if [ "${ASSEMBLE_ONLY:-0}" != 1 ]; then
             continue
         fi
         # the machine of this run's timings (timing.md names it per section),
-        # when this run rewrote the timing part (a part it could not compute,
-        # e.g. without an input, is left as committed)
-        if [ -n "$(find "$out/timing" -maxdepth 1 -name index.md -newer "$stamp" 2>/dev/null)" ]; then
+        # when this run measured them (wrote timing data; a part it could not
+        # measure, e.g. without an input, keeps its earlier data and machine)
+        if [ -n "$(find "$out/timing" -maxdepth 1 -name '*.dat' -newer "$stamp" 2>/dev/null)" ]; then
             cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
             cc_version=$(${CC:-cc} --version 2>/dev/null | head -1)
             printf '%s, code revision `%s`, %s, %s, %s cores, load average %s, compiled by %s (-O2)\n' \
@@ -105,7 +105,7 @@ parts() {
 summary() {
     ledger=$1; shift
     awk -F'\t' -v verdicts="$*" '
-        FNR == NR { if ($0 !~ /^#/ && NF) order[++nw] = $1; next }
+        FNR == NR { if ($0 !~ /^#/ && NF) { order[++nw] = $1; known[$1] = 1 } next }
         FNR == 1 { next }
         {
             w = $2; i = index(w, ", "); if (i) w = substr(w, 1, i - 1)
@@ -114,7 +114,6 @@ summary() {
         }
         BEGIN { nv = split(verdicts, v, " ") }
         END {
-            for (k = 1; k <= nw; k++) known[order[k]] = 1
             printf "| source |"; for (j = 1; j <= nv; j++) printf " %s |", v[j]; print " total |"
             printf "|---|"; for (j = 1; j <= nv; j++) printf "---|"; print "---|"
             for (k = 1; k <= nw + ne; k++) {
@@ -198,8 +197,12 @@ header='claim_id\tsource\tstatement\tprinted\tmeasured\ttolerance\tverdict\tevid
     echo "in the headers of its data files), the others are assembled as committed. Times are"
     echo "interleaved in one process and ratios are paired (median of per-round ratios,"
     echo "\`sh_bench_interleaved\`); a run that breaks the noise criterion (README, \"Rotation speed\")"
-    echo "publishes its speed claims as \"not-measured\". The speed claims are in"
-    echo "[claims_timing.tsv](claims_timing.tsv):"
+    echo "publishes its speed claims as \"not-measured\"."
+    echo
+    echo "## Claims by source"
+    echo
+    echo "The speed claims of [claims_timing.tsv](claims_timing.tsv) counted per source and verdict (as"
+    echo "in index.md):"
     echo
     summary reports/claims_timing.tsv reproduced differs inconclusive not-measured not-applicable
     echo
