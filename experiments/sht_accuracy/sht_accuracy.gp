@@ -6,8 +6,8 @@ f = outdir.'/sht_accuracy.dat'
 fp = outdir.'/peers/sht_accuracy_peers.dat'
 have_peers = system('test -f '.fp.' && echo 1 || echo 0') + 0
 set logscale xy
-set xrange [24:2600]
-set xtics (32, 64, 128, 256, 512, 1024, 2047)
+set xrange [24:5200]
+set xtics (32, 64, 128, 256, 512, 1024, 2047, 4096)
 eval logy(1e-16, 1e-10)
 set xlabel "lmax L (Gauss grid of L+1 rings × 2L+2 points)"
 set key outside below center horizontal maxcols 2 Left reverse samplen 3 spacing 1.1 width -2
