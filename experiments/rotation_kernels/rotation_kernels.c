@@ -364,8 +364,8 @@ int main(int argc, char **argv)
                 }
             }
             const char *v4 = exp_sides_verdict(s, k);
-            snprintf(why, sizeof why, "below 2 for %s: the old path runs today's loop kernels, reworked for ivanic and "
-                     "blanco too (index.md#rotation_kernels).", low);
+            snprintf(why, sizeof why, "below 2 for %s: the old path runs today's (reworked) loop "
+                     "kernels (index.md#rotation_kernels).", low);
             exp_claim("kernels-double-2x-instructions", "shlab goal",
                       "double, n = 6 and 10: zxzxz, ivanic and blanco from a matrix each execute >= 2x fewer "
                       "instructions than their old path (angles, loop kernels)",
@@ -537,8 +537,8 @@ int main(int argc, char **argv)
             }
         }
         const char *v4 = noisy ? notm : exp_sides_verdict(s, k);
-        snprintf(wy, sizeof wy, "below 2 for %s: the old path runs today's loop kernels, reworked for ivanic and "
-                 "blanco too (index.md#rotation_kernels).", low);
+        snprintf(wy, sizeof wy, "below 2 for %s: the old path runs today's (reworked) loop "
+                 "kernels (index.md#rotation_kernels).", low);
         exp_claim("kernels-double-2x", "shlab goal",
                   "double, n = 6 and 10: zxzxz, ivanic and blanco from a matrix each >= 2x faster than their old path "
                   "(angles, loop kernels) in the same run", ">= 2", noisy ? NOISY_MEAS : buf,
