@@ -193,6 +193,14 @@ const char *exp_evidence(char *buf, size_t n, const char *files, const char *ver
     return buf;
 }
 
+void exp_claim_judged(const char *id, const char *source, const char *statement, const char *printed,
+                      const char *measured, const char *tolerance, int ok, const char *files, const char *why)
+{
+    char ev[1024];
+    const char *v = ok ? "reproduced" : "differs";
+    exp_claim(id, source, statement, printed, measured, tolerance, v, exp_evidence(ev, sizeof ev, files, v, why));
+}
+
 exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi)
 {
     const double a = fmin(r->q1, r->median * (1 - EXP_RUN_TO_RUN));

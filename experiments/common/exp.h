@@ -73,6 +73,10 @@ void exp_claim(const char *id, const char *source, const char *statement, const 
  * for the speed verdicts not-measured (a noisy run) and inconclusive (the
  * ratio straddles the tolerance) a fixed one.  Returns buf. */
 const char *exp_evidence(char *buf, size_t n, const char *files, const char *verdict, const char *why);
+/* exp_claim of a claim judged by one test: verdict reproduced (evidence:
+ * files) when ok, else differs (evidence: files; why: why). */
+void exp_claim_judged(const char *id, const char *source, const char *statement, const char *printed,
+                      const char *measured, const char *tolerance, int ok, const char *files, const char *why);
 /* Speed claims (timing part).  The uncertainty of a paired ratio is its
  * quartiles over the rounds widened by ±EXP_RUN_TO_RUN, the spread of
  * paired ratios between repeated runs on a quiet machine (README, "Rotation

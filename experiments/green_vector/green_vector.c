@@ -115,12 +115,11 @@ int main(int argc, char **argv)
                  flipped ? "; matches with the opposite sign" : "");
         snprintf(tol, sizeof tol, "3 sd + 5e-6 = %.2e", 3.0 * sd[i] + 5e-6);
         snprintf(st, sizeof st, "coefficient y_%d^%d of the Figure 7 light, 10,000 jittered samples", l, m);
-        exp_claim(id, "Green 2003, SH Projection", st, pr, meas, tol, ok ? "reproduced" : "differs",
-                  ok ? "green_vector/green_vector.dat"
-                  : flipped ? "green_vector/green_vector.dat; why: the printed value is the exact one with the "
-                              "opposite sign (within the tolerance once negated)."
-                            : "green_vector/green_vector.dat; why: the printed value lies outside 3 sd of Green's "
-                              "estimator around the exact coefficient.");
+        exp_claim_judged(id, "Green 2003, SH Projection", st, pr, meas, tol, ok, "green_vector/green_vector.dat",
+                         flipped ? "the printed value is the exact one with the opposite sign (within the tolerance "
+                                   "once negated)."
+                                 : "the printed value lies outside 3 sd of Green's estimator around the exact "
+                                   "coefficient.");
     }
     fclose(f);
 
@@ -128,12 +127,11 @@ int main(int argc, char **argv)
     snprintf(meas, sizeof meas, "c_0 = %.5f with the -3 inside the second max; %.5f as OCR'd (-3 outside)",
              exact[0], alt[0]);
     const int formula_ok = fabs(alt[0] - printed[0]) < 0.01;
-    exp_claim("green-fig7-formula", "Green 2003, SH Projection",
-              "Figure 7's light = max(0,5cos t-4) + max(0,-4 sin(t-pi) cos(p-2.5)) - 3 (as OCR'd)", "0.39925 (c_0)",
-              meas, "|c_0 − printed| < 0.01", formula_ok ? "reproduced" : "differs",
-              formula_ok ? "green_vector/green_vector.dat"
-                         : "green_vector/green_vector.dat; why: with the −3 outside the second max c_0 is far "
-                           "from the printed value; only the −3 inside the max reproduces it.");
+    exp_claim_judged("green-fig7-formula", "Green 2003, SH Projection",
+                     "Figure 7's light = max(0,5cos t-4) + max(0,-4 sin(t-pi) cos(p-2.5)) - 3 (as OCR'd)", "0.39925 (c_0)",
+                     meas, "|c_0 − printed| < 0.01", formula_ok,
+                     "green_vector/green_vector.dat",
+                     "with the −3 outside the second max c_0 is far from the printed value; only the −3 inside the max reproduces it.");
 
     /* Green, "Orthogonal Basis Functions": "a triangular grid of functions
      * per band, giving us a total of n(n+1) coefficients for an n band
@@ -146,12 +144,11 @@ int main(int argc, char **argv)
         char pr[64], me[96];
         snprintf(pr, sizeof pr, "n(n+1) = %d for n = %d", nb * (nb + 1), nb);
         snprintf(me, sizeof me, "%d = n(n+1)/2 (counted: 0 <= m <= l < n)", count);
-        exp_claim("green-legendre-count", "Green 2003, Orthogonal Basis Functions",
-                  "the triangular grid of associated Legendre functions of an n-band approximation has n(n+1) entries",
-                  pr, me, "exact", count == nb * (nb + 1) ? "reproduced" : "differs",
-                  count == nb * (nb + 1) ? "green_vector/green_vector.c"
-                  : "green_vector/green_vector.c; why: band l holds l + 1 functions P_l^m (0 ≤ m ≤ l), so n bands "
-                    "hold n(n+1)/2, half the printed count.");
+        exp_claim_judged("green-legendre-count", "Green 2003, Orthogonal Basis Functions",
+                         "the triangular grid of associated Legendre functions of an n-band approximation has n(n+1) entries",
+                         pr, me, "exact", count == nb * (nb + 1),
+                         "green_vector/green_vector.c",
+                         "band l holds l + 1 functions P_l^m (0 ≤ m ≤ l), so n bands hold n(n+1)/2, half the printed count.");
     }
     exp_index("![Green's example vector](green_vector.png)\n\n"
               "Green's Figure 7 light projected onto 4 bands: the 15 numbers the paper prints, the exact "

@@ -80,11 +80,10 @@ int main(int argc, char **argv)
     char meas[200];
     snprintf(meas, sizeof meas, "error slope: random %.2f, stratified %.2f (Green's light)", slope[0][0], slope[0][1]);
     const int strat_ok = slope[0][1] < slope[0][0];
-    exp_claim("green-stratified-variance", "Green 2003, Monte Carlo Integration",
-              "jittered stratified sampling never has higher variance than plain random sampling, often much lower",
-              "-", meas, "stratified error falls faster than random (fitted slope)", strat_ok ? "reproduced" : "differs",
-              strat_ok ? "projection_convergence/projection_convergence.dat"
-                       : "projection_convergence/projection_convergence.dat; why: the stratified error does not fall "
-                         "faster than the random one on Green's light.");
+    exp_claim_judged("green-stratified-variance", "Green 2003, Monte Carlo Integration",
+                     "jittered stratified sampling never has higher variance than plain random sampling, often much lower",
+                     "-", meas, "stratified error falls faster than random (fitted slope)", strat_ok,
+                     "projection_convergence/projection_convergence.dat",
+                     "the stratified error does not fall faster than the random one on Green's light.");
     return 0;
 }

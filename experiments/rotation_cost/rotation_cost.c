@@ -115,42 +115,38 @@ int main(int argc, char **argv)
     char m1[192], m2[256], m3[128];
     snprintf(m1, sizeof m1, "non-zero entries (|entry| > 1e-14) of the rotation (α,β,γ) = (0.7, 1.1, −0.4): %s for "
              "n = 2..16 (every entry of the band blocks)", nnz_ok ? "n(4n²−1)/3" : "not n(4n²−1)/3");
-    exp_claim("krivanek-sec31-nnz", "Křivánek et al. 2005, Sec. 3.1",
-              "a general SH rotation matrix of order n has n(4n^2-1)/3 non-zeros", "n(4n^2-1)/3", m1, "exact",
-              nnz_ok ? "reproduced" : "differs",
-              nnz_ok ? "rotation_cost/cost.dat (the count: rotation_cost.c)"
-                     : "rotation_cost.c; why: an entry of a band block of a general rotation vanishes, or the count "
-                       "is off Σ(2l+1)².");
+    exp_claim_judged("krivanek-sec31-nnz", "Křivánek et al. 2005, Sec. 3.1",
+                     "a general SH rotation matrix of order n has n(4n^2-1)/3 non-zeros", "n(4n^2-1)/3", m1, "exact",
+                     nnz_ok, "rotation_cost/cost.dat (the count: rotation_cost.c)",
+                     "an entry of a band block of a general rotation vanishes, or the count is off Σ(2l+1)².");
     snprintf(m2, sizeof m2, "loop kernels: apply = formula %s for n = 2..16, set 6(n−2) (multiple angles of α, β, γ); "
              "unrolled (n ≤ 10): apply + %ld (n=6), + %ld (n=10), angles included",
              zx_loops_ok ? "exactly" : "not exactly", zx_diff[6], zx_diff[10]);
-    exp_claim("krivanek-sec31-zxzxz-count", "Křivánek et al. 2005, Sec. 3.1",
-              "ZXZXZ costs 3N_Z + 2N_X = n(2n^2+18n-14)/3 multiplications", "n(2n^2+18n-14)/3", m2,
-              "loop apply = formula, set = 6(n−2)", zx_loops_ok ? "reproduced" : "differs",
-              zx_loops_ok ? "rotation_cost/cost.dat"
-                          : "rotation_cost/cost.dat; why: the loop kernels' count departs from n(2n²+18n−14)/3 beyond "
-                            "the multiple angles.");
+    exp_claim_judged("krivanek-sec31-zxzxz-count", "Křivánek et al. 2005, Sec. 3.1",
+                     "ZXZXZ costs 3N_Z + 2N_X = n(2n^2+18n-14)/3 multiplications", "n(2n^2+18n-14)/3", m2,
+                     "loop apply = formula, set = 6(n−2)", zx_loops_ok,
+                     "rotation_cost/cost.dat",
+                     "the loop kernels' count departs from n(2n²+18n−14)/3 beyond the multiple angles.");
     int n_more = 0; /* the largest n at which ZXZXZ costs more than the dense product */
     for (int n = 2; n <= 16; n++)
         if (half[n] > 1) n_more = n;
-    char ev3[256];
-    snprintf(ev3, sizeof ev3,
-             "rotation_cost/cost.dat; why: the ratio tends to 1/2 only as n → ∞ (2n³/3 against 4n³/3); ZXZXZ costs "
-             "more than the matrix-vector product up to n = %d.", n_more);
+    char why3[256];
+    snprintf(why3, sizeof why3,
+             "the ratio tends to 1/2 only as n → ∞ (2n³/3 against 4n³/3); ZXZXZ costs more than the matrix-vector "
+             "product up to n = %d.", n_more);
     snprintf(m3, sizeof m3, "zxzxz / full-matrix apply = %.2f (n=4), %.2f (n=6), %.2f (n=10), %.2f (n=16)",
              half[4], half[6], half[10], half[16]);
-    exp_claim("krivanek-sec31-half", "Křivánek et al. 2005, Sec. 3.1",
-              "ZXZXZ needs only about half the multiplications of transforming by a full rotation matrix",
-              "~0.5", m3, "0.5 +- 0.1 at n = 6 and 10", (half[6] < 0.6 && half[10] < 0.6) ? "reproduced" : "differs",
-              (half[6] < 0.6 && half[10] < 0.6) ? "rotation_cost/cost.dat" : ev3);
+    exp_claim_judged("krivanek-sec31-half", "Křivánek et al. 2005, Sec. 3.1",
+                     "ZXZXZ needs only about half the multiplications of transforming by a full rotation matrix",
+                     "~0.5", m3, "0.5 +- 0.1 at n = 6 and 10", half[6] < 0.6 && half[10] < 0.6, "rotation_cost/cost.dat",
+                     why3);
     char m4[128];
     snprintf(m4, sizeof m4, "%ld counted (zxzxz apply, n = 5); Křivánek's formula n(2n²+18n−14)/3 gives %d", zx5, 5 * (50 + 90 - 14) / 3);
-    char ev4[192];
-    const int g340 = fabs(zx5 - 340.0) <= 0.15 * 340;
-    snprintf(ev4, sizeof ev4, "rotation_cost/cost.dat; why: the sparse ZXZXZ needs %ld multiplications at order 5, "
-             "%.0f %% %s than ~340.", zx5, 100 * fabs(zx5 - 340.0) / 340, zx5 < 340 ? "fewer" : "more");
-    exp_claim("green-rotation-340", "Green 2003, Rotating Spherical Harmonics",
-              "using the sparsity of the Z and X matrices, around 340 multiplies for a 5th order rotation",
-              "~340", m4, "+-15%", g340 ? "reproduced" : "differs", g340 ? "rotation_cost/cost.dat" : ev4);
+    char why4[160];
+    snprintf(why4, sizeof why4, "the sparse ZXZXZ needs %ld multiplications at order 5, %.0f %% %s than ~340.", zx5,
+             100 * fabs(zx5 - 340.0) / 340, zx5 < 340 ? "fewer" : "more");
+    exp_claim_judged("green-rotation-340", "Green 2003, Rotating Spherical Harmonics",
+                     "using the sparsity of the Z and X matrices, around 340 multiplies for a 5th order rotation",
+                     "~340", m4, "+-15%", fabs(zx5 - 340.0) <= 0.15 * 340, "rotation_cost/cost.dat", why4);
     return 0;
 }

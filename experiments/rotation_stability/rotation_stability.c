@@ -293,12 +293,11 @@ int main(int argc, char **argv)
               "generated d(π/2)) stay near l·ε to l = 1000 (and to 4000, below); the direct Wigner sum cancels catastrophically (its terms grow like 4^l).\n",
               table);
     const int lost = ivanic_t2 > 0 && ivanic_t2 <= 200;
-    exp_claim("high-degree-recursions", "Gumerov & Duraiswami 2015",
-              "recursions in l exact to rounding at low degree can lose all accuracy by l ~ 100-200 (also Lessig, de "
-              "Witt & Fiume 2012)",
-              "qualitative", summary_ivanic, "orth > 2.2e-10 by l = 200", lost ? "reproduced" : "differs",
-              lost ? "rotation_stability/ivanic_double.dat (Ivanic-Ruedenberg); Choi's recursion alike (choi_double.dat)"
-                   : "rotation_stability/ivanic_double.dat; why: the Ivanic-Ruedenberg recursion keeps orth below "
-                     "2.2e-10 to l = 200.");
+    exp_claim_judged("high-degree-recursions", "Gumerov & Duraiswami 2015",
+                     "recursions in l exact to rounding at low degree can lose all accuracy by l ~ 100-200 (also "
+                     "Lessig, de Witt & Fiume 2012)",
+                     "qualitative", summary_ivanic, "orth > 2.2e-10 by l = 200", lost,
+                     "rotation_stability/ivanic_double.dat (Ivanic-Ruedenberg); Choi's recursion alike (choi_double.dat)",
+                     "the Ivanic-Ruedenberg recursion keeps orth below 2.2e-10 to l = 200.");
     return 0;
 }

@@ -268,19 +268,17 @@ int main(int argc, char **argv)
 
     char meas[64];
     snprintf(meas, sizeof meas, "%.2e", cf_max);
-    exp_claim("scene-unshadowed-closed-form", "Green 2003, SH Lighting Diffuse Surfaces",
-              "unshadowed transfer (clamped cosine rotated to n) equals an exact hemisphere quadrature", "-", meas, "1e-12",
-              cf_max <= 1e-12 ? "reproduced" : "differs",
-              cf_max <= 1e-12 ? "scene_transfer/index.md"
-                              : "scene_transfer/index.md; why: the closed form and the quadrature differ by more "
-                                "than 1e-12.");
+    exp_claim_judged("scene-unshadowed-closed-form", "Green 2003, SH Lighting Diffuse Surfaces",
+                     "unshadowed transfer (clamped cosine rotated to n) equals an exact hemisphere quadrature", "-", meas, "1e-12",
+                     cf_max <= 1e-12,
+                     "scene_transfer/index.md",
+                     "the closed form and the quadrature differ by more than 1e-12.");
     snprintf(meas, sizeof meas, "%.2e", furnace_dev);
-    exp_claim("scene-furnace", "shlab goal",
-              "energy conservation: interreflected transfer, albedo 1, constant light gives radiance 1 at every bowl "
-              "vertex", "-", meas, "1e-9", furnace_dev <= 1e-9 ? "reproduced" : "differs",
-              furnace_dev <= 1e-9 ? "scene_transfer/index.md"
-                                  : "scene_transfer/index.md; why: the converged radiance departs from 1 by more "
-                                    "than 1e-9.");
+    exp_claim_judged("scene-furnace", "shlab goal",
+                     "energy conservation: interreflected transfer, albedo 1, constant light gives radiance 1 at every bowl "
+                     "vertex", "-", meas, "1e-9", furnace_dev <= 1e-9,
+                     "scene_transfer/index.md",
+                     "the converged radiance departs from 1 by more than 1e-9.");
 
     exp_index("Green's transfer vectors on meshes (`src/scene/`): meshes read by assimp, rays cast by Embree 3, "
               "per-vertex transfer from a jittered grid of 1024 directions mapped to the hemisphere with density "

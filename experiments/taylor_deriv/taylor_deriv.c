@@ -128,12 +128,11 @@ int main(int argc, char **argv)
                      "to three digits.");
     if (nj2 == 4) snprintf(me, sizeof me, "J² matches in all four: %s", j2yes);
     else snprintf(me, sizeof me, "J² matches in %s; not in %s", *j2yes ? j2yes : "none", j2no);
-    exp_claim("krivanek-fig2-J2", "Křivánek et al. 2005, Fig. 2",
-              "second derivative J² of R_Y at 0 for bands 1-3, three significant digits", "Fig. 2 (right)", me,
-              "3 significant digits", nj2 == 4 ? "reproduced" : "differs",
-              nj2 == 4 ? "taylor_deriv/figure2.dat"
-                       : "taylor_deriv/figure2.dat; why: the printed J² differs from the computed one in a convention "
-                         "where it should not depend on the sign.");
+    exp_claim_judged("krivanek-fig2-J2", "Křivánek et al. 2005, Fig. 2",
+                     "second derivative J² of R_Y at 0 for bands 1-3, three significant digits", "Fig. 2 (right)", me,
+                     "3 significant digits", nj2 == 4,
+                     "taylor_deriv/figure2.dat",
+                     "the printed J² differs from the computed one in a convention where it should not depend on the sign.");
 
     /* ---- sparsity and antisymmetry (Sec. 3), orders up to 16 ---------- */
     const int NO = 16, N = NO * NO;
@@ -159,16 +158,17 @@ int main(int argc, char **argv)
              "order 16: largest |J| off the flat sub/super-diagonals %.2g; largest |J²| off the main and ±2 diagonals %.2g; "
              "%ld of %ld J and %ld of %ld J² slots non-zero (zeros at band edges, between m = 0 and -1)",
              off1, off2, nz1, slots1, nz2, slots2);
-    exp_claim("krivanek-sec3-sparsity", "Křivánek et al. 2005, Sec. 3",
-              "J has non-zeros only on the super- and sub-diagonal; J² only on the main diagonal and the diagonals just beyond them",
-              "stated", me, "1e-12", off1 < 1e-12 && off2 < 1e-12 ? "reproduced" : "differs",
-              off1 < 1e-12 && off2 < 1e-12 ? "taylor_deriv (order 16, flat index)"
-              : "taylor_deriv (order 16, flat index); why: an entry off the stated diagonals exceeds 1e-12.");
+    exp_claim_judged("krivanek-sec3-sparsity", "Křivánek et al. 2005, Sec. 3",
+                     "J has non-zeros only on the super- and sub-diagonal; J² only on the main diagonal and the diagonals just beyond them",
+                     "stated", me, "1e-12", off1 < 1e-12 && off2 < 1e-12,
+                     "taylor_deriv (order 16, flat index)",
+                     "an entry off the stated diagonals exceeds 1e-12.");
     snprintf(me, sizeof me, "max|J + Jᵀ| = %.2g, max|J² − (J²)ᵀ| = %.2g (order 16)", asym, sym2);
-    exp_claim("krivanek-sec3-antisymmetric", "Křivánek et al. 2005, Sec. 3",
-              "the first derivative matrix is antisymmetric (citing [Wei04]), so only its sub-diagonal is stored", "stated",
-              me, "1e-14", asym < 1e-14 ? "reproduced" : "differs",
-              asym < 1e-14 ? "taylor_deriv" : "taylor_deriv; why: J + Jᵀ departs from 0 by more than 1e-14.");
+    exp_claim_judged("krivanek-sec3-antisymmetric", "Křivánek et al. 2005, Sec. 3",
+                     "the first derivative matrix is antisymmetric (citing [Wei04]), so only its sub-diagonal is stored", "stated",
+                     me, "1e-14", asym < 1e-14,
+                     "taylor_deriv",
+                     "J + Jᵀ departs from 0 by more than 1e-14.");
 
     /* ---- Appendix A recursion vs the generator, orders to 16, k to 6 -- */
     FILE *fa = exp_data("appendixA.dat", "Appendix A recursion vs generator R_Y(beta) J^k: max|diff| / max|entry|",
@@ -190,12 +190,12 @@ int main(int argc, char **argv)
             }
     fclose(fa);
     snprintf(me, sizeof me, "max |recursion − R_Y J^k| / max|entry| = %.2g over orders 2..16, k 0..6, β ∈ {0, 0.35, 1.2, 2.7}", worst);
-    exp_claim("krivanek-appA-recursion", "Křivánek et al. 2005, App. A",
-              "the k-th derivative of R_Y follows from the Ivanic-Ruedenberg recursion with the product rule (printed "
-              "formulas garbled; derived in rotation_deriv.c)",
-              "algorithm only", me, "1e-12", worst <= 1e-12 ? "reproduced" : "differs",
-              worst <= 1e-12 ? "taylor_deriv/appendixA.dat"
-                             : "taylor_deriv/appendixA.dat; why: the recursion departs from R_Y J^k by more than 1e-12.");
+    exp_claim_judged("krivanek-appA-recursion", "Křivánek et al. 2005, App. A",
+                     "the k-th derivative of R_Y follows from the Ivanic-Ruedenberg recursion with the product rule (printed "
+                     "formulas garbled; derived in rotation_deriv.c)",
+                     "algorithm only", me, "1e-12", worst <= 1e-12,
+                     "taylor_deriv/appendixA.dat",
+                     "the recursion departs from R_Y J^k by more than 1e-12.");
     /* App. A band-1 table: R(1,0,1) = −sin β, R(1,1,0) = sin β: which convention? */
     double b1[3][9];
     exp_check(sh_rot_deriv_recursion(2, 0, 0.4, SH_NOCS, A), "band 1");
@@ -253,14 +253,13 @@ int main(int argc, char **argv)
                  "angles); unrolled kernels: %llu in all; Z alone %llu = 2n(n−1) (+ set %llu)",
                  n, (unsigned long long)l_app[n], paper, (unsigned long long)l_set[n], (unsigned long long)d_app[n],
                  (unsigned long long)z_app[n], (unsigned long long)z_set[n]);
-        exp_claim(n == 6 ? "krivanek-sec31-count-n6" : "krivanek-sec31-count-n10", "Křivánek et al. 2005, Sec. 3.1",
-                  "the approximate rotation costs 2N_Z(n) + N_dY(n) = 9n² − 4n multiplications (N_dY = 5n², N_Z = 2n(n−1), "
-                  "App. C)",
-                  n == 6 ? "9n²−4n = 300" : "9n²−4n = 860", me, "loop apply = 9n²−4n − 5, set = 2 + 4(n−2), n = 3..16",
-                  ok15 ? "reproduced" : "differs",
-                  ok15 ? "taylor_deriv/mults.dat"
-                       : "taylor_deriv/mults.dat; why: the loop kernels' counts depart from 9n²−4n beyond band 0's copy "
-                         "and the per-rotation extras.");
+        exp_claim_judged(n == 6 ? "krivanek-sec31-count-n6" : "krivanek-sec31-count-n10", "Křivánek et al. 2005, Sec. 3.1",
+                         "the approximate rotation costs 2N_Z(n) + N_dY(n) = 9n² − 4n multiplications (N_dY = 5n², N_Z = 2n(n−1), "
+                         "App. C)",
+                         n == 6 ? "9n²−4n = 300" : "9n²−4n = 860", me, "loop apply = 9n²−4n − 5, set = 2 + 4(n−2), n = 3..16",
+                         ok15,
+                         "taylor_deriv/mults.dat",
+                         "the loop kernels' counts depart from 9n²−4n beyond band 0's copy and the per-rotation extras.");
     }
 
     /* ---- the rotation procedure of Sec. 3, literally -------------------- */
