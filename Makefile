@@ -270,6 +270,9 @@ ALL_EXPERIMENTS += scene_cache scene_shadowfield
 # `make report EXPERIMENTS="a b"` runs only these (docs/experiments.md); the
 # report is still assembled from every experiment's fragments.
 EXPERIMENTS ?= $(ALL_EXPERIMENTS)
+ifneq ($(filter-out $(ALL_EXPERIMENTS),$(EXPERIMENTS)),)
+$(error unknown experiment(s): $(filter-out $(ALL_EXPERIMENTS),$(EXPERIMENTS)) (make list-experiments names them))
+endif
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
