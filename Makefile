@@ -7,6 +7,8 @@
 #   make probes     extract Blender's eight CC0 HDR world probes into data/probes/
 #   make models     copy the real test meshes (assimp-testmodels) into data/models/
 #   make report SCENES=full   also the scene experiments' full study (kept parts full/)
+#   make report EXPERIMENTS="a b"   run only these experiments (docs/experiments.md)
+#   make plots [EXPERIMENTS=...]    re-render the plots from the committed data
 #   make install PREFIX=/usr/local
 #   make deps       install missing Debian packages (as root) or print the command
 
@@ -139,7 +141,7 @@ bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
-.PHONY: all deps deps-quiet check report experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
+.PHONY: all deps deps-quiet check report plots list-experiments experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -254,17 +256,23 @@ check: $(GEN_UNROLLED)
 # ---- experiments and report ----------------------------------------------
 # One program per experiment: experiments/<name>/<name>.c → build/experiments/<name>
 # → reports/<name>/*.dat → experiments/<name>/*.gp → reports/<name>/*.png
-EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
+ALL_EXPERIMENTS := legendre_stability green_vector projection_convergence orthonormality cap_closed_form \
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
                rotation_extremes rotation_cost rotation_kernels \
                highband_peers sht_accuracy
 # ---- scenes: experiments of src/scene/ -------------------
-EXPERIMENTS += scene_transfer scene_shading
+ALL_EXPERIMENTS += scene_transfer scene_shading
 # ---- end scenes ---------------------------------------------------------------
 # ---- cache: the radiance cache and shadow fields ----------
-EXPERIMENTS += scene_cache scene_shadowfield
+ALL_EXPERIMENTS += scene_cache scene_shadowfield
 # ---- end cache ----------------------------------------------------------------
+# `make report EXPERIMENTS="a b"` runs only these (docs/experiments.md); the
+# report is still assembled from every experiment's fragments.
+EXPERIMENTS ?= $(ALL_EXPERIMENTS)
+ifneq ($(filter-out $(ALL_EXPERIMENTS),$(EXPERIMENTS)),)
+$(error unknown experiment(s): $(filter-out $(ALL_EXPERIMENTS),$(EXPERIMENTS)) (make list-experiments names them))
+endif
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
 $(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
@@ -284,7 +292,17 @@ experiments: $(EXP_BIN)
 # SCENES=full: the scene experiments' full study too (their kept parts full/;
 # needs `make probes` and `make models`; about an hour on 2 cores).
 report: all $(EXP_BIN)
-	@SCENES=$(SCENES) SHLAB=$(BUILD)/shlab BUILD=$(BUILD) REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
+	@SCENES=$(SCENES) SHLAB=$(BUILD)/shlab BUILD=$(BUILD) ALL_EXPERIMENTS="$(ALL_EXPERIMENTS)" \
+	  REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
+
+# Re-render the PNGs of EXPERIMENTS (default: all) from their committed data
+# with gnuplot alone (no experiment runs), and reassemble the report.
+plots:
+	@ALL_EXPERIMENTS="$(ALL_EXPERIMENTS)" RENDER_ONLY=1 REV=$$(experiments/common/code_rev.sh) \
+	  experiments/run_all.sh $(EXPERIMENTS)
+
+list-experiments:
+	@echo $(ALL_EXPERIMENTS)
 
 # Instructions per rotated vector of every method, counted under valgrind's
 # callgrind (independent of the machine's load; `shlab bench --instructions`).

@@ -142,11 +142,37 @@ static void clean(char *dst, size_t n, const char *s)
     dst[k] = '\0';
 }
 
+/* characters (not bytes) of a UTF-8 string */
+static size_t utf8_chars(const char *s)
+{
+    size_t n = 0;
+    for (; *s; s++) n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
+}
+
 void exp_claim(const char *id, const char *source, const char *statement, const char *printed,
                const char *measured, const char *tolerance, const char *verdict,
                const char *evidence)
 {
+    static const char *const cols[8] = {"claim_id", "source", "statement", "printed", "measured",
+                                        "tolerance", "verdict", "evidence"};
+    static const char *const verdicts[] = {"reproduced", "differs", "not-applicable", "inconclusive", "not-measured"};
     const char *f[8] = {id, source, statement, printed, measured, tolerance, verdict, evidence};
+    /* the ledger's form (exp.h; tests/cli/test_ledger.sh checks the assembled
+     * ledgers): a row that breaks it stops the experiment here, at its source */
+    int known = 0;
+    for (size_t i = 0; i < sizeof verdicts / sizeof *verdicts; i++) known |= verdict && !strcmp(verdict, verdicts[i]);
+    const char *bad = !known ? "verdict not in the vocabulary of exp.h" : NULL;
+    for (int i = 0; i < 8 && !bad; i++)
+        if (!f[i] || !*f[i]) bad = "an empty cell (write \"-\")";
+        else if (utf8_chars(f[i]) > EXP_CELL_MAX) bad = "a cell longer than EXP_CELL_MAX characters";
+    if (!bad && strcmp(verdict, "reproduced") && !strstr(evidence, "why: ")) bad = "no \"why: \" in the evidence";
+    if (bad) {
+        fprintf(stderr, "experiment: claim %s: %s\n", id ? id : "(null)", bad);
+        for (int i = 0; i < 8; i++)
+            fprintf(stderr, "  %s (%zu characters): %s\n", cols[i], f[i] ? utf8_chars(f[i]) : 0, f[i] ? f[i] : "(null)");
+        exit(1);
+    }
     char line[8192] = "", cell[2048];
     for (int i = 0; i < 8; i++) {
         clean(cell, sizeof cell, f[i]);
@@ -154,6 +180,25 @@ void exp_claim(const char *id, const char *source, const char *statement, const 
         strncat(line, i < 7 ? "\t" : "\n", sizeof line - strlen(line) - 1);
     }
     append("claims.tsv", line);
+}
+
+const char *exp_evidence(char *buf, size_t n, const char *files, const char *verdict, const char *why)
+{
+    if (!strcmp(verdict, "reproduced")) why = NULL;
+    else if (!strcmp(verdict, "not-measured"))
+        why = "the run was noisy (the noise criterion of the bench engine), so it gives no verdict.";
+    else if (!strcmp(verdict, "inconclusive"))
+        why = "the ratio's quartiles, widened by the run-to-run spread, straddle a bound of the tolerance.";
+    snprintf(buf, n, "%s%s%s", files, why ? "; why: " : "", why ? why : "");
+    return buf;
+}
+
+void exp_claim_judged(const char *id, const char *source, const char *statement, const char *printed,
+                      const char *measured, const char *tolerance, int ok, const char *files, const char *why)
+{
+    char ev[1024];
+    const char *v = ok ? "reproduced" : "differs";
+    exp_claim(id, source, statement, printed, measured, tolerance, v, exp_evidence(ev, sizeof ev, files, v, why));
 }
 
 exp_side exp_ratio_side(const sh_bench_ratio *r, double lo, double hi)

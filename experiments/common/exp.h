@@ -52,11 +52,31 @@ FILE *exp_data(const char *name, const char *title, const char *columns);
 /* Append a paragraph (printf-style) to OUTDIR/index.md. */
 void exp_index(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Append one claims-ledger row.  verdict: reproduced | differs | not-applicable,
- * and for speed claims (timing part) also not-measured (noisy run) and
- * inconclusive (the ratio's uncertainty straddles the tolerance). */
+ * and for speed claims (timing part) also not-measured (a noisy run) and
+ * inconclusive (the ratio's uncertainty straddles the tolerance).  The form,
+ * checked here (a row that breaks it ends the experiment with a message) and
+ * in the assembled ledgers by tests/cli/test_ledger.sh:
+ *   source     WORK or "WORK, LOCATOR" of experiments/common/sources.tsv
+ *              (e.g. "Křivánek et al. 2005, Sec. 3.1", "shlab goal");
+ *   every cell non-empty ("-" for none) and at most EXP_CELL_MAX characters:
+ *              the detail goes to the report, the cell links its section
+ *              (index.md#NAME);
+ *   evidence   the data file(s); for any verdict but reproduced also
+ *              "why: " and one sentence saying why, consistent with the
+ *              measured cell. */
+#define EXP_CELL_MAX 200
 void exp_claim(const char *id, const char *source, const char *statement, const char *printed,
                const char *measured, const char *tolerance, const char *verdict,
                const char *evidence);
+/* An evidence cell into buf: files, and for any verdict but reproduced
+ * "; why: " and a sentence: for differs and not-applicable the caller's why,
+ * for the speed verdicts not-measured (a noisy run) and inconclusive (the
+ * ratio straddles the tolerance) a fixed one.  Returns buf. */
+const char *exp_evidence(char *buf, size_t n, const char *files, const char *verdict, const char *why);
+/* exp_claim of a claim judged by one test: verdict reproduced (evidence:
+ * files) when ok, else differs (evidence: files; why: why). */
+void exp_claim_judged(const char *id, const char *source, const char *statement, const char *printed,
+                      const char *measured, const char *tolerance, int ok, const char *files, const char *why);
 /* Speed claims (timing part).  The uncertainty of a paired ratio is its
  * quartiles over the rounds widened by ±EXP_RUN_TO_RUN, the spread of
  * paired ratios between repeated runs on a quiet machine (README, "Rotation

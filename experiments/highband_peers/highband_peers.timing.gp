@@ -1,40 +1,35 @@
 # ratios shlab / peer against lmax (timing part), with the goals
 load 'experiments/common/style.gp'
 if (system("test -f ".outdir."/healpix.dat && test -f ".outdir."/sharp.dat && echo y") ne "y") exit
-set terminal pngcairo size 1400,560 enhanced font ",11"
+set terminal pngcairo size 1500,580 enhanced font ",11"
 set output outdir.'/highband_peers_ratios.png'
 h = outdir.'/healpix.dat'
 s = outdir.'/sharp.dat'
-noisy = system("awk '!/^#/ && $4 == 1 { n++ } END { if (n) print \"y\" }' ".outdir."/noise.dat")
-set multiplot layout 1,2 title "time ratio shlab / peer per repetition, interleaved in one process, one thread (median; bars: quartiles)"
-if (noisy eq "y") {
-    set label 99 "NOISY RUN (machine loaded):\nno verdict from these ratios" at graph 0.5, graph 0.6 center tc rgb "#C00000" font ",11" front
-}
+# the NOISY stamp of a panel: from noise.dat, the load while that panel's peer program ran
+noisy(prog) = system(sprintf("awk '!/^#/ && $1 == \"%s\" && $4 == 1 { printf \"NOISY: machine loaded (%%s CPUs)\\nno verdict from these ratios\", $3 }' %s", prog, outdir.'/noise.dat'))
+set multiplot layout 1,2 margins 0.07,0.97,0.28,0.88 spacing 0.08 \
+    title "Time ratio shlab / peer per repetition, interleaved in one process, one thread (median; bars: quartiles)"
+eval stamp(noisy("peer_healpix_bench"))
 set logscale xy
-set grid
 set xlabel "lmax (bands 0..lmax)"
-set ylabel "shlab time / peer time"
-set key left bottom Left reverse samplen 2.5 spacing 1.1 font ",10" box opaque
-set key right top Left reverse samplen 2.5 spacing 1.1 font ",10" box opaque
+set ylabel "shlab time / peer time (ratio)"
+set key outside below center vertical maxrows 3 Left reverse samplen 2.5 spacing 1.1 font ",10"
 set title "all-band rotation vs HEALPix C++ rotate\\_alm"
 set xrange [80:1250]
 set xtics (100, 300, 1000)
 set yrange [0.01:5]
 set ytics (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-set arrow 1 from 80, 0.2 to 1250, 0.2 nohead dt 2 lw 1.5 lc rgb "#E15759"
-set arrow 2 from 80, 0.1 to 1250, 0.1 nohead dt 2 lw 1.5 lc rgb "#4E79A7"
+set arrow 1 from 80, 0.2 to 1250, 0.2 nohead dt 2 lw 1.5 lc rgb ccol(4)
+set arrow 2 from 80, 0.1 to 1250, 0.1 nohead dt 2 lw 1.5 lc rgb ccol(1)
 set arrow 3 from 80, 1 to 1250, 1 nohead lw 1 lc rgb "#888888"
-set label 1 "goal one-shot ≤ 0.2 (lmax 1000)" at 1200, 0.2*1.12 right tc rgb "#E15759" font ",9"
-set label 2 "goal kept ≤ 0.1 (lmax 1000)" at 1200, 0.1*1.12 right tc rgb "#4E79A7" font ",9"
+set label 1 "goal one-shot ≤ 0.2 (lmax 1000)" at 1200, 0.2*1.12 right tc rgb ccol(4) font ",9"
+set label 2 "goal kept ≤ 0.1 (lmax 1000)" at 1200, 0.1*1.12 right tc rgb ccol(1) font ",9"
 set label 3 "same time" at 1150, 1.1 right tc rgb "#666666" font ",9"
-plot h index 0 using ($1*0.97):3:4:5 with yerrorlines lw 1.8 pt 7 lc rgb "#E15759" title "one-shot (create + apply + free)", \
-     h index 1 using 1:3:4:5 with yerrorlines lw 1.8 pt 5 lc rgb "#4E79A7" title "stream kept, one rotation", \
-     h index 2 using ($1*1.03):3:4:5 with yerrorlines lw 1.8 pt 9 lc rgb "#59A14F" title "batch of 8, per rotation"
+plot h index 0 using ($1*0.97):3:4:5 with yerrorlines lw 1.8 pt 7 lc rgb ccol(4) title "one-shot (create + apply + free)", \
+     h index 1 using 1:3:4:5 with yerrorlines lw 1.8 pt 5 lc rgb ccol(1) title "stream kept, one rotation", \
+     h index 2 using ($1*1.03):3:4:5 with yerrorlines lw 1.8 pt 9 lc rgb ccol(3) title "batch of 8, per rotation"
 unset arrow; unset label 1; unset label 2; unset label 3
-set key left bottom
-if (noisy eq "y") {
-    set label 99 at graph 0.5, graph 0.88
-}
+eval stamp(noisy("shlab_bench_peers"))
 set title "transforms vs libsharp (thread CPU clock)"
 set xrange [200:650]
 set xtics (255, 511)
@@ -44,8 +39,8 @@ set arrow 1 from 200, 2 to 650, 2 nohead dt 2 lw 1.5 lc rgb "#C00000"
 set arrow 3 from 200, 1 to 650, 1 nohead lw 1 lc rgb "#888888"
 set label 1 "goal ≤ 2 (Gauss, lmax 511)" at 630, 2*1.08 right tc rgb "#C00000" font ",9"
 set label 3 "same time" at 630, 1.06 right tc rgb "#666666" font ",9"
-plot s index 0 using ($1*0.985):5:6:7 with yerrorlines lw 1.8 pt 7 lc rgb "#F28E2B" title "Gauss grid, 1 map: analysis (map2alm)", \
-     s index 1 using ($1*0.995):5:6:7 with yerrorlines lw 1.8 pt 5 dt 2 lc rgb "#F28E2B" title "Gauss grid, 1 map: synthesis (alm2map)", \
-     s index 2 using ($1*1.005):5:6:7 with yerrorlines lw 1.8 pt 9 lc rgb "#76B7B2" title "lat-long 1024×512, 3 channels: analysis", \
-     s index 3 using ($1*1.015):5:6:7 with yerrorlines lw 1.8 pt 11 dt 2 lc rgb "#76B7B2" title "lat-long 1024×512, 3 channels: synthesis"
+plot s index 0 using ($1*0.985):5:6:7 with yerrorlines lw 1.8 pt 7 lc rgb ccol(2) title "Gauss grid, 1 map: analysis (map2alm)", \
+     s index 1 using ($1*0.995):5:6:7 with yerrorlines lw 1.8 pt 5 dt 2 lc rgb ccol(2) title "Gauss grid, 1 map: synthesis (alm2map)", \
+     s index 2 using ($1*1.005):5:6:7 with yerrorlines lw 1.8 pt 9 lc rgb ccol(6) title "lat-long 1024×512, 3 channels: analysis", \
+     s index 3 using ($1*1.015):5:6:7 with yerrorlines lw 1.8 pt 11 dt 2 lc rgb ccol(6) title "lat-long 1024×512, 3 channels: synthesis"
 unset multiplot

@@ -39,6 +39,10 @@
 #include <gsl/gsl_sf_legendre.h>
 
 #include "exp.h"
+
+/* a convention check's claim: the data, and why when it fails */
+#define CHECKS_DAT "rotation_conventions/checks.dat"
+#define CHECKS_WHY "the documented relation and shlab's computation differ by more than 1e-15."
 /* after shlab.h: complex.h defines the macro I, a parameter name there */
 #include <complex.h>
 
@@ -338,11 +342,11 @@ int main(int argc, char **argv)
         const double e1 = check("google", "band-1 closed form (ClosedFormBands) = shlab cs band 1", mat_dist(M1, b1), 1e-15);
         char meas[128];
         snprintf(meas, sizeof meas, "max |difference| %.1e", e1);
-        exp_claim("conv-google-band1", "google/spherical-harmonics, sh/spherical_harmonics_test.cc (ClosedFormBands)",
-                  "band-1 matrix of the CS-phase SH rotation by R is [[R11,-R12,R10],[-R21,R22,-R20],[R01,-R02,R00]] "
-                  "(so google's rotation = shlab's cs function rotation, same quaternion)",
-                  "formula", meas, "1e-15", e1 <= 1e-15 ? "reproduced" : "differs",
-                  "rotation_conventions/checks.dat");
+        exp_claim_judged("conv-google-band1", "google/spherical-harmonics, sh/spherical_harmonics_test.cc",
+                         "ClosedFormBands: band-1 matrix of the CS-phase SH rotation by R is "
+                         "[[R11,-R12,R10],[-R21,R22,-R20],[R01,-R02,R00]] (so google's rotation = shlab's cs function "
+                         "rotation, same quaternion)",
+                         "formula", meas, "1e-15", e1 <= 1e-15, CHECKS_DAT, CHECKS_WHY);
         /* Z rotation closed form: block[−m][+m] = sin(mα), block[+m][−m] = −sin(mα). */
         sh_rotation rz;
         exp_check(sh_rotation_from_euler(M_PI / 4, 0, 0, &rz), "rz");
@@ -364,9 +368,10 @@ int main(int argc, char **argv)
         }
         check("google", "z-rotation closed form (ClosedFormZAxisRotation), l<=3", ez, 1e-15);
         snprintf(meas, sizeof meas, "max |difference| %.1e", ez);
-        exp_claim("conv-google-zrot", "google/spherical-harmonics, sh/spherical_harmonics_test.cc (ClosedFormZAxisRotation)",
-                  "rotation about z by a: block entries (m,m) = cos(|m|a), (-m,+m) = sin(ma), (+m,-m) = -sin(ma), bands 0..3",
-                  "formula", meas, "1e-15", ez <= 1e-15 ? "reproduced" : "differs", "rotation_conventions/checks.dat");
+        exp_claim_judged("conv-google-zrot", "google/spherical-harmonics, sh/spherical_harmonics_test.cc",
+                         "ClosedFormZAxisRotation: rotation about z by a: block entries (m,m) = cos(|m|a), (-m,+m) = "
+                         "sin(ma), (+m,-m) = -sin(ma), bands 0..3",
+                         "formula", meas, "1e-15", ez <= 1e-15, CHECKS_DAT, CHECKS_WHY);
     }
 
     /* ========================================================== DirectXMath */
@@ -432,19 +437,19 @@ int main(int argc, char **argv)
         const double e_inv = check("shtools", "Rz(-g)Ry(-b)Rz(-a) = R^T (body -> x(-g,-b,-a))", mat_dist(M, Rt), 1e-15);
         char meas[96];
         snprintf(meas, sizeof meas, "max |Rz(-g)Ry(-b)Rz(-a) - R^-1| %.1e", e_inv);
-        exp_claim("conv-shtools-inverse", "SHTOOLS, SHRotateRealCoef documentation",
-                  "the inverse transform of x(alpha,beta,gamma) is x(-gamma,-beta,-alpha) (ZYZ, y convention)",
-                  "identity", meas, "1e-15", e_inv <= 1e-15 ? "reproduced" : "differs", "rotation_conventions/checks.dat");
+        exp_claim_judged("conv-shtools-inverse", "SHTOOLS, SHRotateRealCoef",
+                         "the inverse transform of x(alpha,beta,gamma) is x(-gamma,-beta,-alpha) (ZYZ, y convention)",
+                         "identity", meas, "1e-15", e_inv <= 1e-15, CHECKS_DAT, CHECKS_WHY);
         /* x convention → y convention: α_y = α_x − π/2, β same, γ_y = γ_x + π/2. */
         double Mx[9], My[9];
         euler3(rot_z, 0.7, rot_x, 1.1, rot_z, -0.4, Mx);
         euler3(rot_z, 0.7 - M_PI / 2, rot_y, 1.1, rot_z, -0.4 + M_PI / 2, My);
         const double e_xy = check("shtools", "ZXZ(a,b,g) = ZYZ(a-pi/2, b, g+pi/2) at (0.7,1.1,-0.4)", mat_dist(Mx, My), 1e-15);
         snprintf(meas, sizeof meas, "max |ZXZ - ZYZ| %.1e at (0.7, 1.1, -0.4)", e_xy);
-        exp_claim("conv-shtools-xy", "SHTOOLS, SHRotateRealCoef documentation",
-                  "x-convention angles convert to the y convention by alpha_y = alpha_x - pi/2, beta_y = beta_x, "
-                  "gamma_y = gamma_x + pi/2",
-                  "identity", meas, "1e-15", e_xy <= 1e-15 ? "reproduced" : "differs", "rotation_conventions/checks.dat");
+        exp_claim_judged("conv-shtools-xy", "SHTOOLS, SHRotateRealCoef",
+                         "x-convention angles convert to the y convention by alpha_y = alpha_x - pi/2, beta_y = beta_x, "
+                         "gamma_y = gamma_x + pi/2",
+                         "identity", meas, "1e-15", e_xy <= 1e-15, CHECKS_DAT, CHECKS_WHY);
     }
 
     /* ================================================================= e3nn */
@@ -473,10 +478,10 @@ int main(int argc, char **argv)
                                  mat_dist(perm, BP + sh_rot_block_offset(1)), 1e-15);
         char meas[96];
         snprintf(meas, sizeof meas, "band-1 block of R_sh(P) = permutation to %.1e", e_p);
-        exp_claim("conv-e3nn-l1", "e3nn documentation, Change of Basis guide",
-                  "with the YXY Euler convention the L=1 components are ordered x,y,z instead of the standard y,z,x; "
-                  "for L >= 2 no permutation maps back (a band rotation is needed)",
-                  "statement", meas, "1e-15", e_p <= 1e-15 ? "reproduced" : "differs", "rotation_conventions/checks.dat");
+        exp_claim_judged("conv-e3nn-l1", "e3nn, Change of Basis",
+                         "with the YXY Euler convention the L=1 components are ordered x,y,z instead of the standard "
+                         "y,z,x; for L >= 2 no permutation maps back (a band rotation is needed)",
+                         "statement", meas, "1e-15", e_p <= 1e-15, CHECKS_DAT, CHECKS_WHY);
         /* The coefficients mean what they say, with e3nn's documented basis. */
         double e_f = 0, e_eq = 0;
         gsl_rng_set(pr, SEED + 5);
@@ -566,11 +571,10 @@ int main(int argc, char **argv)
         check("sympy", "S(a,b,g)[J-m',J-m] = (-1)^(m'-m) conj(D_m'm(a,b,g))", e_conj, 1e-15);
         char meas[96];
         snprintf(meas, sizeof meas, "max |difference| %.1e (orders <= 4)", e_conj);
-        exp_claim("conv-sympy-wigner-d", "SphericalFunctions.jl, conventions comparison page 'SymPy'",
-                  "sympy's wigner_d(J,alpha,beta,gamma)[J-m',J-m] = (-1)^(m'-m) conj(D^J_{m'm}(alpha,beta,gamma)) "
-                  "(Wigner's convention), given sympy's documented exp(i alpha Jz) exp(i beta Jy) exp(i gamma Jz)",
-                  "identity", meas, "1e-15", e_conj <= 1e-15 ? "reproduced" : "differs",
-                  "rotation_conventions/checks.dat");
+        exp_claim_judged("conv-sympy-wigner-d", "SphericalFunctions.jl, conventions",
+                         "sympy's wigner_d(J,alpha,beta,gamma)[J-m',J-m] = (-1)^(m'-m) conj(D^J_{m'm}(alpha,beta,gamma)) "
+                         "(Wigner's convention), given sympy's documented exp(i alpha Jz) exp(i beta Jy) exp(i gamma Jz)",
+                         "identity", meas, "1e-15", e_conj <= 1e-15, CHECKS_DAT, CHECKS_WHY);
         /* The complex ↔ real matrix C against GSL's complex Y (CS phase). */
         gsl_rng_set(pr, SEED + 6);
         for (int k = 0; k < NPTS; k++) {

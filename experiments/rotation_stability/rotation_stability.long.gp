@@ -3,19 +3,20 @@
 # the two-probe estimate (dashed, open markers), which runs about 10x below the
 # exact value at the same band: the dotted line marks the change of measure.
 load 'experiments/common/style.gp'
-set terminal pngcairo size 1000,560 enhanced font ",11"
-set logscale xy
-set format y "10^{%T}"
+set terminal pngcairo size 1100,580 enhanced font ",11"
 set xlabel "band l"
-set ylabel "max |R R^T − I| over the rotation set"
-set key top left Left reverse
-set xrange [1:4500]
-set yrange [1e-17:1e-10]
+set ylabel "max |R R^T − I| over the rotation set (absolute)"
+eval key_right
+eval logx(1, 4500)
+set xtics ("1" 1, "10" 10, "100" 100, "500" 500, "1000" 1000, "4000" 4000)
+set format x "%g"
+eval logy(1e-17, 1e-10)
 set output outdir.'/stability_long.png'
 set title "Stable rotation methods to l = 4000, double (0 drawn at 10^{-17})"
 sw = 500
 set arrow 1 from sw, graph 0 to sw, graph 1 nohead dt 3 lw 1.5 lc rgb "#444444"
-set label 1 "exact ← | → two-probe estimate\n(about 10× below exact:\nthe step is not an improvement)" at sw*1.06, 3e-11 font ",9" tc rgb "#444444"
+set label 1 "l = 500: exact ← | → two-probe estimate\n(about 10× below exact:\nthe step is not an improvement)" \
+    at sw*0.94, 1.5e-16 right font ",9" tc rgb "#333333" front boxed
 ms = "halfpi blanco zxzxz"
 plot for [m in ms] outdir.'/'.m.'_double.dat' using ($1+0):($5 == 1 ? ($2>0?$2:1e-17) : 1/0) with linespoints \
         lw 1.5 pt mpt(m) ps 0.6 lc rgb mcol(m) title m, \

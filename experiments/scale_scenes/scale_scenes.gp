@@ -1,34 +1,51 @@
-set terminal pngcairo size 1200,760 enhanced font ",10"
-set logscale y
-set format y "10^{%T}"
-set grid
-set key bottom right font ",8"
-set xlabel "k"
-set ylabel "relative L2 error"
+# scale_scenes.gp — the occluder and mid-range scenes (style: common/style.gp)
+load 'experiments/common/style.gp'
+set terminal pngcairo size 1400,800 enhanced font ",10"
+set xlabel "k = d / r (log scale)"
+set ylabel "relative L2 error |M S_r − E| / |E|"
 
+# One style per (family, preservation); the geometry alone (scaling the exact
+# function, no truncation) dashed in the same colour.  The energy-preserving
+# curves of the two families nearly coincide: different points keep them apart.
 do for [sc in "sphere cone"] {
   set output outdir.'/scale_scenes_'.sc.'.png'
   f = outdir.'/'.sc.'.dat'
-  set multiplot layout 2,2 title (sc eq "sphere" ? "Sphere occluder ρ = r/2: scaled from d = r" : "Cone occluder θ_0 = 45°, non-zonal rim: scaled from d = r")
+  set multiplot layout 2,2 margins 0.06,0.74,0.08,0.9 spacing 0.07,0.11 \
+      title (sc eq "sphere" ? "Sphere occluder ρ = r/2: its occlusion captured at d = r, scaled to d = k r (k: the receiver's distance over the capture distance)" : \
+             "Cone occluder θ_0 = 45°, non-zonal rim: captured at d = r, scaled to d = k r (k: the receiver's distance over the capture distance)") font ",11"
   set logscale x
   set autoscale xfix
   set xtics (0.5, 0.7, 1, 1.4, 2, 2.5)
-  # the sphere's errors stay above 1e-6; the cone's plain geometry is exact (1e-16)
-  set yrange [(sc eq "sphere" ? 1e-6 : 1e-17):10]
+  set format x "%g"
+  # the sphere's errors stay above 1e-6; the cone family's plain geometry is
+  # exact for the cone occluder (~1e-16): said on the panel, not drawn
+  # thirteen decades below the rest
+  if (sc eq "sphere") { eval logy(1e-6, 10) } else { eval logy(1e-3, 20) }
+  conegeom = real(system("awk '!/^#/ && NF && $3 == 1 && $4 == 0 && $6 > m { m = $6 } END { print m + 0 }' ".f))
+  if (sc eq "cone") {
+      set label 8 sprintf("geometry alone, cone family, plain: ≤ %.0e (exact:\nthe rim lies on the cone), below this axis", conegeom) \
+          at graph 0.03, graph 0.08 left font ",8" tc rgb ccol(3) front boxed
+  }
+  unset key
   do for [o=0:3] {
-    if (o == 0) { set key bottom right font ",8" } else { unset key }
     set title sprintf("order %d", 2+2*o)
-    # energy-preserving curves of both families nearly coincide: the linear
-    # one is drawn wide and light under the cone one
-    plot f index o using 1:(($3==0&&$4==1)?$5:1/0) with lines lw 5 lc rgb "#a6d9a0" title "linear energy", \
-         f index o using 1:(($3==0&&$4==0)?$5:1/0) with lines lw 2 lc 1 title "linear plain", \
-         f index o using 1:(($3==1&&$4==0)?$5:1/0) with lines lw 2 lc 3 title "cone plain", \
-         f index o using 1:(($3==1&&$4==1)?$5:1/0) with lines lw 1.5 lc 4 title "cone energy", \
-         f index o using 1:(($3==0&&$4==0)?($6>1e-17?$6:1e-17):1/0) with lines dt 2 lc 1 title "geometry: linear plain", \
-         f index o using 1:(($3==1&&$4==0)?($6>1e-17?$6:1e-17):1/0) with lines dt 2 lc 3 title "geometry: cone plain", \
-         f index o using 1:(($3==1&&$4==1)?$6:1/0) with lines dt 2 lc 4 title "geometry: cone energy"
+    if (o == 3) {
+        set key at screen 0.755, screen 0.9 left top Left reverse samplen 3.5 spacing 1.2 font ",10"
+        set label 7 "The energy-preserving curves of the two\nfamilies nearly coincide, and so do their\ntotal and their geometry alone." \
+            at screen 0.76, screen 0.55 left font ",9" tc rgb "#333333"
+    }
+    plot f index o using 1:(($3==0&&$4==0)?$5:1/0) with linespoints lt 1 dt 1 lw 1.8 ps 0.6 title "linear family, plain", \
+         f index o using 1:(($3==0&&$4==1)?$5:1/0) with linespoints lt 2 dt 1 lw 1.8 ps 0.9 title "linear family, energy-preserving", \
+         f index o using 1:(($3==1&&$4==0)?$5:1/0) with linespoints lt 3 dt 1 lw 1.8 ps 0.6 title "cone family, plain", \
+         f index o using 1:(($3==1&&$4==1)?$5:1/0) with linespoints lt 4 dt 1 lw 1.4 ps 0.6 title "cone family, energy-preserving", \
+         f index o using 1:(($3==0&&$4==0)?($6>1e-17?$6:1e-17):1/0) with lines lt 1 dt 2 lw 1.4 title "geometry alone: linear, plain", \
+         f index o using 1:(($3==1&&$4==0)?($6>1e-17?$6:1e-17):1/0) with lines lt 3 dt 2 lw 1.4 title "geometry alone: cone, plain", \
+         f index o using 1:(($3==1&&$4==1)?$6:1/0) with lines lt 4 dt 2 lw 1.4 title "geometry alone: cone, energy"
+    unset key
   }
   unset multiplot
+  unset label 7
+  unset label 8
   unset logscale x
   set xtics autofreq
 }
@@ -38,6 +55,7 @@ do for [sc in "midrange midrange_tilted"] {
 }
 
 # Reconstructions as lat-long images (96×48 samples at pixel centres):
+unset ytics; set ytics autofreq; unset mytics
 # φ = 360°·(column + ½)/96 to the right, θ = 180°·(row + ½)/48 downwards.
 unset logscale
 unset grid

@@ -140,7 +140,8 @@ static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_en
     snprintf(p, sizeof p, "%s/%s_sh.exr", exp_outdir(), tag);
     exp_check(sh_exr_write(p, &b), p);
     exp_check(sh_image_colormap(&e, 0.1, &cm), "colormap");
-    snprintf(p, sizeof p, "%s/%s_error.png", exp_outdir(), tag);
+    /* the picture as data: scene_shading.gp adds its colour bar (_error.png) */
+    snprintf(p, sizeof p, "%s/%s_errormap.png", exp_outdir(), tag);
     exp_check(sh_png_write(p, &cm, 1), p);
     exp_index("| ![reference](%s_reference.png) | ![SH order %d](%s_sh.png) | ![error](%s_error.png) |\n|---|---|---|\n"
               "| reference (direct integration; %d blocks × 2 replications, ref_l2 %.2f %%) | SH, order %d, shadowed "
@@ -451,8 +452,12 @@ static void study(const config *cf, envrec *envs, int ne, int have_probes, int h
     snprintf(meas, sizeof meas, "min %.1f; %d of %d decisions >= 10", worst_budget, n_adequate, n_decided);
     char id[96];
     snprintf(id, sizeof id, "scene-reference-margin%s", sfx);
-    exp_claim(id, "issue goal", "the reference's own error is >= 10x below the shading error budgets it decides",
-              "10", meas, ">= 10", worst_budget >= 10 ? "reproduced" : "differs", have_probes ? "scene_shading/full/scene_plan.dat" : "scene_shading/scene_plan.dat");
+    char why[160];
+    snprintf(why, sizeof why, "at %d of %d decisions (marked † in the report's table) the reference's own error "
+             "exceeds a tenth of the budget.", n_decided - n_adequate, n_decided);
+    exp_claim_judged(id, "shlab goal", "the reference's own error is >= 10x below the shading error budgets it decides",
+                     "10", meas, ">= 10", worst_budget >= 10,
+                     have_probes ? "scene_shading/full/scene_plan.dat" : "scene_shading/scene_plan.dat", why);
     free(table);
 }
 

@@ -98,22 +98,41 @@ int main(int argc, char **argv)
         }
         strcat(tab, "```\n");
     }
-    char verdicts[512] = "";
+    /* which of the four (convention × function/frame) combinations give the
+     * printed J and J², for the index's paragraph and one claim each */
+    char verdicts[512] = "", jyes[128] = "", jno[128] = "", j2yes[128] = "", j2no[128] = "";
+    int nj2 = 0;
     for (int k = 0; k < 4; k++) {
         char s[128];
         snprintf(s, sizeof s, "%s: J %s, J² %s; ", combo[k], matchJ[k] ? "matches" : "does not match (sign of every entry)",
                  matchJ2[k] ? "matches" : "does not match");
         strcat(verdicts, s);
+        char *jl = matchJ[k] ? jyes : jno, *j2l = matchJ2[k] ? j2yes : j2no;
+        if (*jl) strcat(jl, ", ");
+        strcat(jl, combo[k]);
+        if (*j2l) strcat(j2l, ", ");
+        strcat(j2l, combo[k]);
+        nj2 += matchJ2[k];
     }
-    snprintf(me, sizeof me, "%s", verdicts);
-    exp_claim("krivanek-fig2-J", "Křivánek et al. 2005, Fig. 2 (left)",
-              "first derivative of R_Y at 0 for bands 1-3, three significant digits", "Fig. 2 values", me,
-              "3 significant digits", matchJ[2] && matchJ[1] && !matchJ[0] && !matchJ[3] ? "reproduced" : "differs",
-              "taylor_deriv/figure2.dat; holds for nocs function rotation = cs frame rotation; cs function rotation (shlab default) gives -J");
-    exp_claim("krivanek-fig2-J2", "Křivánek et al. 2005, Fig. 2 (right)",
-              "second derivative of R_Y at 0 for bands 1-3, three significant digits", "Fig. 2 values", me,
-              "3 significant digits", matchJ2[0] && matchJ2[1] && matchJ2[2] && matchJ2[3] ? "reproduced" : "differs",
-              "taylor_deriv/figure2.dat; J² is the same in all four combinations");
+    /* the paper's own convention: the nocs function rotation (Ivanic's basis,
+     * App. A's band-1 table) = the cs frame rotation */
+    const int j_ok = matchJ[2] && matchJ[1] && !matchJ[0] && !matchJ[3];
+    snprintf(me, sizeof me, "J matches in %s; every entry has the opposite sign in %s", *jyes ? jyes : "none",
+             *jno ? jno : "none");
+    exp_claim("krivanek-fig2-J", "Křivánek et al. 2005, Fig. 2",
+              "first derivative J of R_Y at 0 for bands 1-3, three significant digits", "Fig. 2 (left)", me,
+              "3 significant digits", j_ok ? "reproduced" : "differs",
+              j_ok ? "taylor_deriv/figure2.dat: the printed J is the nocs function (= cs frame) rotation's; shlab's "
+                     "default, cs function rotation, gives −J"
+                   : "taylor_deriv/figure2.dat; why: the printed J is not the nocs function (= cs frame) rotation's "
+                     "to three digits.");
+    if (nj2 == 4) snprintf(me, sizeof me, "J² matches in all four: %s", j2yes);
+    else snprintf(me, sizeof me, "J² matches in %s; not in %s", *j2yes ? j2yes : "none", j2no);
+    exp_claim_judged("krivanek-fig2-J2", "Křivánek et al. 2005, Fig. 2",
+                     "second derivative J² of R_Y at 0 for bands 1-3, three significant digits", "Fig. 2 (right)", me,
+                     "3 significant digits", nj2 == 4,
+                     "taylor_deriv/figure2.dat",
+                     "the printed J² differs from the computed one in a convention where it should not depend on the sign.");
 
     /* ---- sparsity and antisymmetry (Sec. 3), orders up to 16 ---------- */
     const int NO = 16, N = NO * NO;
@@ -137,15 +156,19 @@ int main(int argc, char **argv)
         }
     snprintf(me, sizeof me,
              "order 16: largest |J| off the flat sub/super-diagonals %.2g; largest |J²| off the main and ±2 diagonals %.2g; "
-             "non-zero %ld of %ld J slots and %ld of %ld J² slots (zeros at band edges and between m = 0 and m = -1)",
+             "%ld of %ld J and %ld of %ld J² slots non-zero (zeros at band edges, between m = 0 and -1)",
              off1, off2, nz1, slots1, nz2, slots2);
-    exp_claim("krivanek-sec3-sparsity", "Křivánek et al. 2005, Sec. 3",
-              "J has non-zeros only on the super- and sub-diagonal; J² only on the main diagonal and the diagonals just beyond them",
-              "stated", me, "1e-12", off1 < 1e-12 && off2 < 1e-12 ? "reproduced" : "differs", "taylor_deriv (order 16, flat index)");
+    exp_claim_judged("krivanek-sec3-sparsity", "Křivánek et al. 2005, Sec. 3",
+                     "J has non-zeros only on the super- and sub-diagonal; J² only on the main diagonal and the diagonals just beyond them",
+                     "stated", me, "1e-12", off1 < 1e-12 && off2 < 1e-12,
+                     "taylor_deriv (order 16, flat index)",
+                     "an entry off the stated diagonals exceeds 1e-12.");
     snprintf(me, sizeof me, "max|J + Jᵀ| = %.2g, max|J² − (J²)ᵀ| = %.2g (order 16)", asym, sym2);
-    exp_claim("krivanek-sec3-antisymmetric", "Křivánek et al. 2005, Sec. 3 (citing [Wei04])",
-              "the first derivative matrix is antisymmetric, so only its sub-diagonal is stored", "stated", me, "1e-14",
-              asym < 1e-14 ? "reproduced" : "differs", "taylor_deriv");
+    exp_claim_judged("krivanek-sec3-antisymmetric", "Křivánek et al. 2005, Sec. 3",
+                     "the first derivative matrix is antisymmetric (citing [Wei04]), so only its sub-diagonal is stored", "stated",
+                     me, "1e-14", asym < 1e-14,
+                     "taylor_deriv",
+                     "J + Jᵀ departs from 0 by more than 1e-14.");
 
     /* ---- Appendix A recursion vs the generator, orders to 16, k to 6 -- */
     FILE *fa = exp_data("appendixA.dat", "Appendix A recursion vs generator R_Y(beta) J^k: max|diff| / max|entry|",
@@ -167,32 +190,46 @@ int main(int argc, char **argv)
             }
     fclose(fa);
     snprintf(me, sizeof me, "max |recursion − R_Y J^k| / max|entry| = %.2g over orders 2..16, k 0..6, β ∈ {0, 0.35, 1.2, 2.7}", worst);
-    exp_claim("krivanek-appA-recursion", "Křivánek et al. 2005, Appendix A",
-              "the k-th derivative of R_Y follows from the Ivanic-Ruedenberg recursion with the product rule (printed formulas garbled; derived in rotation_deriv.c)",
-              "algorithm only", me, "1e-12", worst <= 1e-12 ? "reproduced" : "differs", "taylor_deriv/appendixA.dat");
+    exp_claim_judged("krivanek-appA-recursion", "Křivánek et al. 2005, App. A",
+                     "the k-th derivative of R_Y follows from the Ivanic-Ruedenberg recursion with the product rule (printed "
+                     "formulas garbled; derived in rotation_deriv.c)",
+                     "algorithm only", me, "1e-12", worst <= 1e-12,
+                     "taylor_deriv/appendixA.dat",
+                     "the recursion departs from R_Y J^k by more than 1e-12.");
     /* App. A band-1 table: R(1,0,1) = −sin β, R(1,1,0) = sin β: which convention? */
     double b1[3][9];
     exp_check(sh_rot_deriv_recursion(2, 0, 0.4, SH_NOCS, A), "band 1");
     memcpy(b1[0], A + 1, 9 * sizeof(double));
     snprintf(me, sizeof me, "nocs function rotation at β = 0.4: R(1,0,1) = %.6f (−sin = %.6f), R(1,1,0) = %.6f; in cs the signs flip",
              b1[0][5], -sin(0.4), b1[0][7]);
-    exp_claim("krivanek-appA-band1", "Křivánek et al. 2005, Appendix A",
+    const int band1_ok = fabs(b1[0][5] + sin(0.4)) < 1e-15 && fabs(b1[0][7] - sin(0.4)) < 1e-15;
+    exp_claim("krivanek-appA-band1", "Křivánek et al. 2005, App. A",
               "band 1 of R_Y: R(1,0,1) = −sin β, R(1,1,0) = sin β, R(1,−1,−1) = 1", "as stated", me, "1e-15",
-              fabs(b1[0][5] + sin(0.4)) < 1e-15 && fabs(b1[0][7] - sin(0.4)) < 1e-15 ? "reproduced" : "differs",
-              "holds in the nocs function rotation (Ivanic's basis) = the cs frame rotation");
+              band1_ok ? "reproduced" : "differs",
+              band1_ok ? "holds in the nocs function rotation (Ivanic's basis) = the cs frame rotation"
+                       : "taylor_deriv; why: the nocs function rotation's band 1 does not have the printed signs.");
 
     /* ---- multiplication counts (Sec. 3.1, Appendix C) ------------------ */
+    /* The paper's count is that of its listing run literally: the loop
+     * kernels (scalar), whose apply does the Z(α), Y and Z(γ) steps per
+     * vector and whose set does the per-rotation extras the paper leaves out
+     * (β²/2 and the multiple angles of α and γ).  The unrolled kernels (the
+     * default to order 10) count everything in the apply and leave out the
+     * products by the zeros of J's sub-diagonal. */
     FILE *fm = exp_data("mults.dat", "multiplications of one apply counted by the kernels' loops",
-                        "n taylor1 taylor1.5 taylor2 z paper_9n2-4n paper_NZ=2n(n-1)");
-    int ok15 = 1, okz = 1;
+                        "n taylor1 taylor1.5 taylor2 z paper_9n2-4n paper_NZ=2n(n-1) taylor1.5_loops_set "
+                        "taylor1.5_loops_apply (default kernels in the first four columns)");
+    int ok15 = 1;
+    uint64_t l_set[17] = {0}, l_app[17] = {0}, d_app[17] = {0}, z_set[17] = {0}, z_app[17] = {0};
     for (int n = 1; n <= 16; n++) {
-        uint64_t cnt[4], setc[4];
-        const sh_rot_method ms[4] = {SH_ROT_TAYLOR1, SH_ROT_TAYLOR15, SH_ROT_TAYLOR2, SH_ROT_Z};
+        uint64_t cnt[5], setc[5];
+        const sh_rot_method ms[5] = {SH_ROT_TAYLOR1, SH_ROT_TAYLOR15, SH_ROT_TAYLOR2, SH_ROT_Z, SH_ROT_TAYLOR15};
         sh_rotation r;
-        for (int q = 0; q < 4; q++) {
+        for (int q = 0; q < 5; q++) {
             sh_rotation_from_euler(0.3, q == 3 ? 0.0 : 0.2, -0.7, &r);
             sh_rot_plan *p;
-            exp_check(sh_rot_plan_create(n, ms[q], SH_PREC_DOUBLE, SH_CS, &p), "plan");
+            exp_check(sh_rot_plan_create_kernel(n, ms[q], SH_PREC_DOUBLE, SH_CS, q == 4 ? SH_KERNEL_SCALAR : SH_KERNEL_AUTO,
+                                                &p), "plan");
             exp_check(sh_rot_plan_set(p, &r), "set");
             double *v = calloc((size_t)n * n, sizeof *v), *o = calloc((size_t)n * n, sizeof *o);
             exp_check(sh_rot_plan_apply(p, v, o), "apply");
@@ -201,23 +238,29 @@ int main(int argc, char **argv)
             free(v), free(o);
         }
         const long paper = 9L * n * n - 4L * n, nz = 2L * n * (n - 1);
-        /* expected, set + apply: paper − 5 (band 0 copied) + 2 (β²/2) + 4(n−2)
-         * multiple angles of α and γ (the last two are done once per rotation, at set) */
-        if ((long)(cnt[1] + setc[1]) != paper - 5 + 2 + (n > 2 ? 4 * (n - 2) : 0) && n >= 3) ok15 = 0;
-        fprintf(fm, "%d %llu %llu %llu %llu %ld %ld\n", n, (unsigned long long)cnt[0], (unsigned long long)cnt[1],
-                (unsigned long long)cnt[2], (unsigned long long)cnt[3], paper, nz);
-        if (n == 6 || n == 10) {
-            snprintf(me, sizeof me, "n = %d: taylor1.5 set %llu + apply %llu (paper 9n²−4n = %ld; the set holds +2 for β²/2 and +%d multiple angles, the apply −5 for band 0 copied); z set %llu + apply %llu (paper 2n(n−1) = %ld, + 2(n−2) multiple angles)",
-                     n, (unsigned long long)setc[1], (unsigned long long)cnt[1], paper, n > 2 ? 4 * (n - 2) : 0,
-                     (unsigned long long)setc[3], (unsigned long long)cnt[3], nz);
-            exp_claim(n == 6 ? "krivanek-sec31-count-n6" : "krivanek-sec31-count-n10", "Křivánek et al. 2005, Sec. 3.1 and App. C",
-                      "the approximate rotation costs 2N_Z(n) + N_dY(n) = 9n² − 4n multiplications (N_dY = 5n², N_Z = 2n(n−1))",
-                      n == 6 ? "9n²−4n = 300" : "9n²−4n = 860", me, "exact up to the stated extras",
-                      ok15 ? "reproduced" : "differs", "taylor_deriv/mults.dat");
-        }
-        (void)okz;
+        /* loop kernels: apply = paper − 5 (band 0 copied, not multiplied by 1),
+         * set = 2 (β²/2) + 4(n−2) (cos, sin of the multiple angles of α and γ) */
+        if (n >= 3 && ((long)cnt[4] != paper - 5 || (long)setc[4] != 2 + 4 * (n - 2))) ok15 = 0;
+        l_set[n] = setc[4], l_app[n] = cnt[4], d_app[n] = cnt[1] + setc[1], z_set[n] = setc[3], z_app[n] = cnt[3];
+        fprintf(fm, "%d %llu %llu %llu %llu %ld %ld %llu %llu\n", n, (unsigned long long)cnt[0], (unsigned long long)cnt[1],
+                (unsigned long long)cnt[2], (unsigned long long)cnt[3], paper, nz, (unsigned long long)setc[4],
+                (unsigned long long)cnt[4]);
     }
     fclose(fm);
+    for (int n = 6; n <= 10; n += 4) {
+        const long paper = 9L * n * n - 4L * n;
+        snprintf(me, sizeof me, "n = %d, loop kernels: apply %llu = %ld − 5 (band 0 copied), set %llu (β²/2, multiple "
+                 "angles); unrolled kernels: %llu in all; Z alone %llu = 2n(n−1) (+ set %llu)",
+                 n, (unsigned long long)l_app[n], paper, (unsigned long long)l_set[n], (unsigned long long)d_app[n],
+                 (unsigned long long)z_app[n], (unsigned long long)z_set[n]);
+        exp_claim_judged(n == 6 ? "krivanek-sec31-count-n6" : "krivanek-sec31-count-n10", "Křivánek et al. 2005, Sec. 3.1",
+                         "the approximate rotation costs 2N_Z(n) + N_dY(n) = 9n² − 4n multiplications (N_dY = 5n², N_Z = 2n(n−1), "
+                         "App. C)",
+                         n == 6 ? "9n²−4n = 300" : "9n²−4n = 860", me, "loop apply = 9n²−4n − 5, set = 2 + 4(n−2), n = 3..16",
+                         ok15,
+                         "taylor_deriv/mults.dat",
+                         "the loop kernels' counts depart from 9n²−4n beyond band 0's copy and the per-rotation extras.");
+    }
 
     /* ---- the rotation procedure of Sec. 3, literally -------------------- */
     /* tables from Fig. 2's J (= the cs frame-rotation J: −J_cs) and diag(J²) */
@@ -255,16 +298,23 @@ int main(int argc, char **argv)
     }
     efun = sqrt(efun / nl), efrm = sqrt(efrm / nl);
     snprintf(me, sizeof me,
-             "order 6, (α,β,γ) = (0.9, 1e-3, −2.1), relative L2 distance of the literal procedure (App. C z rotation, Fig. 2 tables, α first) "
-             "to R_sh(R)Λ: %.2g; to the frame rotation R_sh(R)ᵀΛ: %.2g (the Taylor error at β = 1e-3 is ~1e-6)",
+             "order 6, (α,β,γ) = (0.9, 1e-3, −2.1), the literal steps (App. C, Fig. 2 tables): relative L2 distance "
+             "%.2g to R_sh(R)Λ, %.2g to R_sh(R)ᵀΛ (Taylor error ~1e-6)",
              efun, efrm);
-    exp_claim("krivanek-sec3-procedure", "Křivánek et al. 2005, Sec. 3 steps 1-4 and Appendix C",
-              "rotate by Z(α), then shRotYdiff15 by β, then Z(γ) carries out R = R_Z(α)R_Y(β)R_Z(γ)", "as stated", me, "1e-5",
-              efrm < 1e-5 && efun > 1e-2 ? "differs" : "reproduced",
-              "consistent only as the frame rotation (R_sh(R)ᵀ) in the cs convention: Appendix C's z rotation, Fig. 2's J and the step order all belong to it");
-    exp_claim("krivanek-sec3-code", "Křivánek et al. 2005, Sec. 3 (shRotYdiff15 listing)",
-              "the listed C function computes the 1.5th-order Y rotation", "C listing", "the last statement uses the loop variable i after the for loop that declares it (does not compile as C99/C++); with i = n²−1 it works",
-              "compiles", "differs", "taylor_deriv.c paper_ydiff15");
+    const int frame = efrm < 1e-5 && efun > 1e-2;
+    exp_claim("krivanek-sec3-procedure", "Křivánek et al. 2005, Sec. 3",
+              "steps 1-4: rotate by Z(α), then shRotYdiff15 by β, then Z(γ) carries out R = R_Z(α)R_Y(β)R_Z(γ)", "as stated",
+              me, "1e-5", frame || efun > 1e-5 ? "differs" : "reproduced",
+              frame ? "taylor_deriv; why: App. C's z rotation, Fig. 2's J and the step order carry out the frame rotation "
+                      "R_sh(R)ᵀ in the cs convention, not R."
+              : efun > 1e-5 ? "taylor_deriv; why: the literal steps are off both R_sh(R)Λ and R_sh(R)ᵀΛ by more than 1e-5."
+                            : "taylor_deriv");
+    exp_claim("krivanek-sec3-code", "Křivánek et al. 2005, Sec. 3",
+              "the listed C function shRotYdiff15 computes the 1.5th-order Y rotation", "C listing",
+              "the last statement uses the loop variable i after the for loop that declares it; with i = n²−1 it works",
+              "compiles as C99/C++", "differs",
+              "taylor_deriv.c paper_ydiff15; why: as printed the function does not compile (i is out of scope in its "
+              "last statement).");
 
     exp_index("Figure 2 of Křivánek et al. (J = dR_Y/dβ at 0 and J², bands 1–3), computed by the Appendix A recursion "
               "and rounded to three significant digits (nocs function rotation; data with full precision in "
