@@ -194,6 +194,8 @@ $(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
 # test_signal_cleanup exercises the CLI's signal handlers (src/cli/cli_output.c).
 $(BUILD)/tests/test_signal_cleanup: $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
 $(BUILD)/tests/test_signal_cleanup: TEST_EXTRA = $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
+$(BUILD)/tests/test_cli_args: $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
+$(BUILD)/tests/test_cli_args: TEST_EXTRA = $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
 
 # The EXR tests write their files with OpenEXR's C++ library (tests/exr_writer.cpp).
 EXR_WRITER_TESTS := $(BUILD)/tests/test_exr_layouts $(BUILD)/tests/test_exr_damage $(BUILD)/tests/test_ranges

@@ -7,6 +7,9 @@
 #include <stdio.h>
 #include <string.h>
 
+const char *const cli_format_names[] = {"table", "csv", "json", NULL};
+const char *const cli_convention_names[] = {"cs", "nocs", NULL};
+
 /* ---- the table, groups flattened ------------------------------------------ */
 
 typedef struct {
@@ -122,6 +125,7 @@ static int set_value(const flat_opt *fo, const char *s, void *args)
             }
             return cli_fail("%s: unknown value '%s' (one of %s)", opt, s, list);
         }
+    case CLI_T_ORDER: return cli_order_max(opt, s, (int)o->hi, o->why, (int *)field);
     case CLI_T_CUSTOM: return o->parse(opt, s, field);
     default: return cli_fail("%s: option of unknown kind", opt);
     }
@@ -199,7 +203,7 @@ int cli_args_parse(const cli_cmd *cmd, int argc, char **argv, void *args, cli_pa
 
 /* ---- --help ----------------------------------------------------------------- */
 
-#define HELP_COL 23 /* where the help lines of the options begin */
+#define HELP_COL 24 /* the column where the help lines of the options begin (1-based) */
 
 /* "(default D; 1..32)": what the table knows beyond the help line, unless
  * the help line says it already. */
@@ -209,7 +213,7 @@ static void auto_text(const cli_opt *o, char *buf, size_t n)
     int np = 0;
     const int says_default = o->help && strstr(o->help, "default") != NULL;
     if (o->def && !(o->flags & CLI_NO_DEFAULT) && !says_default) snprintf(parts[np++], sizeof parts[0], "default %s", o->def);
-    if (has_range(o) && (o->type == CLI_T_INT || o->type == CLI_T_LONG)) {
+    if (has_range(o) && (o->type == CLI_T_INT || o->type == CLI_T_LONG || o->type == CLI_T_ORDER)) {
         char r[64];
         snprintf(r, sizeof r, "%.0f..%.0f", o->lo, o->hi);
         if (!o->help || !strstr(o->help, r)) snprintf(parts[np++], sizeof parts[0], "%s", r);

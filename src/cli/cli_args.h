@@ -38,6 +38,7 @@ typedef enum {
     CLI_T_STRING,  /* const char *, pointing into argv (non-empty) */
     CLI_T_CHOICE,  /* int: the index of the value in choices[] */
     CLI_T_CUSTOM,  /* parse(): the value checked and stored by the command's own function */
+    CLI_T_ORDER,   /* int order in 1..hi ("order N is outside 1..MAX (why)", cli_order_check) */
     CLI_T_GROUP,   /* a shared group: every option of `group`, offsets relative to off */
     CLI_T_HEADING, /* a heading line in --help ("Rotation:"), no option */
 } cli_type;
@@ -67,6 +68,7 @@ typedef struct cli_opt {
     cli_parse_fn parse;         /* CLI_T_CUSTOM */
     const struct cli_opt *group; /* CLI_T_GROUP */
     const char *needs; /* another option this one applies to ("check"): refused without it */
+    const char *why;   /* CLI_T_ORDER: the reason for the command's limit, or NULL */
 } cli_opt;
 
 /* Table entries.  S is the argument struct, F the field. */
@@ -88,9 +90,22 @@ typedef struct cli_opt {
 #define CLI_CUSTOM(S, F, NAME, META, FN, DEF, HELP)                                                \
     {.type = CLI_T_CUSTOM, .name = NAME, .meta = META, .off = offsetof(S, F), .parse = FN,          \
      .def = DEF, .help = HELP}
+#define CLI_ORDER(S, F, MAX, WHY, HELP)                                                            \
+    {.type = CLI_T_ORDER, .name = "order", .meta = "N", .off = offsetof(S, F), .lo = 1, .hi = MAX,    \
+     .why = WHY, .help = HELP}
 #define CLI_GROUP(S, F, TABLE) {.type = CLI_T_GROUP, .off = offsetof(S, F), .group = TABLE}
 #define CLI_HEADING(TEXT) {.type = CLI_T_HEADING, .help = TEXT}
 #define CLI_END {.type = CLI_T_END}
+
+/* Options every command words the same way (cli_args.c). */
+extern const char *const cli_format_names[];     /* table, csv, json: cli_format */
+extern const char *const cli_convention_names[]; /* cs, nocs: sh_convention */
+#define CLI_FORMAT(S, F)                                                                           \
+    CLI_CHOICE(S, F, "format", "table|csv|json", cli_format_names, "table", "output format")
+#define CLI_CONVENTION(S, F)                                                                       \
+    CLI_CHOICE(S, F, "convention", "cs|nocs", cli_convention_names, "cs",                          \
+               "Condon-Shortley phase (cs) or not")
+#define CLI_DEGREES(S, F, HELP) CLI_FLAG(S, F, "degrees", HELP)
 
 /* What a parse saw: which options were given (by the user, not defaults), and
  * where the positional arguments are. */

@@ -8,3 +8,5 @@ int cli_help(const cli_command *cmd)
     (void)cmd;
     return CLI_EXIT_OK;
 }
+
+const char cli_conventions_note[] = "";
