@@ -21,11 +21,13 @@
 
 typedef enum { CLI_TABLE = 0, CLI_CSV, CLI_JSON } cli_format;
 
+struct cli_cmd; /* cli_args.h: a command's declared options */
 typedef struct {
     const char *name;
     int (*run)(int argc, char **argv);
     const char *summary;
-    const char *help; /* full --help text */
+    const char *help;           /* full --help text (commands not yet declared), or NULL */
+    const struct cli_cmd *decl; /* the declaration: --help is printed from it */
 } cli_command;
 
 /* Print "shlab: error: <msg>" on stderr; returns CLI_EXIT_USAGE. */

@@ -120,7 +120,7 @@ typedef struct {
  * "Usage: shlab ", a description printed before the options, the table, and
  * notes printed after them (formulas, JSON fields).  positional: what the
  * command takes after its options ("FILE...") or NULL for nothing. */
-typedef struct {
+typedef struct cli_cmd {
     const char *name;
     const char *usage;
     const char *about;

@@ -553,4 +553,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_cache = {"cache", run, "radiance cache: records rotated into each vertex's frame, error and time per method",
-                               help};
+                               help, NULL};

@@ -85,4 +85,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_convert = {"convert", run, "convert coefficients between cs, nocs, 4pi and schmidt", help};
+const cli_command cmd_convert = {"convert", run, "convert coefficients between cs, nocs, 4pi and schmidt", help, NULL};

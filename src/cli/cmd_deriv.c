@@ -102,4 +102,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_deriv = {"deriv", run, "k-th derivative of the SH rotation about y (Appendix A)", help};
+const cli_command cmd_deriv = {"deriv", run, "k-th derivative of the SH rotation about y (Appendix A)", help, NULL};

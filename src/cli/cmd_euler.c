@@ -62,4 +62,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_euler = {"euler", run, "ZYZ Euler angles of a rotation matrix", help};
+const cli_command cmd_euler = {"euler", run, "ZYZ Euler angles of a rotation matrix", help, NULL};

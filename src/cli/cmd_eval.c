@@ -73,4 +73,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_eval = {"eval", run, "evaluate the real SH basis at a direction", help};
+const cli_command cmd_eval = {"eval", run, "evaluate the real SH basis at a direction", help, NULL};

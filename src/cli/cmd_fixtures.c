@@ -249,4 +249,4 @@ done:
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", help};
+const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", help, NULL};

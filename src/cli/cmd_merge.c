@@ -330,4 +330,4 @@ static int run(int argc, char **argv)
     return cli_sweep_emit(kind, result, have_fmt ? com.fmt : fmt);
 }
 
-const cli_command cmd_merge = {"merge", run, "join the shard files of a sweep run with --shard I/N", help};
+const cli_command cmd_merge = {"merge", run, "join the shard files of a sweep run with --shard I/N", help, NULL};

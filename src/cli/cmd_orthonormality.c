@@ -135,4 +135,4 @@ static int run(int argc, char **argv)
 
 const cli_command cmd_orthonormality = {"orthonormality", run,
                                         "check the basis' orthonormality under a projection rule (Gram matrix)",
-                                        help};
+                                        help, NULL};

@@ -264,4 +264,4 @@ static int run(int argc, char **argv)
                      quiet, fmt);
 }
 
-const cli_command cmd_project = {"project", run, "project a light or an EXR environment onto SH", help};
+const cli_command cmd_project = {"project", run, "project a light or an EXR environment onto SH", help, NULL};

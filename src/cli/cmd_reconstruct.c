@@ -186,4 +186,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_reconstruct = {"reconstruct", run,
-                                     "coefficients → lat-long EXR, with windowing and ringing", help};
+                                     "coefficients → lat-long EXR, with windowing and ringing", help, NULL};

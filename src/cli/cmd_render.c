@@ -300,4 +300,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_render = {"render", run, "picture of a scene under SH lighting (EXR, PNG) and its error image", help};
+const cli_command cmd_render = {"render", run, "picture of a scene under SH lighting (EXR, PNG) and its error image", help, NULL};

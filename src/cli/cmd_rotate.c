@@ -203,4 +203,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_rotate = {"rotate", run, "rotate SH coefficients (one plan, many channels)", help};
+const cli_command cmd_rotate = {"rotate", run, "rotate SH coefficients (one plan, many channels)", help, NULL};

@@ -165,4 +165,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, com.fmt);
 }
 
-const cli_command cmd_rotmat = {"rotmat", run, "SH rotation matrix of a rotation (exact methods and Taylor approximations)", help};
+const cli_command cmd_rotmat = {"rotmat", run, "SH rotation matrix of a rotation (exact methods and Taylor approximations)", help, NULL};

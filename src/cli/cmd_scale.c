@@ -153,4 +153,4 @@ static int run(int argc, char **argv)
     return rc;
 }
 
-const cli_command cmd_scale = {"scale", run, "SH scaling matrix of an angular scaling family (Wang 2006)", help};
+const cli_command cmd_scale = {"scale", run, "SH scaling matrix of an angular scaling family (Wang 2006)", help, NULL};

@@ -218,4 +218,4 @@ static int run(int argc, char **argv)
     return cli_sweep_end(&sw);
 }
 const cli_command cmd_scale_interp = {"scale-interp", run,
-                                      "error of interpolating the scaling matrix over k (Wang Sec. 2.2)", help};
+                                      "error of interpolating the scaling matrix over k (Wang Sec. 2.2)", help, NULL};

@@ -264,4 +264,4 @@ out:
 }
 
 const cli_command cmd_scale_scene = {"scale-scene", run, "SH scaling against exact scenes (occluders, mid-range light)",
-                                     help};
+                                     help, NULL};

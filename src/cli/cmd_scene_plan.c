@@ -322,4 +322,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_scene_plan = {"scene-plan", run, "smallest SH order for a shading error budget on a scene",
-                                    help};
+                                    help, NULL};

@@ -479,4 +479,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_shadow_field = {"shadow-field", run,
-                                      "shadow field of a sphere sampled at one distance, scaled to the others (Wang)", help};
+                                      "shadow field of a sphere sampled at one distance, scaled to the others (Wang)", help, NULL};

@@ -184,4 +184,4 @@ static int run(int argc, char **argv)
 
 const cli_command cmd_taylor_error = {"taylor-error", run,
                                       "error of the Taylor-approximated rotation (singular values, lobe)",
-                                      help};
+                                      help, NULL};

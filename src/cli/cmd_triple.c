@@ -105,4 +105,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_triple = {"triple", run, "triple-product transfer matrix of a light (Green eq. 8)",
-                                help};
+                                help, NULL};

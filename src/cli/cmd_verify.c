@@ -363,4 +363,4 @@ done:
 
 const cli_command cmd_verify = {"verify", run,
                                 "check a kernel's rotated coefficients against golden fixtures",
-                                help};
+                                help, NULL};

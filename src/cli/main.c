@@ -1,5 +1,6 @@
 /* main.c — the shlab command-line tool: dispatch to one command per file. */
 #include "cli.h"
+#include "cli_args.h"
 
 #include <string.h>
 
@@ -40,6 +41,7 @@ const char cli_conventions_note[] =
 
 int cli_help(const cli_command *cmd)
 {
+    if (cmd->decl) return cli_args_help(cmd->decl);
     fputs(cmd->help, stdout);
     fputs(cli_conventions_note, stdout);
     if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
