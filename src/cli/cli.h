@@ -111,6 +111,7 @@ typedef struct {
     double t0, last;
     int estimated;
     double t1; /* time of the first step (cli_progress_step_est) */
+    double interval; /* seconds before the first line and between lines (SHLAB_PROGRESS_INTERVAL) */
 } cli_progress;
 void cli_progress_start(cli_progress *p, const char *cmd, int quiet);
 /* An sh_progress_fn (ctx: cli_progress *). */

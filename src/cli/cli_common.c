@@ -39,10 +39,22 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* SHLAB_PROGRESS_INTERVAL (docs/CONVENTIONS.md "Output"): seconds before the
+ * first line and between lines, 1 unless set to a number in 0..3600. */
+static double progress_interval(void)
+{
+    const char *s = getenv("SHLAB_PROGRESS_INTERVAL");
+    char *end;
+    double v = 1;
+    if (s && *s && sh__parse_double(s, &end, &v) == SH__NUM_OK && !*end && v >= 0 && v <= 3600) return v;
+    return 1;
+}
+
 void cli_progress_start(cli_progress *p, const char *cmd, int quiet)
 {
     p->cmd = cmd;
     p->quiet = quiet;
+    p->interval = progress_interval();
     p->printed = 0;
     p->estimated = 0;
     p->t0 = p->last = now_s();
@@ -54,7 +66,7 @@ void cli_progress_step(void *ctx, int done, int total, const char *what)
     if (!p || p->quiet) return;
     const double t = now_s();
     const int end = done >= total;
-    if (t - p->t0 < 1.0 || (t - p->last < 1.0 && !(end && p->printed))) return;
+    if (t - p->t0 < p->interval || (t - p->last < p->interval && !(end && p->printed))) return;
     fprintf(stderr, "%s: %d of %d %s, %.1f s\n", p->cmd, done, total, what ? what : "steps", t - p->t0);
     p->last = t;
     p->printed = 1;
