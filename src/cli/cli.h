@@ -14,6 +14,7 @@
 #include <stdio.h>
 
 #include "shlab.h"
+#include "cli_args.h"
 
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_CHECK 1
@@ -21,7 +22,6 @@
 
 typedef enum { CLI_TABLE = 0, CLI_CSV, CLI_JSON } cli_format;
 
-struct cli_cmd; /* cli_args.h: a command's declared options */
 typedef struct {
     const char *name;
     int (*run)(int argc, char **argv);
@@ -233,19 +233,34 @@ enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OP
 #define CLI_LONGOPT_PRECISION {"precision", required_argument, 0, CLI_OPT_PRECISION}
 /* --kernel K of the rotation commands (sh_rot_kernel; refused if not available here) */
 #define CLI_LONGOPT_KERNEL {"kernel", required_argument, 0, CLI_OPT_KERNEL}
+/* A list of numbers of a fixed count, as a declared option reads it
+ * (cli_rotation_opts: --euler 3, --quat 4, --matrix 9, --axis 3). */
 typedef struct {
-    const char *form;   /* "euler", "quat", "matrix", "axis-angle" or NULL */
-    double v[9];        /* the numbers of that form */
-    double axis[3];
-    int have_axis, have_angle, inverse, ortho;
+    int n; /* numbers read: 0 when the option was not given */
+    double v[9];
+} cli_numbers;
+typedef struct {
+    cli_numbers euler, quat, matrix, axis;
     double angle;
+    int have_angle, inverse, ortho;
+    const char *form; /* cli_rotation_finish: "euler", "quat", "matrix", "axis-angle" or NULL */
 } cli_rotation_args;
+/* The rotation options as a declared group (cli_args.h): a command's table
+ * includes it with CLI_GROUP(its_args, field, cli_rotation_opts), then calls
+ * cli_rotation_finish. */
+extern const cli_opt cli_rotation_opts[];
+/* Declared --method (sh_rot_method; "auto": SH_ROT_AUTO, the command's
+ * choice by order), --precision (sh_precision) and --kernel (sh_rot_kernel,
+ * refused if this machine cannot run it): parse functions for CLI_CUSTOM. */
+int cli_parse_method(const char *opt, const char *s, void *field);
+int cli_parse_precision(const char *opt, const char *s, void *field);
+int cli_parse_kernel(const char *opt, const char *s, void *field);
 /* Handle a rotation option (returns -1 if o is not one, 0 if handled, or an
  * exit code after printing the error). */
 int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r);
 /* Build the rotation (exactly one form required unless `optional`; then
  * *given says whether one was).  Returns 0 or an exit code. */
-int cli_rotation_finish(const char *cmd, const cli_rotation_args *r, int degrees, int optional,
+int cli_rotation_finish(const char *cmd, cli_rotation_args *r, int degrees, int optional,
                         int *given, sh_rotation *rot);
 /* The rotation in every input form: {"euler":[α,β,γ],"quat":[w,x,y,z],
  * "matrix":[9],"axis":[3],"angle":t} (radians). */

@@ -2,81 +2,149 @@
  * fixtures and verify: one rotation in one of four forms, optionally
  * inverted (the frame rotation) or orthonormalised. */
 #include "cli.h"
+#include "cli_args.h"
+
+#include <stddef.h>
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int take_form(const char *cmd, cli_rotation_args *r, const char *form, const char *opt,
-                     const char *arg, int count)
+/* ---- the declared group ------------------------------------------------------ */
+
+static int numbers_n(const char *opt, const char *s, void *field, int count)
 {
-    if (r->form)
-        return cli_fail("%s: give one rotation (--%s and --%s both given)", cmd, r->form, opt);
+    cli_numbers *x = field;
     double *v = NULL;
     int n = 0;
-    char name[16];
-    snprintf(name, sizeof name, "--%s", opt);
-    if (cli_doubles(name, arg, &v, &n)) return CLI_EXIT_USAGE;
+    if (cli_doubles(opt, s, &v, &n)) return CLI_EXIT_USAGE;
     if (n != count) {
         free(v);
-        return cli_fail("%s: --%s expects %d numbers, got %d", cmd, opt, count, n);
+        return cli_fail("%s expects %d numbers, got %d", opt, count, n);
     }
-    memcpy(r->v, v, (size_t)count * sizeof *v);
+    memcpy(x->v, v, (size_t)count * sizeof *v);
+    x->n = count;
     free(v);
-    r->form = form;
+    return 0;
+}
+static int numbers_3(const char *opt, const char *s, void *field) { return numbers_n(opt, s, field, 3); }
+static int numbers_4(const char *opt, const char *s, void *field) { return numbers_n(opt, s, field, 4); }
+static int numbers_9(const char *opt, const char *s, void *field) { return numbers_n(opt, s, field, 9); }
+static int angle_value(const char *opt, const char *s, void *field)
+{
+    /* the field is angle; have_angle follows it in cli_rotation_args */
+    cli_rotation_args *r = (cli_rotation_args *)((char *)field - offsetof(cli_rotation_args, angle));
+    if (cli_double(opt, s, &r->angle)) return CLI_EXIT_USAGE;
+    r->have_angle = 1;
     return 0;
 }
 
+const cli_opt cli_rotation_opts[] = {
+    CLI_HEADING("The rotation (one form; angles in radians unless --degrees):"),
+    CLI_CUSTOM(cli_rotation_args, euler, "euler", "A,B,G", numbers_3, NULL,
+               "ZYZ Euler angles (function rotation Rz(A) Ry(B) Rz(G))"),
+    CLI_CUSTOM(cli_rotation_args, quat, "quat", "W,X,Y,Z", numbers_4, NULL, "unit quaternion"),
+    CLI_CUSTOM(cli_rotation_args, matrix, "matrix", "R00,...,R22", numbers_9, NULL,
+               "3x3 rotation matrix, row-major"),
+    CLI_CUSTOM(cli_rotation_args, axis, "axis", "X,Y,Z", numbers_3, NULL, "rotation axis (with --angle)"),
+    CLI_CUSTOM(cli_rotation_args, angle, "angle", "T", angle_value, NULL, "angle about --axis"),
+    CLI_FLAG(cli_rotation_args, inverse, "inverse", "the inverse rotation (the frame rotation)"),
+    CLI_FLAG(cli_rotation_args, ortho, "orthonormalize",
+             "accept a --quat or --matrix that is not unit/orthonormal: use the nearest"),
+    CLI_END,
+};
+
+int cli_parse_method(const char *opt, const char *s, void *field)
+{
+    if (!strcmp(s, "auto")) {
+        *(sh_rot_method *)field = SH_ROT_AUTO;
+        return 0;
+    }
+    if (sh_rot_method_parse(s, field)) return cli_fail("%s: %s", opt, sh_last_error());
+    return 0;
+}
+
+int cli_parse_precision(const char *opt, const char *s, void *field)
+{
+    if (sh_precision_parse(s, field)) return cli_fail("%s: %s", opt, sh_last_error());
+    return 0;
+}
+
+int cli_parse_kernel(const char *opt, const char *s, void *field)
+{
+    sh_rot_kernel *k = field;
+    if (sh_rot_kernel_parse(s, k)) return cli_fail("%s: %s", opt, sh_last_error());
+    if (!sh_rot_kernel_available(*k)) return cli_fail("%s: %s is not available on this machine", opt, s);
+    return 0;
+}
+
+/* ---- the getopt tables of the commands not yet declared ------------------------- */
+
 int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r)
 {
+    (void)cmd;
     switch (o) {
-    case CLI_OPT_EULER: return take_form(cmd, r, "euler", "euler", arg, 3);
-    case CLI_OPT_QUAT: return take_form(cmd, r, "quat", "quat", arg, 4);
-    case CLI_OPT_MATRIX: return take_form(cmd, r, "matrix", "matrix", arg, 9);
-    case CLI_OPT_AXIS:
-        if (r->have_axis) return cli_fail("%s: --axis given twice", cmd);
-        if (cli_vec3("--axis", arg, r->axis)) return CLI_EXIT_USAGE;
-        r->have_axis = 1;
-        return 0;
-    case CLI_OPT_ANGLE:
-        if (r->have_angle) return cli_fail("%s: --angle given twice", cmd);
-        if (cli_double("--angle", arg, &r->angle)) return CLI_EXIT_USAGE;
-        r->have_angle = 1;
-        return 0;
+    case CLI_OPT_EULER: return numbers_3("--euler", arg, &r->euler);
+    case CLI_OPT_QUAT: return numbers_4("--quat", arg, &r->quat);
+    case CLI_OPT_MATRIX: return numbers_9("--matrix", arg, &r->matrix);
+    case CLI_OPT_AXIS: return numbers_3("--axis", arg, &r->axis);
+    case CLI_OPT_ANGLE: return angle_value("--angle", arg, &r->angle);
     case CLI_OPT_INVERSE: r->inverse = 1; return 0;
     case CLI_OPT_ORTHO: r->ortho = 1; return 0;
     default: return -1;
     }
 }
 
-int cli_rotation_finish(const char *cmd, const cli_rotation_args *r, int degrees, int optional,
-                        int *given, sh_rotation *rot)
+/* ---- the rotation ----------------------------------------------------------------- */
+
+/* The one form given (r->form), or an error line: two forms, or half of
+ * --axis/--angle. */
+static int one_form(const char *cmd, cli_rotation_args *r)
+{
+    const struct { const cli_numbers *x; const char *name; } forms[] = {
+        {&r->euler, "euler"}, {&r->quat, "quat"}, {&r->matrix, "matrix"}};
+    const char *first = NULL;
+    r->form = NULL;
+    for (int k = 0; k < 3; k++) {
+        if (!forms[k].x->n) continue;
+        if (first) return cli_fail("%s: give one rotation (--%s and --%s both given)", cmd, first, forms[k].name);
+        first = forms[k].name;
+    }
+    if (r->axis.n || r->have_angle) {
+        if (first) return cli_fail("%s: give one rotation (--%s and --axis/--angle both given)", cmd, first);
+        if (!r->axis.n || !r->have_angle) return cli_fail("%s: --axis and --angle go together", cmd);
+        first = "axis-angle";
+    }
+    r->form = first;
+    return 0;
+}
+
+int cli_rotation_finish(const char *cmd, cli_rotation_args *r, int degrees, int optional, int *given,
+                        sh_rotation *rot)
 {
     /* --degrees: the angles given (--euler, --angle) and printed are in
      * degrees; a quaternion or a matrix has none, so it is simply not used */
     const double k = degrees ? M_PI / 180 : 1;
     int st;
-    if (r->have_axis || r->have_angle) {
-        if (r->form) return cli_fail("%s: give one rotation (--%s and --axis/--angle both given)",
-                                     cmd, r->form);
-        if (!r->have_axis || !r->have_angle)
-            return cli_fail("%s: --axis and --angle go together", cmd);
-        cli_warn_radians(cmd, "--angle", r->angle, degrees);
-        st = sh_rotation_from_axis_angle(r->axis, r->angle * k, rot);
-    } else if (!r->form) {
+    if (one_form(cmd, r)) return CLI_EXIT_USAGE;
+    if (!r->form) {
         if (given) *given = 0;
         if (optional) return 0;
-        return cli_fail("%s: a rotation is required (--euler, --quat, --matrix or --axis/--angle)",
-                        cmd);
+        return cli_fail("%s: a rotation is required (--euler, --quat, --matrix or --axis/--angle)", cmd);
+    }
+    if (!strcmp(r->form, "axis-angle")) {
+        cli_warn_radians(cmd, "--angle", r->angle, degrees);
+        st = sh_rotation_from_axis_angle(r->axis.v, r->angle * k, rot);
     } else if (!strcmp(r->form, "euler")) {
+        const double *e = r->euler.v;
         for (int i = 0; i < 3; i++) /* one warning for the three angles */
-            if (!degrees && fabs(r->v[i]) > 2 * M_PI) { cli_warn_radians(cmd, "--euler angle", r->v[i], 0); break; }
-        st = sh_rotation_from_euler(r->v[0] * k, r->v[1] * k, r->v[2] * k, rot);
+            if (!degrees && fabs(e[i]) > 2 * M_PI) { cli_warn_radians(cmd, "--euler angle", e[i], 0); break; }
+        st = sh_rotation_from_euler(e[0] * k, e[1] * k, e[2] * k, rot);
     } else if (!strcmp(r->form, "quat")) {
-        st = sh_rotation_from_quat(r->v, r->ortho, rot);
+        st = sh_rotation_from_quat(r->quat.v, r->ortho, rot);
     } else {
-        st = sh_rotation_from_matrix(r->v, r->ortho, rot);
+        st = sh_rotation_from_matrix(r->matrix.v, r->ortho, rot);
     }
     if (st) return cli_fail("%s", sh_last_error());
     if (r->inverse) sh_rotation_inverse(rot, rot);
