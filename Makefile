@@ -205,8 +205,10 @@ $(BUILD)/tests/exr_writer.o: tests/exr_writer.cpp tests/exr_writer.h
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS) -Itests -c $< -o $@
 
+# TEST_JOBS: tests run at a time (tests/run.sh), one per core by default
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 check: deps-quiet $(BUILD)/shlab $(TEST_BIN) $(FUZZ_REPLAY)
-	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) tests/run.sh $(TEST_BIN)
+	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) TEST_JOBS=$(TEST_JOBS) tests/run.sh $(TEST_BIN)
 
 # ---- fuzzing (tests/fuzz/README.md) -----------------------------------------
 # One harness per input kind: tests/fuzz/fuzz_<h>.c.  make check links each to
