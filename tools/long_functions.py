@@ -12,6 +12,9 @@ def functions(path):
     while i < len(lines):
         l = lines[i]
         m = re.match(r'^[A-Za-z_][\w \*\(\),]*?\b([A-Za-z_]\w*)\s*\(', l)
+        if m and l.rstrip().endswith('}') and '{' in l:  # a one-line definition
+            i += 1
+            continue
         if m and not l.rstrip().endswith(';') and not l.startswith(('typedef', 'struct', 'enum', 'static const', 'const', '#')) or \
            (m and l.startswith('static const') and '(' in l and not '=' in l):
             j = i
