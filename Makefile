@@ -56,7 +56,7 @@ LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
 # C++ sources of the library (io/exr_cxx.cpp: OpenEXR's C++ reader for DWAA/DWAB)
 LIB_CXX  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.cpp)))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
-TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_SRC := $(sort $(wildcard tests/*/test_*.c))
 # src/*/rot_*.c are precision-generic rotation kernels (rotate/rot_real.h):
 # compiled once as double (x.o) and once as float (x_f.o, -DSH_REAL_FLOAT).
 ROTK_SRC := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/rot_*.c)))
@@ -95,7 +95,9 @@ $(ROTK_SRC:src/%.c=$(BUILD)/obj/%.o) $(ROTK_SRC:src/%.c=$(BUILD)/obj/%_f.o) $(FA
 endif
 CLI_OBJ  := $(CLI_SRC:src/cli/%.c=$(BUILD)/obj/cli/%.o)
 PUB_HDR  := src/shlab.h $(wildcard src/shlab/*.h)
-TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+# tests/<concept>/test_x.c (grouped like src/) -> $(BUILD)/tests/test_x
+TEST_BIN := $(addprefix $(BUILD)/tests/,$(notdir $(TEST_SRC:.c=)))
+vpath test_%.c $(sort $(dir $(TEST_SRC)))
 # fuzz harnesses (tests/fuzz/fuzz_<h>.c); make check replays their corpora
 FUZZ_HARNESS := exr fixture candidate coeffs light rotation mesh merge
 FUZZ_REPLAY  := $(FUZZ_HARNESS:%=$(BUILD)/fuzz/replay_%)
@@ -133,9 +135,9 @@ endif
 $(PEER_SHARP_OBJ): CFLAGS += $(SHARP_CFLAGS)
 CLI_OBJ  += $(PEER_SHARP_OBJ)
 $(BUILD)/shlab: LDLIBS += $(SHARP_LIBS)
-$(BUILD)/tests/test_sht_sharp: tests/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+$(BUILD)/tests/test_sht_sharp: tests/project/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
 .PHONY: bench-peers
 bench-peers:: all
 	$(BUILD)/shlab bench --peers
@@ -187,9 +189,9 @@ $(BUILD)/shlab: $(CLI_OBJ) $(BUILD)/libshlab.a
 	$(CC) $(SANFLAGS) -o $@ $(CLI_OBJ) $(BUILD)/libshlab.a $(LDLIBS)
 
 # ---- tests ----------------------------------------------------------------
-$(BUILD)/tests/%: tests/%.c tests/testutil.h $(BUILD)/libshlab.a
+$(BUILD)/tests/%: %.c tests/testutil.h $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -o $@ $< $(TEST_EXTRA) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(TEST_EXTRA) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
 
 # test_signal_cleanup exercises the CLI's signal handlers (src/cli/cli_output.c).
 $(BUILD)/tests/test_signal_cleanup: $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c

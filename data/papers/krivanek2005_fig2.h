@@ -1,7 +1,7 @@
 /* krivanek2005_fig2.h — Křivánek et al. 2005, Figure 2, transcribed as
  * printed (three significant digits): bands 1..3 of dR_Y/dβ(0) (J) and
  * d²R_Y/dβ²(0) (J²), each band row-major with rows and columns m = −l..l.
- * Shared by tests/test_taylor.c and experiments/taylor_deriv (data, not
+ * Shared by tests/taylor/test_taylor.c and experiments/taylor_deriv (data, not
  * code: the paper's numbers, to be compared with shlab's). */
 #ifndef SHLAB_KRIVANEK2005_FIG2_H
 #define SHLAB_KRIVANEK2005_FIG2_H

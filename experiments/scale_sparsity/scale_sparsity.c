@@ -209,7 +209,7 @@ int main(int argc, char **argv)
               "(N <= 8).\n\n%s\n"
               "**The paper's \"exactly N(2N²+1)/3 non-zero, regardless of energy preservation\" is only an upper "
               "bound.** The structural zeros (each verified by the count for N = 1..16, and the mid-range ones "
-              "entry by entry in tests/test_scale.c):\n\n"
+              "entry by entry in tests/scale/test_scale.c):\n\n"
               "* *Plain scaling keeps constants*: F_r = 1 gives F_d = F_r∘τ = 1, so column 0 is e_0 and the N−1 "
               "entries M_{(l,0),(0,0)}, l ≥ 1, vanish. *Energy-preserving scaling keeps ∫F dΩ* whenever τ maps "
               "[0,π] onto [0,π] (cone, midrange, linear k ≥ 1): row 0 is e_0ᵀ, again N−1 zeros. Linear k < 1 "

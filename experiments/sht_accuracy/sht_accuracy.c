@@ -207,7 +207,7 @@ static void shlab_part(void)
               "‖Δc‖₂/‖c‖₂: worst %.2g (at lmax %d); the worst single coefficient, max|Δc|/max|c|, is %.2g (at lmax "
               "%d; compare libsharp's in the peers part). Bound of the tests: %.0e. The same sizes with every "
               "point of every ring, single bands and lat-long grids are checked by `make check` "
-              "(tests/test_sht_highband.c).",
+              "(tests/project/test_sht_highband.c).",
               NLMAX, LMAX[0], LMAX[NLMAX - 1], nt_min, nt_max, NPOLE, NSPREAD, tm, worst_syn, at_syn, worst_rt, at_rt,
               worst_max, at_max, GOAL);
     char meas[256];

@@ -204,8 +204,8 @@ int main(int argc, char **argv)
                       : "taylor_error ('mean' follows docs/CONVENTIONS.md: mean σ)");
     exp_claim("krivanek-sec32-max", "Křivánek et al. 2005, Sec. 3.2",
               "the maximum of E(β) over unit Λ is the largest singular value of D(β)", "stated",
-              "the spectral norm's identity; GSL's Jacobi SVD σ₁ agrees with √λ_max(DᵀD) to 1e-12 (tests/test_taylor.c)",
-              "1e-12", "reproduced", "tests/test_taylor.c test_error_measures");
+              "the spectral norm's identity; GSL's Jacobi SVD σ₁ agrees with √λ_max(DᵀD) to 1e-12 (tests/taylor/test_taylor.c)",
+              "1e-12", "reproduced", "tests/taylor/test_taylor.c test_error_measures");
 
     exp_index("![Figure 3 reproduced: max, mean and lobe error vs β for orders 5 and 8](taylor_error_fig3.png)\n\n"
               "Figure 3 of Křivánek et al. reproduced ([figure3.dat](figure3.dat)): rows max σ(D), mean σ(D), lobe error "

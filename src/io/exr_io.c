@@ -24,7 +24,7 @@
  * a destination is half with the same output layout) convert every channel,
  * writing through the NULL pointer: half RGBA, BGRZ or A/Y/Z files crashed in
  * exr_decoding_run.  Giving every channel a destination avoids that path's
- * fault for every layout (tests/test_exr_layouts.c reads every compression ×
+ * fault for every layout (tests/io/test_exr_layouts.c reads every compression ×
  * pixel type × channel layout × scanline/tiled that OpenEXR writes).
  * OpenEXRCore 3.1 cannot decompress DWAA/DWAB ("not yet implemented"), so
  * those files — recognised from the header's compression attribute, or from

@@ -19,7 +19,7 @@
  * (note −4 sin(θ−π) = 4 sinθ) gives c_0 = 0.3995 (sh_green_reference, exact
  * to 1e-12), and the other 15 printed numbers agree within the spread of
  * Green's 10,000-sample stratified Monte Carlo.  Reading (B) is implemented.
- * The numbers are in tests/test_project.c and the report of this module.
+ * The numbers are in tests/project/test_project.c and the report of this module.
  *
  * CIE skies (θ = zenith angle of the direction, γ = angle between direction
  * and sun, S = zenith angle of the sun, L_z = 1, and every sky is 0 below

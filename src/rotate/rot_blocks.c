@@ -54,7 +54,7 @@ void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real 
  * m·θ is split exactly, p + e with e = fma(m, θ, −p), and
  * cos(p + e) = cos p − e sin p (as sh__rot_halfpi_angles): libm of the
  * rounded product alone was off by ~m·θ·1e-16, 8e-12 on the coefficients of
- * the z rotation at order 4097 (tests/test_ranges.c, rot_z_top). */
+ * the z rotation at order 4097 (tests/core/test_ranges.c, rot_z_top). */
 static void SH_R(angles_rec)(sh_real c1, sh_real s1, int reseed, sh_real theta, int mmax, sh_real *cs)
 {
     const sh_real two_c = 2 * c1;

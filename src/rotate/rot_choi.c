@@ -11,7 +11,7 @@
  *      from the Cartesian matrix, band l by coupling band 1 with band l−1
  *      through Clebsch-Gordan coefficients.  (The paper itself was not at
  *      hand; the formulas below are derived here from [2] and
- *      verified numerically in tests/test_rot_choi_blanco.c, so no equation
+ *      verified numerically in tests/rotate/test_rot_choi_blanco.c, so no equation
  *      number of [1] is quoted.)
  *  [2] Edmonds, Angular Momentum in Quantum Mechanics, eq. (4.3.1)/(4.6.5):
  *      D^{j1}_{m1'm1} D^{j2}_{m2'm2} = Σ_J C(j1 m1' j2 m2'|J M') C(j1 m1 j2 m2|J M) D^J_{M'M}.

@@ -37,7 +37,7 @@
  *   W = _1P_{m+1,n} + _{−1}P_{−m−1,n}                                  m > 0
  *     = _1P_{m−1,n} − _{−1}P_{−m+1,n}                                  m < 0
  *
- * MISPRINTS in [3] (Green's Appendix I), proved by tests/test_rot_ivanic.c
+ * MISPRINTS in [3] (Green's Appendix I), proved by tests/rotate/test_rot_ivanic.c
  * (each variant breaks orthogonality of band 2 or 3 by O(1) while the table
  * above agrees with the MPFR reference to 1e-15):
  *   (a) V for m < 0 is printed  _1P_{m+1,n}(1+δ_{m,−1}) + _{−1}P_{−m−1,n}√(1−δ_{m,−1});

@@ -36,7 +36,7 @@
  *     as m' decreases) into the allowed one — the stable direction.
  *   The rest from d_{m'm} = (−1)^{m'−m} d_{mm'} = d_{−m,−m'}.
  *
- * Structural zeros of X₊₉₀ (proved in tests/test_rot_zxzxz.c against the
+ * Structural zeros of X₊₉₀ (proved in tests/rotate/test_rot_zxzxz.c against the
  * MPFR reference of Rx(90°), and re-checked exactly by tables_new).  Call m
  * "cos type" if its real function after Z(90°) is a cosine: m ≥ 0 even or
  * m < 0 odd; otherwise "sin type".  R_Y(β) never mixes cos with sin (the

@@ -29,7 +29,7 @@
  * to ~1e-16: the integrand is analytic on each piece), or until their change
  * stops halving below 1e-12 (the sums' own rounding, reached first at high
  * order: at order 64 and the ends of k the entries agree with adaptive
- * quadrature to 1.7e-12, tests/test_ranges.c).
+ * quadrature to 1.7e-12, tests/core/test_ranges.c).
  */
 #include "core/shlab_internal.h"
 
@@ -161,7 +161,7 @@ int sh_scale_breaks(const sh_scaling *s, double *breaks)
          * θ = π (ε = π − θ: x² + y² ≈ 1 + 2(k−1)cε + ((k−1)²c² + k²)ε², width
          * 1/(k√(1 + c²))).  For k far from 1 uniform panels cannot resolve
          * them (cone k = 1e-3 and 1e3 had not converged at 8192 panels,
-         * tests/test_ranges.c scale_top): graded breaks at b ± 4^j w and
+         * tests/core/test_ranges.c scale_top): graded breaks at b ± 4^j w and
          * π − 4^j w' (j = 0..4, up to the order of 1 rad) make each piece
          * smooth on its own length.  None is added when the turn is wide
          * (|ln k| small). */
@@ -299,7 +299,7 @@ int sh_scale_integrals_tau(int order, sh_scale_tau_fn tau, void *ctx, int energy
         /* The sums' own rounding: at order 64 two estimates stop agreeing
          * better than ~1e-13 (the change no longer halves when the panels
          * double) before SCALE_TOL is met; that floor, below SCALE_FLOOR, is
-         * accepted (tests/test_ranges.c, scale_top: 9 of the 12 cases at the
+         * accepted (tests/core/test_ranges.c, scale_top: 9 of the 12 cases at the
          * ends of k were refused after 8192 panels and 35-86 s). */
         if (diff <= SCALE_FLOOR && diff > 0.5 * prev) break;
         if (panels >= SCALE_MAX_PANELS) {

@@ -14,7 +14,7 @@ extern "C" {
 #define SH_IMAGE_MAX_CHANNELS 4
 /* Largest image (width × height) any routine reads, writes or projects:
  * 2²⁶ = 67,108,864 pixels (8192 × 8192, or a lat-long 11584 × 5792), the
- * size tests/test_ranges.c reconstructs, projects and reads in full (it was
+ * size tests/core/test_ranges.c reconstructs, projects and reads in full (it was
  * 2³⁰, which no test could hold: 4 GB a channel). */
 #define SH_IMAGE_MAX_PIXELS (1LL << 26)
 typedef struct {

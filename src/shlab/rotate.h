@@ -75,7 +75,7 @@ int sh_precision_parse(const char *s, sh_precision *out);
 /* Largest order a method accepts; 0 if the method is not built in.  Each is
  * the top at which a test or the report checks the method against an
  * independent truth (docs/ranges.md), and no higher:
- *   z, halfpi   SHLAB_MAX_ORDER (tests/test_ranges.c: the z rotation's closed
+ *   z, halfpi   SHLAB_MAX_ORDER (tests/core/test_ranges.c: the z rotation's closed
  *               form at order 4097, the pointwise identity at band 4096)
  *   blanco      l ≤ 4000: orthogonality and homomorphism to l = 4000 in the
  *               report (rotation_stability, long part); single bands
@@ -87,7 +87,7 @@ int sh_precision_parse(const char *s, sh_precision *out);
  *               accepted to show that, accurate only to l ≈ 50
  *   wigner      l ≤ 60: rotation_stability (its terms grow like 4^l)
  *   reference   l ≤ 400: halfpi against it at band 400 (test_rot_halfpi)
- *   taylor*     SH_TAYLOR_MAX_ORDER (taylor.h; tests/test_ranges.c) */
+ *   taylor*     SH_TAYLOR_MAX_ORDER (taylor.h; tests/core/test_ranges.c) */
 #define SH_ROT_BLANCO_MAX_ORDER 4001
 #define SH_ROT_ZXZXZ_MAX_ORDER 1401
 #define SH_ROT_IVANIC_MAX_ORDER 201

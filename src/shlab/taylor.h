@@ -15,12 +15,12 @@ extern "C" {
  * rotation methods, src/rotate/rot_taylor.c).  Blocks use
  * the layout of sh_rot_block_offset; J = dR_Y/dβ at β = 0 (docs/CONVENTIONS.md). */
 /* The recursion and the generator agree to 1.5e-14 of the largest entry at
- * order 32 (tests/test_ranges.c, deriv_top), but the Ivanic-Ruedenberg
+ * order 32 (tests/core/test_ranges.c, deriv_top), but the Ivanic-Ruedenberg
  * recursion loses digits geometrically above: 3.5e-13 at 48, 1.1e-11 at 64
  * (the limit was 64 until that was measured). */
 #define SH_DERIV_MAX_ORDER 32
 /* Largest order of the Taylor rotation plans (taylor1, taylor1.5, taylor2):
- * the top of `taylor-error --order`, where tests/test_ranges.c checks them
+ * the top of `taylor-error --order`, where tests/core/test_ranges.c checks them
  * (their blocks, and their error measures at β = π). */
 #define SH_TAYLOR_MAX_ORDER 128
 /* d^k R_Y/dβ^k at β, bands 0..order-1, by Krivánek's Appendix A: the Leibniz

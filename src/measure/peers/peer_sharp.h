@@ -4,7 +4,7 @@
  * use it, never into libshlab.  Built without libsharp, every call returns
  * SH_ENOTSUP ("libsharp was not found when shlab was built").
  *
- * Conventions, derived and checked numerically (tests/test_sht_sharp.c):
+ * Conventions, derived and checked numerically (tests/project/test_sht_sharp.c):
  * libsharp's map2alm/alm2map use complex a_lm, m ≥ 0, with
  *   f = Σ_l [a_l0 Y_l0 + Σ_{m>0} 2 Re(a_lm Y_lm)],  Y_lm = Q_l^m(cosθ) e^{imφ}
  * (Q the orthonormal Legendre functions with the Condon-Shortley phase, as in
