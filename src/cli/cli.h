@@ -398,14 +398,16 @@ int cli_sweep_row_ok(const cli_sweep_kind *kind, const json_t *params, long nite
 int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char *const *name, int timed,
                   json_t **result, int *code);
 
-enum { CLI_OPT_SHARD = 0x1c1 };
-#define CLI_LONGOPT_SHARD {"shard", required_argument, 0, CLI_OPT_SHARD}
-#define CLI_SHARD_HELP                                                                         \
-    "  --shard I/N          compute only shard I of N (I = 0..N-1) and print a shard\n"        \
-    "                       file (JSON lines); `shlab merge` joins the N files into\n"         \
-    "                       exactly this command's output\n"
-/* Parse --shard's value (one error line and CLI_EXIT_USAGE if bad). */
-int cli_shard(const char *opt, const char *s, sh_shard *out);
+/* The options every sweep takes, declared once (cli_sweep.c): --quiet,
+ * --shard I/N and --format.  A sweep's table ends with
+ * CLI_GROUP(its_args, field, cli_sweep_opts); cli_sweep_begin reads them. */
+typedef struct {
+    int quiet;      /* --quiet: no progress on stderr */
+    sh_shard shard; /* --shard I/N */
+    int sharded;    /* --shard was given (even 0/1): print a shard file */
+    cli_format fmt; /* --format */
+} cli_sweep_args;
+extern const cli_opt cli_sweep_opts[];
 
 typedef struct {
     const cli_sweep_kind *kind;
@@ -419,11 +421,14 @@ typedef struct {
     char label[64]; /* "command" or "command (shard I/N)" for progress lines */
 } cli_sweep;
 /* Start a sweep of nitems items; params (stolen) must hold everything the
- * result depends on.  shard NULL (no --shard): the whole sweep, printed as
- * the command's result; else a shard file, also for 0/1.  what names
- * the items in progress lines ("bands"). */
+ * result depends on.  Without --shard (opts->sharded 0): the whole sweep,
+ * printed as the command's result; else a shard file, also for 0/1.  what
+ * names the items in progress lines ("bands"). */
 void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, long nitems,
-                     const sh_shard *shard, cli_format fmt, int quiet, const char *what);
+                     const cli_sweep_args *opts, const char *what);
+/* The shard this run computes (NULL without --shard), for a library call
+ * that splits the work itself. */
+const sh_shard *cli_sweep_shard(const cli_sweep *s);
 /* Non-zero if this run computes item j (its shard owns it, the sweep has not stopped). */
 int cli_sweep_owns(const cli_sweep *s, long j);
 /* Record item j's row (stolen; items in increasing order).  Returns 0 to go
@@ -432,6 +437,10 @@ int cli_sweep_owns(const cli_sweep *s, long j);
 int cli_sweep_add(cli_sweep *s, long j, json_t *row);
 /* Print the result (or the shard file) and release s; returns the exit code. */
 int cli_sweep_end(cli_sweep *s);
+/* The end of a sweep whose rows were computed with status rc (0 or an exit
+ * code after its error line): cli_sweep_end when rc is 0, else s released
+ * and rc returned. */
+int cli_sweep_close(cli_sweep *s, int rc);
 /* Render a kind's result (from finish) in fmt; the exit code of the result. */
 int cli_sweep_emit(const cli_sweep_kind *kind, json_t *result, cli_format fmt);
 void cli_sweep_free(cli_sweep *s);

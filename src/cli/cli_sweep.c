@@ -1,5 +1,6 @@
 /* cli_sweep.c — sweeps that can be split into shards (see cli.h): the
- * runner every sweep command uses, and the shard file it writes with
+ * runner every sweep command uses, the options they all take (--quiet,
+ * --shard, --format: cli_sweep_opts), and the shard file written with
  * --shard.  `shlab merge` (cmd_merge.c) reads the files back.
  *
  * The unsharded run and the merge build the result the same way — the
@@ -8,6 +9,7 @@
  * back by strtod), so the merge prints the unsharded output byte for byte. */
 #include "cli.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,23 +109,41 @@ int cli_sweep_row_ok(const cli_sweep_kind *kind, const json_t *params, long nite
     return kind->check_row ? kind->check_row(params, nitems, j, row, why, n) : 0;
 }
 
-int cli_shard(const char *opt, const char *s, sh_shard *out)
+/* ---- the options every sweep takes ------------------------------------------ */
+
+/* --shard I/N into cli_sweep_args.shard (the field), and sharded beside it:
+ * 0/1 given is a shard file all the same. */
+static int shard_value(const char *opt, const char *s, void *field)
 {
-    if (sh_shard_parse(s, out)) return cli_fail("%s: %s", opt, sh_last_error());
+    cli_sweep_args *a = (cli_sweep_args *)((char *)field - offsetof(cli_sweep_args, shard));
+    if (sh_shard_parse(s, &a->shard)) return cli_fail("%s: %s", opt, sh_last_error());
+    a->sharded = 1;
     return 0;
 }
 
+const cli_opt cli_sweep_opts[] = {
+    CLI_FLAG(cli_sweep_args, quiet, "quiet", "no progress on stderr (else a line a second after 1 s)"),
+    CLI_CUSTOM(cli_sweep_args, shard, "shard", "I/N", shard_value, NULL,
+               "compute only shard I of N (I = 0..N-1) and print a shard\n"
+               "file (JSON lines); `shlab merge` joins the N files into\n"
+               "exactly this command's output"),
+    CLI_FORMAT(cli_sweep_args, fmt),
+    CLI_END,
+};
+
+/* ---- the sweep ---------------------------------------------------------------- */
+
 void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, long nitems,
-                     const sh_shard *shard, cli_format fmt, int quiet, const char *what)
+                     const cli_sweep_args *opts, const char *what)
 {
     memset(s, 0, sizeof *s);
     s->kind = kind;
     s->params = params;
     s->rows = json_array();
     s->nitems = nitems;
-    s->shard = shard ? *shard : (sh_shard)SH_SHARD_ALL;
-    s->sharded = shard != NULL;
-    s->fmt = fmt;
+    s->shard = opts->sharded ? opts->shard : (sh_shard)SH_SHARD_ALL;
+    s->sharded = opts->sharded;
+    s->fmt = opts->fmt;
     s->last = -1;
     s->what = what;
     for (long j = 0; j < nitems; j++) s->owned += sh_shard_owns(&s->shard, j);
@@ -131,8 +151,10 @@ void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, l
         snprintf(s->label, sizeof s->label, "%s (shard %d/%d)", kind->command, s->shard.index, s->shard.count);
     else
         snprintf(s->label, sizeof s->label, "%s", kind->command);
-    cli_progress_start(&s->prog, s->label, quiet);
+    cli_progress_start(&s->prog, s->label, opts->quiet);
 }
+
+const sh_shard *cli_sweep_shard(const cli_sweep *s) { return s->sharded ? &s->shard : NULL; }
 
 int cli_sweep_owns(const cli_sweep *s, long j)
 {
@@ -244,6 +266,13 @@ int cli_sweep_end(cli_sweep *s)
         s->rows = NULL;
         rc = cli_sweep_emit(s->kind, s->kind->finish(s->params, rows), s->fmt);
     }
+    cli_sweep_free(s);
+    return rc;
+}
+
+int cli_sweep_close(cli_sweep *s, int rc)
+{
+    if (!rc) return cli_sweep_end(s);
     cli_sweep_free(s);
     return rc;
 }

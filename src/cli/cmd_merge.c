@@ -3,42 +3,50 @@
 #include "cli.h"
 
 #include <errno.h>
-#include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 
-extern const cli_command cmd_merge;
 extern const cli_sweep_kind sweep_stability, sweep_taylor_error, sweep_scale_interp, sweep_plan;
 
 static const cli_sweep_kind *const kinds[] = {&sweep_stability, &sweep_taylor_error, &sweep_scale_interp,
                                               &sweep_plan};
 
-static const char help[] =
-    "Usage: shlab merge [--format F] FILE...\n"
-    "\n"
-    "Join the shard files of one sweep into the output of the whole sweep, the same\n"
-    "bytes the command prints when run without --shard.  A sweep command run with\n"
-    "--shard I/N (I = 0..N-1) computes only its share of the work items (item j goes\n"
-    "to shard r if r < N, else to 2N-1-r, with r = j mod 2N) and prints a shard file\n"
-    "(JSON lines: a header with the command, the shlab revision, I, N, the number of\n"
-    "items, the --format and every parameter; one line per item with its index; an\n"
-    "end line).  merge refuses files of different sweeps (command, revision,\n"
-    "parameters, N or --format differ), a shard given twice or missing, a file cut\n"
-    "short (no end line), and an item missing, foreign or repeated.  Where a sweep\n"
-    "stops at a row (stability --stop-above, a broken band), the rows after the first\n"
-    "such row are dropped, as the unsharded run never computes them.\n"
-    "\n"
-    "Sweeps that take --shard: stability (bands), taylor-error (angles), scale-interp\n"
-    "(points of the dense k grid), plan (steps of the β grid; the methods are timed\n"
-    "by the merge, so its timings are those of the merging machine).\n"
-    "\n"
-    "  FILE...              the N shard files, in any order\n"
-    "  --format table|csv|json  output format (default: the sweep's --format)\n"
-    "  --help               this text\n"
-    "\n"
-    "Example (GNU parallel, two processes on one machine):\n"
-    "  parallel shlab stability --method zxzxz --lmax 300 --shard {}/2 '>' part{}.jsonl ::: 0 1\n"
-    "  shlab merge part0.jsonl part1.jsonl\n";
+typedef struct {
+    cli_format fmt;
+} merge_args;
+
+static const cli_opt merge_opts[] = {
+    CLI_CHOICE(merge_args, fmt, "format", "table|csv|json", cli_format_names, NULL,
+               "output format (default: the sweep's --format)"),
+    CLI_END,
+};
+
+static const cli_cmd merge_decl = {
+    .name = "merge",
+    .usage = "merge [--format F] FILE...",
+    .about = "Join the shard files of one sweep into the output of the whole sweep, the same\n"
+             "bytes the command prints when run without --shard.  A sweep command run with\n"
+             "--shard I/N (I = 0..N-1) computes only its share of the work items (item j goes\n"
+             "to shard r if r < N, else to 2N-1-r, with r = j mod 2N) and prints a shard file\n"
+             "(JSON lines: a header with the command, the shlab revision, I, N, the number of\n"
+             "items, the --format and every parameter; one line per item with its index; an\n"
+             "end line).  merge refuses files of different sweeps (command, revision,\n"
+             "parameters, N or --format differ), a shard given twice or missing, a file cut\n"
+             "short (no end line), and an item missing, foreign or repeated.  Where a sweep\n"
+             "stops at a row (stability --stop-above, a broken band), the rows after the first\n"
+             "such row are dropped, as the unsharded run never computes them.\n"
+             "\n"
+             "Sweeps that take --shard: stability (bands), taylor-error (angles), scale-interp\n"
+             "(points of the dense k grid), plan (steps of the β grid; the methods are timed\n"
+             "by the merge, so its timings are those of the merging machine).\n"
+             "\n"
+             "  FILE...              the N shard files, in any order\n",
+    .opts = merge_opts,
+    .notes = "Example (GNU parallel, two processes on one machine):\n"
+             "  parallel shlab stability --method zxzxz --lmax 300 --shard {}/2 '>' part{}.jsonl ::: 0 1\n"
+             "  shlab merge part0.jsonl part1.jsonl\n",
+    .positional = "FILE...",
+};
 
 /* A shard file holds one line per item: the largest runs write a few MB. */
 #define MERGE_MAX_BYTES (1LL << 30)
@@ -302,23 +310,16 @@ int cli_merge_mem(int nf, const char *const *buf, const size_t *len, const char 
 
 static int run(int argc, char **argv)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE, {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    int have_fmt = 0;
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        if (o == CLI_OPT_FORMAT) have_fmt = 1;
-        const int e = cli_common_opt(&cmd_merge, o, argv, &com);
-        if (e >= 0) return e;
-    }
-    const int nf = argc - optind;
+    merge_args a = {CLI_TABLE};
+    cli_parsed seen;
+    int rc = cli_args_parse(&merge_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
+    const int nf = argc - seen.first_positional;
     if (nf < 1) return cli_fail("merge: no shard files given");
     shard_file *f = calloc((size_t)nf, sizeof *f);
-    int rc = f ? 0 : cli_fail("out of memory");
+    rc = f ? 0 : cli_fail("out of memory");
     for (int q = 0; q < nf && !rc; q++) {
-        f[q].name = argv[optind + q];
+        f[q].name = argv[seen.first_positional + q];
         rc = read_file(f[q].name, &f[q]);
     }
     const cli_sweep_kind *kind = NULL;
@@ -327,7 +328,8 @@ static int run(int argc, char **argv)
     if (!rc) rc = join(f, nf, 1, &kind, &fmt, &result);
     files_free(f, nf);
     if (rc) return rc;
-    return cli_sweep_emit(kind, result, have_fmt ? com.fmt : fmt);
+    return cli_sweep_emit(kind, result, cli_given(&seen, "format") ? a.fmt : fmt);
 }
 
-const cli_command cmd_merge = {"merge", run, "join the shard files of a sweep run with --shard I/N", help, NULL};
+const cli_command cmd_merge = {"merge", run, "join the shard files of a sweep run with --shard I/N", NULL,
+                               &merge_decl};

@@ -4,68 +4,103 @@
  * that represents an environment image.  Logic in rotation_choose.c. */
 #include "cli.h"
 
-#include <getopt.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-extern const cli_command cmd_plan;
 extern const cli_sweep_kind sweep_plan;
 
 /* plan times every method at the order: up to 64 */
 #define PLAN_MAX_ORDER 64
 
-static const char help[] =
-    "Usage: shlab plan --order N --max-beta B --tolerance E [OPTIONS]\n"
-    "       shlab plan --order auto --exr FILE --tolerance E --max-beta B [OPTIONS]\n"
-    "\n"
-    "Choose the cheapest rotation method for a scene: every method built in\n"
-    "(exact ones and the Taylor approximations once available; not the MPFR\n"
-    "reference; z only when B = 0) is measured against the exact rotation on a\n"
-    "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
-    "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
-    "largest error over the grid is <= E; the runner-up the next fastest.\n"
-    "Errors (docs/CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
-    "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
-    "value of R_method − R_exact.\n"
-    "With --order auto the order is first chosen as the smallest n <= --max-order\n"
-    "whose projection of the image has relative L2 residual <= E on the sphere\n"
-    "(Parseval: ε² = (‖f‖² − Σc²)/‖f‖², colour channels together, ‖f‖² by the\n"
-    "same pixel quadrature as the projection); the same E is then the rotation\n"
-    "tolerance (override with --rot-tolerance).\n"
-    "\n"
-    "  --order N|auto       order (1..64) or auto (needs --exr)\n"
-    "  --max-beta B         largest rotation about y the scene needs (<= π)\n"
-    "  --tolerance E        error budget (> 0)\n"
-    "  --rot-tolerance E2   rotation budget when it should differ from E (auto)\n"
-    "  --measure lobe|max   error measure (default lobe)\n"
-    "  --lobe-exp E2        exponent of the lobe (default 7)\n"
-    "  --beta-step S        largest grid step (default 0.25°)\n"
-    "  --degrees            angles in degrees: --max-beta and --beta-step, and the\n"
-    "                       printed max_beta and worst_beta (\"unit\" says which)\n"
-    "  --precision P        double (default) | float\n"
-    "  --convention C       cs (default) | nocs: convention of the plans measured and timed\n"
-    "  --exr FILE           environment image (with --order auto)\n"
-    "  --layout L           latlong (default) | probe\n"
-    "  --max-order M        largest order tried by auto (default 32)\n"
-    "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
-    CLI_SHARD_HELP
-    "                       (the β grid; the merge times the methods)\n"
-    "  --format table|csv|json\n"
-    "  --help               this text\n"
-    "\n"
-    "JSON: {\"order\",\"convention\",\"max_beta\",\"unit\" (of max_beta and worst_beta),\n"
-    "       \"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
-    "       \"choice\":{\"method\",\"ns_per_rotation\",\"max_error\"} (null if none qualifies),\n"
-    "       \"runner_up\":{...} (or null),\n"
-    "       \"candidates\":[{\"method\",\"exact\",\"ok\",\"max_error\",\"worst_beta\",\n"
-    "                      \"ns_per_rotation\",\"mults\"}],\n"
-    "       with --order auto also \"order_residual\" (relative L2 at the chosen order)\n"
-    "       and \"image\":{\"path\",\"width\",\"height\",\"layout\"}}.  Exit 0 if a method\n"
-    "       qualifies, 1 if none does (the candidates still printed), also 1 with\n"
-    "       --order auto when no order <= --max-order represents the image to E:\n"
-    "       then \"order\":null, \"max_order\", \"order_residual\" at --max-order,\n"
-    "       choice and runner_up null, no candidates (one line on stderr says so).\n";
+/* --order auto (the order chosen from --exr) */
+#define PLAN_ORDER_AUTO (-1)
+
+typedef struct {
+    int order; /* 1..PLAN_MAX_ORDER or PLAN_ORDER_AUTO */
+    double max_beta, tolerance, rot_tol, lobe_exp, beta_step;
+    sh_error_measure measure;
+    sh_precision prec;
+    int conv, degrees, max_order;
+    const char *exr;
+    sh_layout layout;
+    cli_sweep_args sweep;
+} plan_args;
+
+static int order_value(const char *opt, const char *s, void *field)
+{
+    if (!strcmp(s, "auto")) {
+        *(int *)field = PLAN_ORDER_AUTO;
+        return 0;
+    }
+    return cli_order_max(opt, s, PLAN_MAX_ORDER, NULL, field);
+}
+static int measure_value(const char *opt, const char *s, void *field)
+{
+    return sh_error_measure_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
+}
+static int layout_value(const char *opt, const char *s, void *field)
+{
+    return sh_layout_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
+}
+
+static const cli_opt plan_opts[] = {
+    CLI_CUSTOM(plan_args, order, "order", "N|auto", order_value, NULL, "order (1..64) or auto (needs --exr)"),
+    CLI_REAL(plan_args, max_beta, "max-beta", "B", 0, 0, 0, NULL, "largest rotation about y the scene needs (<= π)"),
+    CLI_REAL(plan_args, tolerance, "tolerance", "E", 0, INFINITY, CLI_LO_OPEN, NULL, "error budget"),
+    CLI_REAL(plan_args, rot_tol, "rot-tolerance", "E2", 0, INFINITY, CLI_LO_OPEN, NULL,
+             "rotation budget when it should differ from E (auto)"),
+    CLI_CUSTOM(plan_args, measure, "measure", "lobe|max", measure_value, "lobe", "error measure"),
+    CLI_REAL(plan_args, lobe_exp, "lobe-exp", "E2", 0, 1e6, 0, "7", "exponent of the lobe"),
+    CLI_REAL(plan_args, beta_step, "beta-step", "S", 0, INFINITY, CLI_LO_OPEN, NULL,
+             "largest grid step (default 0.25°)"),
+    CLI_DEGREES(plan_args, degrees, "angles in degrees: --max-beta and --beta-step, and the\n"
+                                    "printed max_beta and worst_beta (\"unit\" says which)"),
+    CLI_CUSTOM(plan_args, prec, "precision", "P", cli_parse_precision, "double", "double | float"),
+    CLI_CHOICE(plan_args, conv, "convention", "C", cli_convention_names, "cs",
+               "cs | nocs: convention of the plans measured and timed"),
+    CLI_STRING(plan_args, exr, "exr", "FILE", "environment image (with --order auto)"),
+    CLI_CUSTOM(plan_args, layout, "layout", "L", layout_value, "latlong", "latlong | probe"),
+    {.type = CLI_T_ORDER, .name = "max-order", .meta = "M", .off = offsetof(plan_args, max_order), .lo = 1,
+     .hi = PLAN_MAX_ORDER, .def = "32", .help = "largest order tried by auto"},
+    CLI_GROUP(plan_args, sweep, cli_sweep_opts),
+    CLI_END,
+};
+
+static const cli_cmd plan_decl = {
+    .name = "plan",
+    .usage = "plan --order N --max-beta B --tolerance E [OPTIONS]\n"
+             "       shlab plan --order auto --exr FILE --tolerance E --max-beta B [OPTIONS]",
+    .about = "Choose the cheapest rotation method for a scene: every method built in\n"
+             "(exact ones and the Taylor approximations once available; not the MPFR\n"
+             "reference; z only when B = 0) is measured against the exact rotation on a\n"
+             "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
+             "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
+             "largest error over the grid is <= E; the runner-up the next fastest.\n"
+             "Errors (docs/CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
+             "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
+             "value of R_method − R_exact.\n"
+             "With --order auto the order is first chosen as the smallest n <= --max-order\n"
+             "whose projection of the image has relative L2 residual <= E on the sphere\n"
+             "(Parseval: ε² = (‖f‖² − Σc²)/‖f‖², colour channels together, ‖f‖² by the\n"
+             "same pixel quadrature as the projection); the same E is then the rotation\n"
+             "tolerance (override with --rot-tolerance).\n"
+             "With --shard the shards measure the β grid; the merge times the methods.\n",
+    .opts = plan_opts,
+    .notes = "JSON: {\"order\",\"convention\",\"max_beta\",\"unit\" (of max_beta and worst_beta),\n"
+             "       \"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
+             "       \"choice\":{\"method\",\"ns_per_rotation\",\"max_error\"} (null if none qualifies),\n"
+             "       \"runner_up\":{...} (or null),\n"
+             "       \"candidates\":[{\"method\",\"exact\",\"ok\",\"max_error\",\"worst_beta\",\n"
+             "                      \"ns_per_rotation\",\"mults\"}],\n"
+             "       with --order auto also \"order_residual\" (relative L2 at the chosen order)\n"
+             "       and \"image\":{\"path\",\"width\",\"height\",\"layout\"}}.  Exit 0 if a method\n"
+             "       qualifies, 1 if none does (the candidates still printed), also 1 with\n"
+             "       --order auto when no order <= --max-order represents the image to E:\n"
+             "       then \"order\":null, \"max_order\", \"order_residual\" at --max-order,\n"
+             "       choice and runner_up null, no candidates (one line on stderr says so).\n",
+};
 
 static json_t *cand_json(const sh_rot_candidate *c, int full, int degrees)
 {
@@ -168,215 +203,172 @@ static int check_row(const json_t *params, long nitems, long j, const json_t *ro
 
 const cli_sweep_kind sweep_plan = {"plan", finish, NULL, exit_code, params_fields, row_fields, check_row, 1};
 
-static int run(int argc, char **argv)
+/* What involves several options: the order, --max-beta and --tolerance
+ * required; --exr, --layout, --max-order and --rot-tolerance with --order
+ * auto only; the angles in radians within [0, π].  The choice's inputs
+ * into *co (its order 0 with auto). */
+static int validate(const plan_args *a, const cli_parsed *seen, sh_rot_choose_opts *co)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE,
-                                         CLI_LONGOPT_PRECISION,
-                                         CLI_LONGOPT_DEGREES,
-                                         CLI_LONGOPT_CONVENTION,
-                                         {"order", required_argument, 0, 'o'},
-                                         {"max-beta", required_argument, 0, 'B'},
-                                         {"tolerance", required_argument, 0, 'e'},
-                                         {"rot-tolerance", required_argument, 0, 'E'},
-                                         {"measure", required_argument, 0, 'm'},
-                                         {"lobe-exp", required_argument, 0, 'l'},
-                                         {"beta-step", required_argument, 0, 's'},
-                                         {"exr", required_argument, 0, 'x'},
-                                         {"layout", required_argument, 0, 'y'},
-                                         {"max-order", required_argument, 0, 'M'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         CLI_LONGOPT_SHARD,
-                                         {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    sh_rot_choose_opts co = {0};
-    co.lobe_exp = 7;
-    co.measure = SH_MEASURE_LOBE;
-    co.prec = SH_PREC_DOUBLE;
-    double max_beta = 0, beta_step = -1, rot_tol = -1;
-    int have_beta = 0, have_tol = 0, order_auto = 0, quiet = 0, max_order = 32, have_layout = 0;
-    int have_max_order = 0;
-    const char *exr = NULL;
-    sh_shard shard = SH_SHARD_ALL;
-    int have_shard = 0;
-    sh_layout layout = SH_LAYOUT_LATLONG;
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        switch (o) {
-        case CLI_OPT_PRECISION:
-            if (cli_precision(optarg, &co.prec)) return CLI_EXIT_USAGE;
-            break;
-        case 'o':
-            if (!strcmp(optarg, "auto")) order_auto = 1;
-            else {
-                if (cli_order_max("--order", optarg, PLAN_MAX_ORDER, NULL, &co.order)) return CLI_EXIT_USAGE;
-                order_auto = 0;
-            }
-            break;
-        case 'B':
-            if (cli_double("--max-beta", optarg, &max_beta)) return CLI_EXIT_USAGE;
-            have_beta = 1;
-            break;
-        case 'e':
-            if (cli_double("--tolerance", optarg, &co.tolerance)) return CLI_EXIT_USAGE;
-            if (!(co.tolerance > 0)) return cli_fail("--tolerance: must be > 0");
-            have_tol = 1;
-            break;
-        case 'E':
-            if (cli_double("--rot-tolerance", optarg, &rot_tol)) return CLI_EXIT_USAGE;
-            if (!(rot_tol > 0)) return cli_fail("--rot-tolerance: must be > 0");
-            break;
-        case 'm':
-            if (sh_error_measure_parse(optarg, &co.measure)) return cli_fail("--measure: %s", sh_last_error());
-            break;
-        case 'l':
-            if (cli_double("--lobe-exp", optarg, &co.lobe_exp)) return CLI_EXIT_USAGE;
-            if (!(co.lobe_exp >= 0 && co.lobe_exp <= 1e6)) return cli_fail("--lobe-exp: must be in [0, 1e6]");
-            break;
-        case 's':
-            if (cli_double("--beta-step", optarg, &beta_step)) return CLI_EXIT_USAGE;
-            if (!(beta_step > 0)) return cli_fail("--beta-step: must be > 0");
-            break;
-        case 'x':
-            if (exr) return cli_fail("plan: --exr given twice");
-            exr = optarg;
-            break;
-        case 'y':
-            if (sh_layout_parse(optarg, &layout)) return cli_fail("--layout: %s", sh_last_error());
-            have_layout = 1;
-            break;
-        case 'M':
-            if (cli_order_max("--max-order", optarg, PLAN_MAX_ORDER, NULL, &max_order)) return CLI_EXIT_USAGE;
-            have_max_order = 1;
-            break;
-        case 'q': quiet = 1; break;
-        case CLI_OPT_SHARD:
-            if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
-            have_shard = 1;
-            break;
-        default: {
-            const int e = cli_common_opt(&cmd_plan, o, argv, &com);
-            if (e >= 0) return e;
-        }
-        }
-    }
-    if (optind < argc) return cli_fail("plan: unexpected argument '%s'", argv[optind]);
-    if (!order_auto && co.order == 0) return cli_fail("plan: --order N (or auto) is required");
-    if (!have_beta) return cli_fail("plan: --max-beta is required");
-    if (!have_tol) return cli_fail("plan: --tolerance is required");
-    if (order_auto && !exr) return cli_fail("plan: --order auto needs --exr FILE");
-    if (cli_applies("plan", exr != NULL, "--exr", order_auto, "--order auto") ||
-        cli_applies("plan", have_layout, "--layout", order_auto, "--order auto") ||
-        cli_applies("plan", have_max_order, "--max-order", order_auto, "--order auto") ||
-        cli_applies("plan", rot_tol > 0, "--rot-tolerance", order_auto, "--order auto"))
+    const int order_auto = a->order == PLAN_ORDER_AUTO;
+    if (!cli_given(seen, "order")) return cli_fail("plan: --order N (or auto) is required");
+    if (!cli_given(seen, "max-beta")) return cli_fail("plan: --max-beta is required");
+    if (!cli_given(seen, "tolerance")) return cli_fail("plan: --tolerance is required");
+    if (order_auto && !a->exr) return cli_fail("plan: --order auto needs --exr FILE");
+    if (cli_applies("plan", a->exr != NULL, "--exr", order_auto, "--order auto") ||
+        cli_applies("plan", cli_given(seen, "layout"), "--layout", order_auto, "--order auto") ||
+        cli_applies("plan", cli_given(seen, "max-order"), "--max-order", order_auto, "--order auto") ||
+        cli_applies("plan", cli_given(seen, "rot-tolerance"), "--rot-tolerance", order_auto, "--order auto"))
         return CLI_EXIT_USAGE;
-    co.conv = com.conv;
-    const double deg = com.degrees ? M_PI / 180 : 1.0;
-    co.max_beta = max_beta * deg;
-    if (!(co.max_beta >= 0 && co.max_beta <= M_PI * (1 + 1e-12)))
-        return cli_fail("--max-beta: %g is outside [0, %s", max_beta,
-                        com.degrees ? "180] degrees" : "π] radians (--degrees for degrees)");
-    co.max_beta = fmin(co.max_beta, M_PI);
-    co.beta_step = beta_step > 0 ? beta_step * deg : 0.25 * M_PI / 180;
-    if (co.beta_step < 1e-5) return cli_fail("--beta-step: too small (< 1e-5 rad)");
+    *co = (sh_rot_choose_opts){.order = order_auto ? 0 : a->order, .tolerance = a->tolerance,
+                               .lobe_exp = a->lobe_exp, .measure = a->measure, .prec = a->prec,
+                               .conv = (sh_convention)a->conv};
+    const double deg = a->degrees ? M_PI / 180 : 1.0;
+    co->max_beta = a->max_beta * deg;
+    if (!(co->max_beta >= 0 && co->max_beta <= M_PI * (1 + 1e-12)))
+        return cli_fail("--max-beta: %g is outside [0, %s", a->max_beta,
+                        a->degrees ? "180] degrees" : "π] radians (--degrees for degrees)");
+    co->max_beta = fmin(co->max_beta, M_PI);
+    co->beta_step = a->beta_step > 0 ? a->beta_step * deg : 0.25 * M_PI / 180;
+    if (co->beta_step < 1e-5) return cli_fail("--beta-step: too small (< 1e-5 rad)");
+    return 0;
+}
 
-    json_t *img_json = NULL;
-    double order_resid = 0;
-    const double img_tol = co.tolerance;
-    if (order_auto) {
-        sh_image img = {0};
-        if (cli_input("EXR image", exr)) return CLI_EXIT_USAGE;
-        int st = sh_exr_read(exr, &img, NULL);
-        if (st) return cli_fail_status(st);
-        double resid[64];
-        int order = -1;
-        /* no order beyond what the image can carry (sh_image_max_order) */
-        if (max_order > sh_image_max_order(&img, layout)) max_order = sh_image_max_order(&img, layout);
-        if (!quiet) fprintf(stderr, "plan: projecting %s (%dx%d) to order %d\n", exr, img.width, img.height, max_order);
-        st = sh_order_for_image(&img, layout, img_tol, max_order, &order, resid);
-        const int w = img.width, h = img.height;
-        sh_image_free(&img);
-        if (st) return cli_fail_status(st);
-        img_json = json_object();
-        img_json = cli_put(img_json, "path", json_string(exr));
-        img_json = cli_put(img_json, "width", json_integer(w));
-        img_json = cli_put(img_json, "height", json_integer(h));
-        img_json = cli_put(img_json, "layout", json_string(layout == SH_LAYOUT_LATLONG ? "latlong" : "probe"));
-        if (order < 0) {
-            /* a valid request whose answer is "no order qualifies": a failed
-             * check (exit 1), the result still printed, without candidates */
-            fprintf(stderr, "plan: no order <= %d represents %s to relative L2 %g (at order %d: %.3g)\n",
-                    max_order, exr, img_tol, max_order, resid[max_order - 1]);
-            json_t *root = json_object();
-            root = cli_put(root, "order", json_null());
-            root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-            root = cli_put(root, "max_beta", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
-            root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
-            root = cli_put(root, "tolerance", json_real(rot_tol > 0 ? rot_tol : co.tolerance));
-            root = cli_put(root, "measure", json_string(sh_error_measure_name(co.measure)));
-            root = cli_put(root, "lobe_exp", json_real(co.lobe_exp));
-            root = cli_put(root, "precision", json_string(sh_precision_name(co.prec)));
-            root = cli_put(root, "image_tolerance", json_real(img_tol));
-            root = cli_put(root, "max_order", json_integer(max_order));
-            root = cli_put(root, "order_residual", json_real(resid[max_order - 1]));
-            root = cli_put(root, "image", img_json);
-            root = cli_put(root, "choice", json_null());
-            root = cli_put(root, "runner_up", json_null());
-            root = cli_put(root, "candidates", json_array());
-            const int rc = cli_emit(root, com.fmt);
-            return rc == CLI_EXIT_OK ? CLI_EXIT_CHECK : rc;
-        }
-        co.order = order;
-        order_resid = resid[order - 1];
-        if (rot_tol > 0) co.tolerance = rot_tol;
-    }
-    /* the sweep: step j of the β grid; everything the result depends on */
-    sh_rot_method ms[SH_ROT_NMETHODS];
-    int nm = 0, nsteps = 0;
-    int st = sh_rot_choose_grid(&co, ms, &nm, &nsteps);
-    if (st) { json_decref(img_json); return cli_fail_status(st); }
+/* max_beta as printed: in the unit asked for */
+static double max_beta_shown(const plan_args *a, const sh_rot_choose_opts *co)
+{
+    return a->degrees ? fmin(a->max_beta, 180.0) : co->max_beta;
+}
+
+/* --order auto when no order <= --max-order represents the image: a valid
+ * request whose answer is "no order qualifies", a failed check (exit 1),
+ * the result still printed, without candidates. */
+static int no_order(const plan_args *a, const sh_rot_choose_opts *co, int max_order, double resid, json_t *image)
+{
+    fprintf(stderr, "plan: no order <= %d represents %s to relative L2 %g (at order %d: %.3g)\n", max_order,
+            a->exr, a->tolerance, max_order, resid);
+    json_t *root = json_object();
+    root = cli_put(root, "order", json_null());
+    root = cli_put(root, "convention", json_string(sh_convention_name((sh_convention)a->conv)));
+    root = cli_put(root, "max_beta", json_real(max_beta_shown(a, co)));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(a->degrees)));
+    root = cli_put(root, "tolerance", json_real(a->rot_tol > 0 ? a->rot_tol : co->tolerance));
+    root = cli_put(root, "measure", json_string(sh_error_measure_name(co->measure)));
+    root = cli_put(root, "lobe_exp", json_real(co->lobe_exp));
+    root = cli_put(root, "precision", json_string(sh_precision_name(co->prec)));
+    root = cli_put(root, "image_tolerance", json_real(a->tolerance));
+    root = cli_put(root, "max_order", json_integer(max_order));
+    root = cli_put(root, "order_residual", json_real(resid));
+    root = cli_put(root, "image", image);
+    root = cli_put(root, "choice", json_null());
+    root = cli_put(root, "runner_up", json_null());
+    root = cli_put(root, "candidates", json_array());
+    const int rc = cli_emit(root, a->sweep.fmt);
+    return rc == CLI_EXIT_OK ? CLI_EXIT_CHECK : rc;
+}
+
+/* --order auto: the smallest order whose projection of the image has
+ * relative L2 residual <= --tolerance (then --rot-tolerance, if given, is
+ * the rotation's budget).  -1 to go on with co->order, *image and *resid
+ * set; else the exit code (the result printed when no order qualifies). */
+static int auto_order(const plan_args *a, sh_rot_choose_opts *co, json_t **image, double *resid_out)
+{
+    sh_image img = {0};
+    if (cli_input("EXR image", a->exr)) return CLI_EXIT_USAGE;
+    int st = sh_exr_read(a->exr, &img, NULL);
+    if (st) return cli_fail_status(st);
+    double resid[64];
+    int order = -1, max_order = a->max_order;
+    /* no order beyond what the image can carry (sh_image_max_order) */
+    if (max_order > sh_image_max_order(&img, a->layout)) max_order = sh_image_max_order(&img, a->layout);
+    if (!a->sweep.quiet)
+        fprintf(stderr, "plan: projecting %s (%dx%d) to order %d\n", a->exr, img.width, img.height, max_order);
+    st = sh_order_for_image(&img, a->layout, a->tolerance, max_order, &order, resid);
+    const int w = img.width, h = img.height;
+    sh_image_free(&img);
+    if (st) return cli_fail_status(st);
+    json_t *img_json = json_object();
+    img_json = cli_put(img_json, "path", json_string(a->exr));
+    img_json = cli_put(img_json, "width", json_integer(w));
+    img_json = cli_put(img_json, "height", json_integer(h));
+    img_json = cli_put(img_json, "layout", json_string(a->layout == SH_LAYOUT_LATLONG ? "latlong" : "probe"));
+    if (order < 0) return no_order(a, co, max_order, resid[max_order - 1], img_json);
+    co->order = order;
+    *resid_out = resid[order - 1];
+    *image = img_json;
+    if (a->rot_tol > 0) co->tolerance = a->rot_tol;
+    return -1;
+}
+
+/* Everything the result depends on (the sweep: step j of the β grid),
+ * whichever shard runs; image (stolen) and resid with --order auto. */
+static json_t *sweep_params(const plan_args *a, const sh_rot_choose_opts *co, const sh_rot_method *ms, int nm,
+                            json_t *image, double resid)
+{
     json_t *params = json_object(), *mj = json_array();
     for (int k = 0; k < nm && mj; k++)
         if (json_array_append_new(mj, json_string(sh_rot_method_name(ms[k])))) { json_decref(mj); mj = NULL; }
-    params = cli_put(params, "order", json_integer(co.order));
-    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
-    params = cli_put(params, "max_beta", json_real(co.max_beta));
-    params = cli_put(params, "degrees", json_boolean(com.degrees));
-    params = cli_put(params, "max_beta_shown", json_real(com.degrees ? fmin(max_beta, 180.0) : co.max_beta));
-    params = cli_put(params, "tolerance", json_real(co.tolerance));
-    params = cli_put(params, "measure", json_string(sh_error_measure_name(co.measure)));
-    params = cli_put(params, "lobe_exp", json_real(co.lobe_exp));
-    params = cli_put(params, "precision", json_string(sh_precision_name(co.prec)));
-    if (order_auto) {
-        params = cli_put(params, "image_tolerance", json_real(img_tol));
-        params = cli_put(params, "order_residual", json_real(order_resid));
-        params = cli_put(params, "image", img_json);
+    params = cli_put(params, "order", json_integer(co->order));
+    params = cli_put(params, "convention", json_string(sh_convention_name(co->conv)));
+    params = cli_put(params, "max_beta", json_real(co->max_beta));
+    params = cli_put(params, "degrees", json_boolean(a->degrees));
+    params = cli_put(params, "max_beta_shown", json_real(max_beta_shown(a, co)));
+    params = cli_put(params, "tolerance", json_real(co->tolerance));
+    params = cli_put(params, "measure", json_string(sh_error_measure_name(co->measure)));
+    params = cli_put(params, "lobe_exp", json_real(co->lobe_exp));
+    params = cli_put(params, "precision", json_string(sh_precision_name(co->prec)));
+    if (a->order == PLAN_ORDER_AUTO) {
+        params = cli_put(params, "image_tolerance", json_real(a->tolerance));
+        params = cli_put(params, "order_residual", json_real(resid));
+        params = cli_put(params, "image", image);
     }
-    params = cli_put(params, "beta_step", json_real(co.beta_step));
-    params = cli_put(params, "methods", mj);
+    params = cli_put(params, "beta_step", json_real(co->beta_step));
+    return cli_put(params, "methods", mj);
+}
+
+/* The errors of the nm methods on this shard's steps of the β grid, a row
+ * each.  0 or the exit code. */
+static int measure(sh_rot_choose_opts *co, int nm, int nsteps, cli_sweep *sw)
+{
     double *err = malloc(sizeof *err * (size_t)nsteps * (nm ? nm : 1));
-    if (!err) { json_decref(params); return cli_fail("out of memory"); }
-    if (!quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
-    cli_sweep sw;
-    cli_sweep_begin(&sw, &sweep_plan, params, nsteps, have_shard ? &shard : NULL, com.fmt, quiet, "steps");
-    co.progress = cli_progress_step;
-    co.progress_ctx = &sw.prog;
-    st = sh_rot_choose_errors(&co, have_shard ? &shard : NULL, err);
-    sw.prog.quiet = 1; /* the library counted the steps */
-    if (st) { free(err); cli_sweep_free(&sw); return cli_fail_status(st); }
+    if (!err) return cli_fail("out of memory");
+    co->progress = cli_progress_step;
+    co->progress_ctx = &sw->prog;
+    const int st = sh_rot_choose_errors(co, cli_sweep_shard(sw), err);
+    sw->prog.quiet = 1; /* the library counted the steps */
+    if (st) { free(err); return cli_fail_status(st); }
     for (int j = 0; j < nsteps; j++) {
-        if (!cli_sweep_owns(&sw, j)) continue;
+        if (!cli_sweep_owns(sw, j)) continue;
         json_t *r = json_object();
-        r = cli_put(r, "beta", json_real(beta_of(co.max_beta, nsteps, j)));
+        r = cli_put(r, "beta", json_real(beta_of(co->max_beta, nsteps, j)));
         r = cli_put(r, "errors", cli_json_array(err + (size_t)j * nm, (size_t)nm));
-        if (cli_sweep_add(&sw, j, r) == CLI_EXIT_USAGE) { free(err); cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
+        if (cli_sweep_add(sw, j, r) == CLI_EXIT_USAGE) { free(err); return CLI_EXIT_USAGE; }
     }
     free(err);
-    return cli_sweep_end(&sw);
+    return 0;
+}
+
+static int run(int argc, char **argv)
+{
+    plan_args a = {0};
+    cli_parsed seen;
+    sh_rot_choose_opts co;
+    int rc = cli_args_parse(&plan_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
+    if ((rc = validate(&a, &seen, &co))) return rc;
+    json_t *image = NULL;
+    double resid = 0;
+    if (a.order == PLAN_ORDER_AUTO && (rc = auto_order(&a, &co, &image, &resid)) >= 0) return rc;
+    sh_rot_method ms[SH_ROT_NMETHODS];
+    int nm = 0, nsteps = 0;
+    const int st = sh_rot_choose_grid(&co, ms, &nm, &nsteps);
+    if (st) { json_decref(image); return cli_fail_status(st); }
+    if (!a.sweep.quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_plan, sweep_params(&a, &co, ms, nm, image, resid), nsteps, &a.sweep, "steps");
+    return cli_sweep_close(&sw, measure(&co, nm, nsteps, &sw));
 }
 
 const cli_command cmd_plan = {"plan", run,
                               "the cheapest rotation method for an error budget up to a β "
                               "(measured now); --order auto from an EXR",
-                              help, NULL};
+                              NULL, &plan_decl};

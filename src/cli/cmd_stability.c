@@ -3,11 +3,10 @@
  * rotation set with the extremes. */
 #include "cli.h"
 
-#include <getopt.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 
-extern const cli_command cmd_stability;
 extern const cli_sweep_kind sweep_stability;
 
 /* Largest band: memory is 11 blocks of (2L+1)² doubles (1.4 GB at 2000,
@@ -15,39 +14,80 @@ extern const cli_sweep_kind sweep_stability;
  * depends on the method (and no method may go beyond its own largest order). */
 #define STABILITY_MAX_BAND 4000
 
-static const char help[] =
-    "Usage: shlab stability --method M --lmax L [OPTIONS]\n"
-    "\n"
-    "Accuracy of a rotation method band by band, l = 0..L, as the maximum over a\n"
-    "fixed set of 10 rotations: β = 0, 1e-12, π/2, π-1e-9, π, the gimbal-lock\n"
-    "cases (0.9, 0, -0.9) and (π/2, π, π/2), β = 1e-7 with α+γ = 0, and two seeded\n"
-    "random rotations (the z method uses only those with β = 0).\n"
-    "  orth   max|R Rᵀ - I| (exact up to --exact-max, above it the probe estimate\n"
-    "         max|Rᵀ(R v) - v| over two seeded unit vectors; orth_exact says which)\n"
-    "  hom    max|R(a)(R(b) v) - R(ab) v| over two unit probes, pairs of the set\n"
-    "  ref    max|R - R_reference| (MPFR, ≥30 digits) up to --ref-max, else empty\n"
-    "  broken true if the method overflowed (its numbers are then empty)\n"
-    "\n"
-    "  --method M           z | ivanic | zxzxz | choi | blanco | wigner | halfpi\n"
-    "                       | reference | taylor1 | taylor1.5 | taylor2 (halfpi forms\n"
-    "                       no block above --exact-max and --ref-max: O(l²) a band)\n"
-    "  --lmax L             every band 0..L (L <= 4000 and below the method's limit)\n"
-    "  --bands L1,L2,...    only these bands (increasing, <= 4000); single-band\n"
-    "                       methods then compute nothing else\n"
-    "  --stop-above X       stop after the first band whose orth exceeds X\n"
-    "  --precision P        double (default) | float\n"
-    "  --ref-max R          compare with the reference up to band R (default 40)\n"
-    "  --exact-max E        exact orthogonality up to band E (default 128)\n"
-    "  --convention cs|nocs\n"
-    "  --degrees            print the rotations' Euler angles in degrees\n"
-    "  --quiet              no progress on stderr\n"
-    CLI_SHARD_HELP
-    "  --format table|csv|json\n"
-    "  --help               this text\n"
-    "\n"
-    "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"unit\" (of the Euler angles),\n"
-    "       \"rotations\":[{name,euler}],\n"
-    "       \"rows\":[{\"band\",\"orth\",\"orth_exact\",\"hom\",\"ref\",\"broken\"}]}\n";
+/* --bands L1,L2,...: increasing bands in 0..STABILITY_MAX_BAND */
+typedef struct {
+    int n;
+    int v[STABILITY_MAX_BAND + 1];
+} band_list;
+
+typedef struct {
+    sh_rot_method method;
+    sh_precision prec;
+    int lmax, ref_max, exact_max;
+    band_list bands;
+    double stop_above; /* 0: not given */
+    int conv, degrees;
+    cli_sweep_args sweep;
+} stability_args;
+
+static int bands_value(const char *opt, const char *s, void *field)
+{
+    band_list *b = field;
+    double *v = NULL;
+    int n = 0;
+    if (cli_doubles(opt, s, &v, &n)) return CLI_EXIT_USAGE;
+    for (int q = 0; q < n; q++) {
+        if (q > STABILITY_MAX_BAND || v[q] != floor(v[q]) || v[q] < 0 || v[q] > STABILITY_MAX_BAND ||
+            (q && v[q] <= v[q - 1])) {
+            free(v);
+            return cli_fail("%s: need increasing integers in 0..%d", opt, STABILITY_MAX_BAND);
+        }
+        b->v[q] = (int)v[q];
+    }
+    b->n = n;
+    free(v);
+    return 0;
+}
+
+static const cli_opt stability_opts[] = {
+    CLI_CUSTOM(stability_args, method, "method", "M", cli_parse_method, NULL,
+               "z | ivanic | zxzxz | choi | blanco | wigner | halfpi\n"
+               "| reference | taylor1 | taylor1.5 | taylor2 (halfpi forms\n"
+               "no block above --exact-max and --ref-max: O(l²) a band)"),
+    CLI_INT(stability_args, lmax, "lmax", "L", 0, STABILITY_MAX_BAND, NULL,
+            "every band 0..L, below the method's limit"),
+    CLI_CUSTOM(stability_args, bands, "bands", "L1,L2,...", bands_value, NULL,
+               "only these bands (increasing, <= 4000); single-band\n"
+               "methods then compute nothing else"),
+    CLI_REAL(stability_args, stop_above, "stop-above", "X", 0, INFINITY, CLI_LO_OPEN, NULL,
+             "stop after the first band whose orth exceeds X"),
+    CLI_CUSTOM(stability_args, prec, "precision", "P", cli_parse_precision, "double", "double | float"),
+    CLI_INT(stability_args, ref_max, "ref-max", "R", -1, 300, "40", "compare with the reference up to band R"),
+    CLI_INT(stability_args, exact_max, "exact-max", "E", -1, INT_MAX, "128",
+            "exact orthogonality up to band E (-1: none)"),
+    CLI_CONVENTION(stability_args, conv),
+    CLI_DEGREES(stability_args, degrees, "print the rotations' Euler angles in degrees"),
+    CLI_GROUP(stability_args, sweep, cli_sweep_opts),
+    CLI_END,
+};
+
+static const cli_cmd stability_decl = {
+    .name = "stability",
+    .usage = "stability --method M --lmax L [OPTIONS]",
+    .about = "Accuracy of a rotation method band by band, l = 0..L, as the maximum over a\n"
+             "fixed set of 10 rotations: β = 0, 1e-12, π/2, π-1e-9, π, the gimbal-lock\n"
+             "cases (0.9, 0, -0.9) and (π/2, π, π/2), β = 1e-7 with α+γ = 0, and two seeded\n"
+             "random rotations (the z method uses only those with β = 0).\n"
+             "  orth   max|R Rᵀ - I| (exact up to --exact-max, above it the probe estimate\n"
+             "         max|Rᵀ(R v) - v| over two seeded unit vectors; orth_exact says which)\n"
+             "  hom    max|R(a)(R(b) v) - R(ab) v| over two unit probes, pairs of the set\n"
+             "  ref    max|R - R_reference| (MPFR, ≥30 digits) up to --ref-max, else empty\n"
+             "  broken true if the method overflowed (its numbers are then empty)\n",
+    .opts = stability_opts,
+    .notes = "JSON: {\"method\",\"precision\",\"convention\",\"lmax\",\"unit\" (of the Euler angles),\n"
+             "       \"rotations\":[{name,euler}],\n"
+             "       \"rows\":[{\"band\",\"orth\",\"orth_exact\",\"hom\",\"ref\",\"broken\"}]}\n",
+};
 
 /* ---- the sweep: item j is band j (--lmax) or the j-th of --bands ---- */
 
@@ -140,126 +180,71 @@ static int on_row(const sh_rot_stability_row *r, void *vctx)
     return SH_OK;
 }
 
-static int run(int argc, char **argv)
+/* What involves several options: a method (not auto), --lmax or --bands
+ * (their last band as lmax), within the method's largest order. */
+static int validate(stability_args *a, const cli_parsed *seen)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE,
-                                         CLI_LONGOPT_CONVENTION,
-                                         CLI_LONGOPT_DEGREES,
-                                         CLI_LONGOPT_METHOD,
-                                         CLI_LONGOPT_PRECISION,
-                                         CLI_LONGOPT_SHARD,
-                                         {"lmax", required_argument, 0, 'L'},
-                                         {"ref-max", required_argument, 0, 'r'},
-                                         {"exact-max", required_argument, 0, 'e'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         {"bands", required_argument, 0, 'B'},
-                                         {"stop-above", required_argument, 0, 's'},
-                                         {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    sh_rot_method method = SH_ROT_IVANIC;
-    sh_precision prec = SH_PREC_DOUBLE;
-    int lmax = -1, ref_max = 40, exact_max = 128, have_method = 0, quiet = 0, nb = 0;
-    static int band_list[STABILITY_MAX_BAND + 1]; /* increasing, in 0..4000: at most 4001 */
-    int *bands = NULL;
-    double stop_above = 0;
-    sh_shard shard = SH_SHARD_ALL;
-    int have_shard = 0;
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        switch (o) {
-        case 'L':
-            if (cli_int("--lmax", optarg, &lmax)) return CLI_EXIT_USAGE;
-            if (lmax < 0 || lmax > STABILITY_MAX_BAND)
-                return cli_fail("--lmax: %d out of range 0..%d", lmax, STABILITY_MAX_BAND);
-            break;
-        case 'r':
-            if (cli_int("--ref-max", optarg, &ref_max)) return CLI_EXIT_USAGE;
-            if (ref_max < -1 || ref_max > 300) return cli_fail("--ref-max: %d out of range -1..300", ref_max);
-            break;
-        case 'e':
-            if (cli_int("--exact-max", optarg, &exact_max)) return CLI_EXIT_USAGE;
-            if (exact_max < -1) return cli_fail("--exact-max: %d must be >= -1", exact_max);
-            break;
-        case 'q': quiet = 1; break;
-        case 's':
-            if (cli_double("--stop-above", optarg, &stop_above)) return CLI_EXIT_USAGE;
-            if (!(stop_above > 0)) return cli_fail("--stop-above: must be > 0");
-            break;
-        case CLI_OPT_SHARD:
-            if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
-            have_shard = 1;
-            break;
-        case 'B': {
-            double *v = NULL;
-            if (cli_doubles("--bands", optarg, &v, &nb)) return CLI_EXIT_USAGE;
-            for (int q = 0; q < nb; q++) {
-                if (q > STABILITY_MAX_BAND || v[q] != floor(v[q]) || v[q] < 0 || v[q] > STABILITY_MAX_BAND ||
-                    (q && v[q] <= v[q - 1])) {
-                    free(v);
-                    return cli_fail("--bands: need increasing integers in 0..%d", STABILITY_MAX_BAND);
-                }
-                band_list[q] = (int)v[q];
-            }
-            free(v);
-            bands = band_list;
-            break;
-        }
-        default: {
-            const int e = cli_common_opt(&cmd_stability, o, argv, &com);
-            if (e >= 0) return e;
-        }
-        }
-    }
-    /* --method and --precision are kept by cli_common_opt */
-    method = com.method;
-    prec = com.prec;
-    have_method = com.have_method;
-    if (optind < argc) return cli_fail("stability: unexpected argument '%s'", argv[optind]);
-    if (!have_method) return cli_fail("stability: --method is required");
-    if (bands && lmax >= 0) return cli_fail("stability: give --lmax or --bands, not both");
-    if (bands) lmax = bands[nb - 1];
-    if (lmax < 0) return cli_fail("stability: --lmax (or --bands) is required");
-    if (lmax + 1 > sh_rot_method_max_order(method))
-        return cli_fail("stability: method %s is limited to order %d (lmax %d)",
-                        sh_rot_method_name(method), sh_rot_method_max_order(method),
-                        sh_rot_method_max_order(method) - 1);
-    /* everything the rows depend on: the whole sweep, whichever shard runs */
-    json_t *params = json_object(), *bl = bands ? json_array() : json_null();
-    for (int q = 0; bl && bands && q < nb; q++)
-        if (json_array_append_new(bl, json_integer(bands[q]))) { json_decref(bl); bl = NULL; }
-    params = cli_put(params, "method", json_string(sh_rot_method_name(method)));
-    params = cli_put(params, "precision", json_string(sh_precision_name(prec)));
-    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
-    params = cli_put(params, "lmax", json_integer(lmax));
+    if (!cli_given(seen, "method") || a->method == SH_ROT_AUTO) return cli_fail("stability: --method is required");
+    if (a->bands.n && cli_given(seen, "lmax")) return cli_fail("stability: give --lmax or --bands, not both");
+    if (a->bands.n) a->lmax = a->bands.v[a->bands.n - 1];
+    else if (!cli_given(seen, "lmax")) return cli_fail("stability: --lmax (or --bands) is required");
+    if (a->lmax + 1 > sh_rot_method_max_order(a->method))
+        return cli_fail("stability: method %s is limited to order %d (lmax %d)", sh_rot_method_name(a->method),
+                        sh_rot_method_max_order(a->method), sh_rot_method_max_order(a->method) - 1);
+    return 0;
+}
+
+/* Everything the rows depend on: the whole sweep, whichever shard runs. */
+static json_t *sweep_params(const stability_args *a)
+{
+    json_t *params = json_object(), *bl = a->bands.n ? json_array() : json_null();
+    for (int q = 0; bl && a->bands.n && q < a->bands.n; q++)
+        if (json_array_append_new(bl, json_integer(a->bands.v[q]))) { json_decref(bl); bl = NULL; }
+    params = cli_put(params, "method", json_string(sh_rot_method_name(a->method)));
+    params = cli_put(params, "precision", json_string(sh_precision_name(a->prec)));
+    params = cli_put(params, "convention", json_string(sh_convention_name((sh_convention)a->conv)));
+    params = cli_put(params, "lmax", json_integer(a->lmax));
     params = cli_put(params, "bands", bl);
-    params = cli_put(params, "ref_max", json_integer(ref_max));
-    params = cli_put(params, "exact_max", json_integer(exact_max));
-    params = cli_put(params, "stop_above", stop_above > 0 ? json_real(stop_above) : json_null());
-    params = cli_put(params, "degrees", json_boolean(com.degrees));
-    const long nitems = bands ? nb : lmax + 1;
-    cli_sweep sw;
-    cli_sweep_begin(&sw, &sweep_stability, params, nitems, have_shard ? &shard : NULL, com.fmt, quiet, "bands");
-    /* this shard's bands (every band unsharded), increasing */
+    params = cli_put(params, "ref_max", json_integer(a->ref_max));
+    params = cli_put(params, "exact_max", json_integer(a->exact_max));
+    params = cli_put(params, "stop_above", a->stop_above > 0 ? json_real(a->stop_above) : json_null());
+    return cli_put(params, "degrees", json_boolean(a->degrees));
+}
+
+/* This shard's bands (every band unsharded), increasing, through
+ * sh_rot_stability; each row into the sweep.  0 or the exit code. */
+static int compute(const stability_args *a, cli_sweep *sw)
+{
+    const long nitems = sw->nitems;
     int *mine = malloc((size_t)nitems * sizeof *mine);
     long *item = malloc((size_t)nitems * sizeof *item);
     int nm = 0;
     for (long j = 0; mine && item && j < nitems; j++)
-        if (cli_sweep_owns(&sw, j)) { item[nm] = j; mine[nm++] = bands ? bands[j] : (int)j; }
-    acc a = {&sw, item, 0, 0};
+        if (cli_sweep_owns(sw, j)) { item[nm] = j; mine[nm++] = a->bands.n ? a->bands.v[j] : (int)j; }
+    acc ac = {sw, item, 0, 0};
     int st = !mine || !item ? sh_error(SH_ENOMEM, "stability: out of memory") : SH_OK;
     if (!st && nm > 0)
-        st = sh_rot_stability(method, prec, com.conv, mine[nm - 1], mine, nm, ref_max, exact_max,
-                              stop_above, on_row, &a);
+        st = sh_rot_stability(a->method, a->prec, (sh_convention)a->conv, mine[nm - 1], mine, nm, a->ref_max,
+                              a->exact_max, a->stop_above, on_row, &ac);
     free(mine);
     free(item);
-    if (a.fail) { cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
-    if (st) { cli_sweep_free(&sw); return cli_fail_status(st); }
-    return cli_sweep_end(&sw);
+    if (ac.fail) return CLI_EXIT_USAGE;
+    return st ? cli_fail_status(st) : 0;
+}
+
+static int run(int argc, char **argv)
+{
+    stability_args a = {0};
+    cli_parsed seen;
+    int rc = cli_args_parse(&stability_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
+    if ((rc = validate(&a, &seen))) return rc;
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_stability, sweep_params(&a), a.bands.n ? a.bands.n : a.lmax + 1, &a.sweep, "bands");
+    return cli_sweep_close(&sw, compute(&a, &sw));
 }
 
 const cli_command cmd_stability = {"stability", run,
                                    "a rotation method's error band by band (orthogonality, "
                                    "homomorphism, reference)",
-                                   help, NULL};
+                                   NULL, &stability_decl};

@@ -3,43 +3,57 @@
  * values of D(β) = R_Y(β) − T(β) and for a Phong lobe (taylor_error.c). */
 #include "cli.h"
 
-#include <getopt.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-extern const cli_command cmd_taylor_error;
 extern const cli_sweep_kind sweep_taylor_error;
 
 #define TE_MAX_ORDER 128
 #define TE_MAX_STEPS 100000
 
-static const char help[] =
-    "Usage: shlab taylor-error --order N --taylor 1|1.5|2 (--beta B | --beta-max B --steps S)\n"
-    "                          [--lobe-exp E] [OPTIONS]\n"
-    "\n"
-    "Error of the Taylor-approximated rotation about y, D(β) = R_Y(β) - T(β)\n"
-    "(docs/CONVENTIONS.md): T = I + βJ (1), + β²/2·diag(J²) (1.5), + β²/2·J² (2).\n"
-    "R_Y(β) is exact (zxzxz); T(β) is the taylor method's own matrix.\n"
-    "  max   largest singular value of D (worst unit coefficient vector)\n"
-    "  mean  mean of the N² singular values (GSL one-sided Jacobi SVD)\n"
-    "  lobe  ‖D c‖₂, c the unit coefficient vector of max(0,cosθ)^E about +z\n"
-    "The numbers are the same in both conventions and for the frame rotation.\n"
-    "\n"
-    "  --order N            bands 0..N-1 (1..128)\n"
-    "  --taylor T           1 | 1.5 | 2\n"
-    "  --beta B             one angle in [0, π] (radians unless --degrees)\n"
-    "  --beta-max B --steps S   the S+1 angles i·B/S, i = 0..S (S <= 100000)\n"
-    "  --lobe-exp E         lobe exponent (default 7, >= 0)\n"
-    "  --degrees            angles in degrees (in and out)\n"
-    "  --convention cs|nocs only reported (the errors do not depend on it)\n"
-    "  --quiet              no progress on stderr (else a line a second after 1 s)\n"
-    CLI_SHARD_HELP
-    "  --format table|csv|json\n"
-    "  --help               this text\n"
-    "\n"
-    "JSON: {\"order\",\"taylor\",\"method\",\"convention\",\"lobe_exp\",\"unit\",\n"
-    "       \"rows\":[{\"beta\",\"max\",\"mean\",\"lobe\"}]}  (beta in \"unit\")\n";
+/* --taylor's values, and the methods they name */
+static const char *const taylor_names[] = {"1", "1.5", "2", NULL};
+static const sh_rot_method taylor_methods[] = {SH_ROT_TAYLOR1, SH_ROT_TAYLOR15, SH_ROT_TAYLOR2};
+
+typedef struct {
+    int order, taylor, steps, conv, degrees;
+    double beta, beta_max, lobe_exp;
+    cli_sweep_args sweep;
+} taylor_error_args;
+
+static const cli_opt taylor_error_opts[] = {
+    CLI_ORDER(taylor_error_args, order, TE_MAX_ORDER, NULL, "bands 0..N-1"),
+    CLI_CHOICE(taylor_error_args, taylor, "taylor", "T", taylor_names, NULL, "1 | 1.5 | 2"),
+    CLI_REAL(taylor_error_args, beta, "beta", "B", 0, 0, 0, NULL, "one angle in [0, π] (radians unless --degrees)"),
+    CLI_REAL(taylor_error_args, beta_max, "beta-max", "B", 0, 0, 0, NULL,
+             "with --steps S: the S+1 angles i·B/S, i = 0..S"),
+    {.type = CLI_T_INT, .name = "steps", .meta = "S", .off = offsetof(taylor_error_args, steps), .lo = 1,
+     .hi = TE_MAX_STEPS, .help = "steps of the --beta-max grid", .needs = "beta-max"},
+    CLI_REAL(taylor_error_args, lobe_exp, "lobe-exp", "E", 0, 1e4, 0, "7", "lobe exponent"),
+    CLI_DEGREES(taylor_error_args, degrees, "angles in degrees (in and out)"),
+    CLI_CHOICE(taylor_error_args, conv, "convention", "cs|nocs", cli_convention_names, "cs",
+               "only reported (the errors do not depend on it)"),
+    CLI_GROUP(taylor_error_args, sweep, cli_sweep_opts),
+    CLI_END,
+};
+
+static const cli_cmd taylor_error_decl = {
+    .name = "taylor-error",
+    .usage = "taylor-error --order N --taylor 1|1.5|2 (--beta B | --beta-max B --steps S)\n"
+             "                          [--lobe-exp E] [OPTIONS]",
+    .about = "Error of the Taylor-approximated rotation about y, D(β) = R_Y(β) - T(β)\n"
+             "(docs/CONVENTIONS.md): T = I + βJ (1), + β²/2·diag(J²) (1.5), + β²/2·J² (2).\n"
+             "R_Y(β) is exact (zxzxz); T(β) is the taylor method's own matrix.\n"
+             "  max   largest singular value of D (worst unit coefficient vector)\n"
+             "  mean  mean of the N² singular values (GSL one-sided Jacobi SVD)\n"
+             "  lobe  ‖D c‖₂, c the unit coefficient vector of max(0,cosθ)^E about +z\n"
+             "The numbers are the same in both conventions and for the frame rotation.\n",
+    .opts = taylor_error_opts,
+    .notes = "JSON: {\"order\",\"taylor\",\"method\",\"convention\",\"lobe_exp\",\"unit\",\n"
+             "       \"rows\":[{\"beta\",\"max\",\"mean\",\"lobe\"}]}  (beta in \"unit\")\n",
+};
 
 /* the sweep: item i is the angle i·B/S (or the one --beta) */
 static json_t *finish(const json_t *params, json_t *rows)
@@ -81,107 +95,73 @@ static int check_row(const json_t *params, long nitems, long j, const json_t *ro
 
 const cli_sweep_kind sweep_taylor_error = {"taylor-error", finish, NULL, NULL, params_fields, row_fields, check_row, 0};
 
-static int run(int argc, char **argv)
+/* What involves several options: the order and the Taylor form required,
+ * one angle or a grid, within [0, π]. */
+static int validate(const taylor_error_args *a, const cli_parsed *seen)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE,
-                                         CLI_LONGOPT_ORDER,
-                                         CLI_LONGOPT_CONVENTION,
-                                         CLI_LONGOPT_DEGREES,
-                                         {"taylor", required_argument, 0, 't'},
-                                         {"beta", required_argument, 0, 'b'},
-                                         {"beta-max", required_argument, 0, 'B'},
-                                         {"steps", required_argument, 0, 's'},
-                                         {"lobe-exp", required_argument, 0, 'e'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         CLI_LONGOPT_SHARD,
-                                         {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    com.max_order = TE_MAX_ORDER;
-    sh_rot_method m = SH_ROT_NMETHODS;
-    const char *tname = NULL;
-    double beta = -1, beta_max = -1, lobe_exp = 7;
-    int steps = -1, have_beta = 0, have_max = 0, quiet = 0;
-    sh_shard shard = SH_SHARD_ALL;
-    int have_shard = 0;
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        switch (o) {
-        case 't':
-            if (!strcmp(optarg, "1")) m = SH_ROT_TAYLOR1;
-            else if (!strcmp(optarg, "1.5")) m = SH_ROT_TAYLOR15;
-            else if (!strcmp(optarg, "2")) m = SH_ROT_TAYLOR2;
-            else return cli_fail("--taylor: '%s' is not 1, 1.5 or 2", optarg);
-            tname = optarg;
-            break;
-        case 'b':
-            if (cli_double("--beta", optarg, &beta)) return CLI_EXIT_USAGE;
-            have_beta = 1;
-            break;
-        case 'B':
-            if (cli_double("--beta-max", optarg, &beta_max)) return CLI_EXIT_USAGE;
-            have_max = 1;
-            break;
-        case 's':
-            if (cli_int("--steps", optarg, &steps)) return CLI_EXIT_USAGE;
-            if (steps < 1 || steps > TE_MAX_STEPS) return cli_fail("--steps: %d out of range 1..%d", steps, TE_MAX_STEPS);
-            break;
-        case 'e':
-            if (cli_double("--lobe-exp", optarg, &lobe_exp)) return CLI_EXIT_USAGE;
-            if (lobe_exp < 0 || lobe_exp > 1e4) return cli_fail("--lobe-exp: %g out of range 0..1e4", lobe_exp);
-            break;
-        case 'q': quiet = 1; break;
-        case CLI_OPT_SHARD:
-            if (cli_shard("--shard", optarg, &shard)) return CLI_EXIT_USAGE;
-            have_shard = 1;
-            break;
-        default: {
-            const int e = cli_common_opt(&cmd_taylor_error, o, argv, &com);
-            if (e >= 0) return e;
-        }
-        }
-    }
-    if (optind < argc) return cli_fail("taylor-error: unexpected argument '%s'", argv[optind]);
-    if (!com.order) return cli_fail("taylor-error: --order is required");
-    if (!tname) return cli_fail("taylor-error: --taylor is required (1, 1.5 or 2)");
+    const int have_beta = cli_given(seen, "beta"), have_max = cli_given(seen, "beta-max");
+    if (!cli_given(seen, "order")) return cli_fail("taylor-error: --order is required");
+    if (!cli_given(seen, "taylor")) return cli_fail("taylor-error: --taylor is required (1, 1.5 or 2)");
     if (have_beta == have_max) return cli_fail("taylor-error: give --beta, or --beta-max with --steps");
-    if (have_max && steps < 0) return cli_fail("taylor-error: --beta-max needs --steps");
-    if (!have_max && steps >= 0) return cli_fail("taylor-error: --steps needs --beta-max");
-    const double unit = com.degrees ? M_PI / 180.0 : 1.0;
-    const double top = have_beta ? beta : beta_max;
+    if (have_max && !cli_given(seen, "steps")) return cli_fail("taylor-error: --beta-max needs --steps");
+    const double unit = a->degrees ? M_PI / 180.0 : 1.0;
+    const double top = have_beta ? a->beta : a->beta_max;
     if (top < 0 || top * unit > M_PI * (1 + 1e-15))
         return cli_fail("taylor-error: %s %g outside [0, %s", have_beta ? "--beta" : "--beta-max", top,
-                        com.degrees ? "180] degrees" : "pi] radians (--degrees for degrees)");
-    const int nrow = have_beta ? 1 : steps + 1;
-    /* everything the rows depend on: the whole sweep, whichever shard runs */
+                        a->degrees ? "180] degrees" : "pi] radians (--degrees for degrees)");
+    return 0;
+}
+
+/* Everything the rows depend on: the whole sweep, whichever shard runs. */
+static json_t *sweep_params(const taylor_error_args *a, int have_beta)
+{
     json_t *params = json_object();
-    params = cli_put(params, "order", json_integer(com.order));
-    params = cli_put(params, "taylor", json_string(tname));
-    params = cli_put(params, "method", json_string(sh_rot_method_name(m)));
-    params = cli_put(params, "convention", json_string(sh_convention_name(com.conv)));
-    params = cli_put(params, "lobe_exp", json_real(lobe_exp));
-    params = cli_put(params, "unit", json_string(com.degrees ? "degrees" : "radians"));
-    params = cli_put(params, have_beta ? "beta" : "beta_max", json_real(top));
-    if (!have_beta) params = cli_put(params, "steps", json_integer(steps));
-    cli_sweep sw;
-    cli_sweep_begin(&sw, &sweep_taylor_error, params, nrow, have_shard ? &shard : NULL, com.fmt, quiet, "angles");
-    for (int i = 0; i < nrow; i++) {
-        if (!cli_sweep_owns(&sw, i)) continue;
-        const double b = angle_of(have_beta, beta, beta_max, steps, i);
+    params = cli_put(params, "order", json_integer(a->order));
+    params = cli_put(params, "taylor", json_string(taylor_names[a->taylor]));
+    params = cli_put(params, "method", json_string(sh_rot_method_name(taylor_methods[a->taylor])));
+    params = cli_put(params, "convention", json_string(sh_convention_name((sh_convention)a->conv)));
+    params = cli_put(params, "lobe_exp", json_real(a->lobe_exp));
+    params = cli_put(params, "unit", json_string(a->degrees ? "degrees" : "radians"));
+    params = cli_put(params, have_beta ? "beta" : "beta_max", json_real(have_beta ? a->beta : a->beta_max));
+    if (!have_beta) params = cli_put(params, "steps", json_integer(a->steps));
+    return params;
+}
+
+/* This shard's angles, a row each (the errors of sh_taylor_error).  0 or
+ * the exit code. */
+static int compute(const taylor_error_args *a, int have_beta, cli_sweep *sw)
+{
+    const double unit = a->degrees ? M_PI / 180.0 : 1.0;
+    for (long i = 0; i < sw->nitems; i++) {
+        if (!cli_sweep_owns(sw, i)) continue;
+        const double b = angle_of(have_beta, a->beta, a->beta_max, a->steps, i);
         sh_taylor_err e;
-        int st = sh_taylor_error(com.order, m, fmin(b * unit, M_PI), lobe_exp, &e);
-        if (st) { cli_sweep_free(&sw); return cli_fail_status(st); }
+        const int st = sh_taylor_error(a->order, taylor_methods[a->taylor], fmin(b * unit, M_PI), a->lobe_exp, &e);
+        if (st) return cli_fail_status(st);
         json_t *r = json_object();
         r = cli_put(r, "beta", json_real(b));
         r = cli_put(r, "max", json_real(e.max));
         r = cli_put(r, "mean", json_real(e.mean));
         r = cli_put(r, "lobe", json_real(e.lobe));
-        if (cli_sweep_add(&sw, i, r) == CLI_EXIT_USAGE) { cli_sweep_free(&sw); return CLI_EXIT_USAGE; }
+        if (cli_sweep_add(sw, i, r) == CLI_EXIT_USAGE) return CLI_EXIT_USAGE;
     }
-    return cli_sweep_end(&sw);
+    return 0;
+}
+
+static int run(int argc, char **argv)
+{
+    taylor_error_args a = {0};
+    cli_parsed seen;
+    int rc = cli_args_parse(&taylor_error_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
+    if ((rc = validate(&a, &seen))) return rc;
+    const int have_beta = cli_given(&seen, "beta");
+    cli_sweep sw;
+    cli_sweep_begin(&sw, &sweep_taylor_error, sweep_params(&a, have_beta), have_beta ? 1 : a.steps + 1, &a.sweep,
+                    "angles");
+    return cli_sweep_close(&sw, compute(&a, have_beta, &sw));
 }
 
 const cli_command cmd_taylor_error = {"taylor-error", run,
                                       "error of the Taylor-approximated rotation (singular values, lobe)",
-                                      help, NULL};
+                                      NULL, &taylor_error_decl};
