@@ -2,6 +2,7 @@
  * by Krivánek's Appendix A recursion or by the generator R_Y(β)·J^k
  * (rotation_deriv.c). */
 #include "cli.h"
+#include "cli_image_opts.h"
 
 #include <limits.h>
 #include <math.h>
@@ -18,7 +19,7 @@ typedef struct {
 } deriv_args;
 
 static const cli_opt deriv_opts[] = {
-    CLI_ORDER(deriv_args, order, DERIV_PRINT_MAX_ORDER, "a printed N²×N² matrix", "bands 0..N-1"),
+    CLI_ORDER(deriv_args, order, DERIV_PRINT_MAX_ORDER, CLI_WHY_PRINTED_MATRIX, "bands 0..N-1"),
     CLI_INT(deriv_args, k, "k", "K", 0, INT_MAX, NULL,
             "derivative order >= 0 (refused only when an entry\noverflows a double: about k > 709/ln(N-1))"),
     CLI_REAL(deriv_args, beta, "beta", "B", 0, 0, 0, "0",
