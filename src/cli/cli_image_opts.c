@@ -39,9 +39,9 @@ int cli_coeffs_read(const cli_coeffs_args *a, double **v, int *len, int *nchan,
 
 const cli_opt cli_sampling_opts[] = {
     CLI_LONG(cli_sampling_args, samples, "samples", "S", 1, LONG_MAX, NULL,
-             "quad: θ nodes (× 2S φ nodes); the others: sample count\n(mc rounds S to round(√S)²; defaults below)"),
+             "S >= 1: quad's θ nodes (× 2S φ nodes), the others'\nsample count (mc rounds S to round(√S)²); defaults below"),
     CLI_LONG(cli_sampling_args, seed, "seed", "K", 0, LONG_MAX, "1",
-             "random seed of mc, random and qmc (qmc: 0 = no shift)"),
+             "seed >= 0 of mc, random and qmc (default 1; qmc: 0 = no\nshift)"),
     CLI_END,
 };
 
