@@ -47,8 +47,7 @@ const cli_opt cli_sampling_opts[] = {
 
 int cli_parse_rule(const char *opt, const char *s, void *field)
 {
-    if (sh_rule_parse(s, field)) return cli_fail("%s: %s", opt, sh_last_error());
-    return 0;
+    return sh_rule_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
 }
 
 const cli_opt cli_light_opts[] = {

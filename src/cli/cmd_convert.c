@@ -15,8 +15,7 @@ typedef struct {
 
 static int parse_norm(const char *opt, const char *s, void *field)
 {
-    if (sh_norm_parse(s, field)) return cli_fail("%s: %s", opt, sh_last_error());
-    return 0;
+    return sh_norm_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
 }
 
 static const cli_opt convert_opts[] = {

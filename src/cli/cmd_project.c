@@ -18,8 +18,7 @@ typedef struct {
 
 static int parse_layout(const char *opt, const char *s, void *field)
 {
-    if (sh_layout_parse(s, field)) return cli_fail("%s: %s", opt, sh_last_error());
-    return 0;
+    return sh_layout_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
 }
 
 static const cli_opt project_opts[] = {

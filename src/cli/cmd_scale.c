@@ -23,8 +23,7 @@ typedef struct {
 
 static int parse_family(const char *opt, const char *s, void *field)
 {
-    if (sh_scale_family_parse(s, field)) return cli_fail("%s: %s", opt, sh_last_error());
-    return 0;
+    return sh_scale_family_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
 }
 
 static const cli_opt scale_opts[] = {
