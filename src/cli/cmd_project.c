@@ -50,7 +50,7 @@ static const cli_cmd project_decl = {
              "c_i = ∫ f y_i dΩ.\n",
     .opts = project_opts,
     .notes = "--samples: quad 1500 θ nodes by default (at most 20000), the others 10000\n"
-             "samples (at most 1e8).\n"
+             "samples (at most 1e8).  --threads: the threads of quad and --exr latlong.\n"
              "\n"
              "quad and latlong run the fast transform: an FFT in φ per ring of latitude\n"
              "and the Legendre recurrence across pairs of rings (README \"High-band\n"
