@@ -3,6 +3,7 @@
 #include "cli_args.h"
 #include "cli.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -62,6 +63,23 @@ static void real_range_text(const cli_opt *o, char *buf, size_t n)
 
 static int has_range(const cli_opt *o) { return o->lo != 0 || o->hi != 0; }
 
+/* "1..32", or ">= 0" when the upper end is the type's largest value (a seed,
+ * a count with no limit of its own: 9223372036854775807 is no limit to print). */
+static void int_range_text(const cli_opt *o, char *buf, size_t n)
+{
+    const double top = o->type == CLI_T_LONG ? (double)LONG_MAX : (double)INT_MAX;
+    if (o->hi >= top) snprintf(buf, n, ">= %.0f", o->lo);
+    else snprintf(buf, n, "%.0f..%.0f", o->lo, o->hi);
+}
+
+static int int_out_of_range(const char *opt, const cli_opt *o)
+{
+    char r[64];
+    int_range_text(o, r, sizeof r);
+    if (r[0] == '>') return cli_fail("%s: must be %s", opt, r);
+    return cli_fail("%s: out of range %s", opt, r);
+}
+
 static int real_in_range(const cli_opt *o, double v)
 {
     if (!has_range(o)) return 1;
@@ -83,16 +101,14 @@ static int set_value(const flat_opt *fo, const char *s, void *args)
     case CLI_T_INT: {
         int v;
         if (cli_int(opt, s, &v)) return CLI_EXIT_USAGE;
-        if (has_range(o) && (v < o->lo || v > o->hi))
-            return cli_fail("%s: out of range %.0f..%.0f", opt, o->lo, o->hi);
+        if (has_range(o) && (v < o->lo || v > o->hi)) return int_out_of_range(opt, o);
         *(int *)field = v;
         return 0;
     }
     case CLI_T_LONG: {
         long v;
         if (cli_long(opt, s, &v)) return CLI_EXIT_USAGE;
-        if (has_range(o) && ((double)v < o->lo || (double)v > o->hi))
-            return cli_fail("%s: out of range %.0f..%.0f", opt, o->lo, o->hi);
+        if (has_range(o) && ((double)v < o->lo || (double)v > o->hi)) return int_out_of_range(opt, o);
         *(long *)field = v;
         return 0;
     }
@@ -215,7 +231,7 @@ static void auto_text(const cli_opt *o, char *buf, size_t n)
     if (o->def && !(o->flags & CLI_NO_DEFAULT) && !says_default) snprintf(parts[np++], sizeof parts[0], "default %s", o->def);
     if (has_range(o) && (o->type == CLI_T_INT || o->type == CLI_T_LONG || o->type == CLI_T_ORDER)) {
         char r[64];
-        snprintf(r, sizeof r, "%.0f..%.0f", o->lo, o->hi);
+        int_range_text(o, r, sizeof r);
         if (!o->help || !strstr(o->help, r)) snprintf(parts[np++], sizeof parts[0], "%s", r);
     } else if (has_range(o) && o->type == CLI_T_REAL) {
         real_range_text(o, parts[np], sizeof parts[0]);
