@@ -55,6 +55,12 @@ LIB_DIRS += scene
 LIB_SRC  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.c)))
 # C++ sources of the library (io/exr_cxx.cpp: OpenEXR's C++ reader for DWAA/DWAB)
 LIB_CXX  := $(sort $(foreach d,$(LIB_DIRS),$(wildcard src/$(d)/*.cpp)))
+# src/lab/: the workbench around the library (timing engine, shards, the
+# planner's timed choice): libshlab_lab.a, used by the tool, experiments and
+# tests, not installed.
+LAB_SRC  := $(sort $(wildcard src/lab/*.c))
+LAB_OBJ  := $(LAB_SRC:src/%.c=$(BUILD)/obj/%.o)
+LAB_LIB  := $(BUILD)/libshlab_lab.a
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/*/test_*.c))
 # src/*/rot_*.c are precision-generic rotation kernels (rotate/rot_real.h):
@@ -135,9 +141,9 @@ endif
 $(PEER_SHARP_OBJ): CFLAGS += $(SHARP_CFLAGS)
 CLI_OBJ  += $(PEER_SHARP_OBJ)
 $(BUILD)/shlab: LDLIBS += $(SHARP_LIBS)
-$(BUILD)/tests/test_sht_sharp: tests/project/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+$(BUILD)/tests/test_sht_sharp: tests/project/test_sht_sharp.c tests/testutil.h $(PEER_SHARP_OBJ) $(LAB_LIB) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests -o $@ $< $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(PEER_SHARP_OBJ) $(LAB_LIB) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS) $(SHARP_LIBS)
 .PHONY: bench-peers
 bench-peers:: all
 	$(BUILD)/shlab bench --peers
@@ -185,13 +191,17 @@ $(BUILD)/libshlab.a: $(LIB_OBJ)
 $(BUILD)/libshlab.so: $(LIB_OBJ)
 	$(CC) -shared $(SANFLAGS) -Wl,-soname,libshlab.so.0 -o $@ $^ $(LDLIBS)
 
-$(BUILD)/shlab: $(CLI_OBJ) $(BUILD)/libshlab.a
-	$(CC) $(SANFLAGS) -o $@ $(CLI_OBJ) $(BUILD)/libshlab.a $(LDLIBS)
+$(LAB_LIB): $(LAB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/shlab: $(CLI_OBJ) $(LAB_LIB) $(BUILD)/libshlab.a
+	$(CC) $(SANFLAGS) -o $@ $(CLI_OBJ) $(LAB_LIB) $(BUILD)/libshlab.a $(LDLIBS)
 
 # ---- tests ----------------------------------------------------------------
-$(BUILD)/tests/%: %.c tests/testutil.h $(BUILD)/libshlab.a
+$(BUILD)/tests/%: %.c tests/testutil.h $(LAB_LIB) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests -o $@ $< $(TEST_EXTRA) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(TEST_EXTRA) $(LAB_LIB) $(BUILD)/libshlab.a $(CHECK_LIBS) $(LDLIBS)
 
 # test_signal_cleanup exercises the CLI's signal handlers (src/cli/cli_output.c).
 $(BUILD)/tests/test_signal_cleanup: $(BUILD)/libshlab_cli.a tests/fuzz/stubs.c
@@ -227,15 +237,15 @@ $(BUILD)/libshlab_cli.a: $(CLI_LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
+$(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(LAB_LIB) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -o $@ $< tests/fuzz/replay.c tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
-	  $(BUILD)/libshlab.a $(LDLIBS)
+	  $(LAB_LIB) $(BUILD)/libshlab.a $(LDLIBS)
 
-$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(BUILD)/libshlab.a
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(BUILD)/libshlab_cli.a $(LAB_LIB) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -fsanitize=fuzzer -fsanitize-link-c++-runtime -o $@ $< tests/fuzz/stubs.c $(BUILD)/libshlab_cli.a \
-	  $(BUILD)/libshlab.a $(LDLIBS)
+	  $(LAB_LIB) $(BUILD)/libshlab.a $(LDLIBS)
 
 fuzz-build: $(FUZZ_HARNESS:%=$(BUILD)/fuzz/fuzz_%)
 
@@ -281,15 +291,15 @@ $(error unknown experiment(s): $(filter-out $(ALL_EXPERIMENTS),$(EXPERIMENTS)) (
 endif
 EXP_BIN := $(EXPERIMENTS:%=$(BUILD)/experiments/%)
 
-$(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(BUILD)/libshlab.a
+$(BUILD)/experiments/%: experiments/%/*.c experiments/common/exp.c experiments/common/exp.h $(LAB_LIB) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(BUILD)/libshlab.a $(LDLIBS)
+	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(LAB_LIB) $(BUILD)/libshlab.a $(LDLIBS)
 
 # sht_accuracy compares with libsharp in-process (measure/peers/peer_sharp.o)
 $(BUILD)/experiments/sht_accuracy: experiments/sht_accuracy/*.c experiments/common/exp.c experiments/common/exp.h \
-    tests/legendre_truth.h $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a
+    tests/legendre_truth.h $(PEER_SHARP_OBJ) $(LAB_LIB) $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(PEER_SHARP_OBJ) $(BUILD)/libshlab.a $(LDLIBS) $(SHARP_LIBS)
+	$(CC) $(CFLAGS) -Iexperiments/common -o $@ $(filter %.c,$^) $(PEER_SHARP_OBJ) $(LAB_LIB) $(BUILD)/libshlab.a $(LDLIBS) $(SHARP_LIBS)
 
 experiments: $(EXP_BIN)
 

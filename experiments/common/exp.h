@@ -27,6 +27,7 @@
 #include <stdio.h>
 
 #include "shlab.h"
+#include "lab/lab.h"
 
 /* Set up from argv: OUTDIR, the revision (env REV) and the command line. */
 void exp_init(int argc, char **argv);

@@ -14,6 +14,7 @@
 #include <stdio.h>
 
 #include "shlab.h"
+#include "lab/lab.h"
 #include "cli_args.h"
 
 #define CLI_EXIT_OK 0
@@ -414,6 +415,7 @@ typedef struct {
     json_t *params, *rows;
     long nitems, owned, done, last;
     sh_shard shard;
+    sh_items items;       /* the shard's items, as the library's sweeps take them */
     int sharded, stopped; /* sharded: --shard was given (even 0/1) */
     cli_format fmt;
     cli_progress prog;
@@ -426,9 +428,9 @@ typedef struct {
  * names the items in progress lines ("bands"). */
 void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, long nitems,
                      const cli_sweep_args *opts, const char *what);
-/* The shard this run computes (NULL without --shard), for a library call
+/* The items this run computes (NULL without --shard), for a library call
  * that splits the work itself. */
-const sh_shard *cli_sweep_shard(const cli_sweep *s);
+const sh_items *cli_sweep_items(const cli_sweep *s);
 /* Non-zero if this run computes item j (its shard owns it, the sweep has not stopped). */
 int cli_sweep_owns(const cli_sweep *s, long j);
 /* Record item j's row (stolen; items in increasing order).  Returns 0 to go

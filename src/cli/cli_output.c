@@ -344,7 +344,7 @@ int cli_emit(json_t *root, cli_format fmt)
  * Each output is a temporary file next to its target (sh__make_temp_path,
  * registered for the signal handler); cli_emit renames them all onto their
  * targets once the result is on stdout.  Anything not committed is removed:
- * by cli_out_discard, at exit (main registers sh_temp_files_unlink), or by
+ * by cli_out_discard, at exit (main registers sh__temp_files_unlink), or by
  * the signal handler. */
 #define CLI_MAX_OUT 8
 static struct {
@@ -458,7 +458,7 @@ static void on_signal(int sig)
     /* the result is being written: a stop request now would leave a complete
      * stdout with a signal's exit status, or outputs half renamed */
     if (committing && (sig == SIGINT || sig == SIGTERM || sig == SIGHUP)) return;
-    sh_temp_files_unlink();
+    sh__temp_files_unlink();
     struct sigaction dfl;
     memset(&dfl, 0, sizeof dfl);
     dfl.sa_handler = SIG_DFL;
@@ -497,5 +497,5 @@ void cli_signals_install(void)
         if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
         sigaction(sigs[k], &sa, NULL);
     }
-    atexit(sh_temp_files_unlink);
+    atexit(sh__temp_files_unlink);
 }

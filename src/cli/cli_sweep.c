@@ -142,6 +142,7 @@ void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, l
     s->rows = json_array();
     s->nitems = nitems;
     s->shard = opts->sharded ? opts->shard : (sh_shard)SH_SHARD_ALL;
+    s->items = sh_shard_items(&s->shard); /* points into *s: s is not copied after this */
     s->sharded = opts->sharded;
     s->fmt = opts->fmt;
     s->last = -1;
@@ -154,7 +155,7 @@ void cli_sweep_begin(cli_sweep *s, const cli_sweep_kind *kind, json_t *params, l
     cli_progress_start(&s->prog, s->label, opts->quiet);
 }
 
-const sh_shard *cli_sweep_shard(const cli_sweep *s) { return s->sharded ? &s->shard : NULL; }
+const sh_items *cli_sweep_items(const cli_sweep *s) { return s->sharded ? &s->items : NULL; }
 
 int cli_sweep_owns(const cli_sweep *s, long j)
 {

@@ -3,7 +3,7 @@
  * vectors; every kernel variant), interleaved in one process, with paired
  * ratios, the noise criterion, the counted multiplications, and instructions
  * per rotation under valgrind (--instructions).  The engine and the entries
- * are in rotation_bench.c; this file only lists what to time. */
+ * are in src/lab/bench.c; this file only lists what to time. */
 #include "cli.h"
 
 #include <errno.h>

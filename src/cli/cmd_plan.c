@@ -333,7 +333,7 @@ static int measure(sh_rot_choose_opts *co, int nm, int nsteps, cli_sweep *sw)
     if (!err) return cli_fail("out of memory");
     co->progress = cli_progress_step;
     co->progress_ctx = &sw->prog;
-    const int st = sh_rot_choose_errors(co, cli_sweep_shard(sw), err);
+    const int st = sh_rot_choose_errors(co, cli_sweep_items(sw), err);
     sw->prog.quiet = 1; /* the library counted the steps */
     if (st) { free(err); return cli_fail_status(st); }
     for (int j = 0; j < nsteps; j++) {

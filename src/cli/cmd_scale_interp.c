@@ -173,7 +173,7 @@ static int compute(const scale_interp_args *a, const sh_scaling *s, cli_sweep *s
     cli_progress_start(&prog, sw->label, a->sweep.quiet);
     sw->prog.quiet = 1;
     const int st = sh_scale_interp_points(a->order, s, a->samples, a->spacing, a->kmin, a->kmax, a->interp,
-                                          a->dense, cli_sweep_shard(sw), pts, cli_progress_step, &prog);
+                                          a->dense, cli_sweep_items(sw), pts, cli_progress_step, &prog);
     if (st) { /* the library's message may already name the command */
         free(pts);
         const char *why = sh_last_error();

@@ -45,7 +45,7 @@ int sh__gauss_legendre(long S, double *x, double *w);
 
 /* io/tempfile.c: atomic output.  sh__make_temp_path creates an empty
  * temporary file next to `path` (mkstemp, name malloc'd into *tmp_out, and
- * registered for sh_temp_files_unlink); sh__commit_temp renames it onto
+ * registered for sh__temp_files_unlink); sh__commit_temp renames it onto
  * `path` (removing it on failure); sh__discard_temp removes it.  Neither
  * frees the name (the caller does).  Writers write the temp, then commit,
  * so a failure never leaves a partial output file. */

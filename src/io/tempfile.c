@@ -4,7 +4,7 @@
  * never leaves a partial file and never truncates or removes an existing one.
  *
  * Live temporary names are kept in a small registry so that a signal handler
- * can remove them (sh_temp_files_unlink: only atomic loads and unlink(2),
+ * can remove them (sh__temp_files_unlink: only atomic loads and unlink(2),
  * both async-signal-safe).  A name is registered as the file is created
  * (signals held in between) and leaves the registry only after it has been
  * renamed or removed, so a signal at any point finds every temporary that
@@ -16,7 +16,7 @@
  * temporary onto its parent (sh_exr_write into the CLI's temporary).  So
  * every operation that creates or renames a temporary name runs inside a
  * window (sh__temp_enter/leave: signals blocked in that thread, a counter of
- * open windows), and sh_temp_files_unlink first marks the process as dying,
+ * open windows), and sh__temp_files_unlink first marks the process as dying,
  * waits for the open windows to close, then removes the names; a thread that
  * would open a window after that waits for the end instead.  The wait is
  * bounded (TEMP_WAIT_NS): a window that does not close (its thread waiting
@@ -92,7 +92,7 @@ static void reg_remove(const char *p)
     }
 }
 
-void sh_temp_files_unlink(void)
+void sh__temp_files_unlink(void)
 {
     /* no new name from now on; let the open windows close (bounded) */
     atomic_store(&dying, 1);

@@ -1,6 +1,7 @@
 /* rotation_choose.c — the error of any rotation method against the exact
- * rotation, the cheapest method for an error budget (`shlab plan`), and the
- * smallest order that represents an environment image.
+ * rotation, the errors on the planner's β grid (`shlab plan`; the timed
+ * choice is the lab's, src/lab/planner.c), and the smallest order that
+ * represents an environment image.
  *
  * References
  *  [1] J. Křivánek et al., "Fast Approximation to Spherical Harmonic
@@ -171,14 +172,6 @@ static uint64_t rng_next(uint64_t *s)
     return *s * 0x2545F4914F6CDD1DULL;
 }
 
-static int cand_cmp(const void *a, const void *b)
-{
-    const sh_rot_candidate *x = a, *y = b;
-    if (x->ok != y->ok) return y->ok - x->ok;
-    if (x->ok) return (x->ns_per_rotation > y->ns_per_rotation) - (x->ns_per_rotation < y->ns_per_rotation);
-    return (x->max_error > y->max_error) - (x->max_error < y->max_error);
-}
-
 static int choose_check(const sh_rot_choose_opts *o)
 {
     int st = sh_check_order(o->order);
@@ -205,7 +198,7 @@ int sh_rot_choose_grid(const sh_rot_choose_opts *o, sh_rot_method ms[SH_ROT_NMET
     return SH_OK;
 }
 
-int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_shard *shard, double *err)
+int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_items *items, double *err)
 {
     sh_rot_method ms[SH_ROT_NMETHODS];
     int nm, nsteps;
@@ -213,13 +206,13 @@ int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_shard *shard, dou
     if (st) return st;
     const int nbeta = nsteps - 1;
     int mine = 0, done = 0;
-    for (int j = 0; j < nsteps; j++) mine += sh_shard_owns(shard, j) != 0;
+    for (int j = 0; j < nsteps; j++) mine += sh_items_own(items, j) != 0;
     /* truth: the MPFR reference (every exact method is then measured, not
      * taken as the truth) up to order 32, zxzxz above */
     sh_rot_errws *w;
     if ((st = sh_rot_errws_create_conv(o->order, o->lobe_exp, o->order <= 32, o->conv, &w))) return st;
     for (int j = 0; j < nsteps && !st; j++) {
-        if (!sh_shard_owns(shard, j)) continue;
+        if (!sh_items_own(items, j)) continue;
         /* α, γ seeded by the step, so a step's errors do not depend on
          * which other steps are measured (shards) */
         uint64_t seed = 0x9E3779B97F4A7C15ULL * (uint64_t)(j + 1);
@@ -235,80 +228,10 @@ int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_shard *shard, dou
         }
         /* unsharded, the steps count on into sh_rot_choose's timing */
         if (o->progress && !st)
-            o->progress(o->progress_ctx, ++done, shard ? mine : nsteps + nm, "steps (measuring on the β grid)");
+            o->progress(o->progress_ctx, ++done, items ? mine : nsteps + nm, "steps (measuring on the β grid)");
     }
     sh_rot_errws_free(w);
     return st;
-}
-
-int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
-                  int *runner_up)
-{
-    *ncand = 0;
-    *choice = *runner_up = -1;
-    sh_rot_method ms[SH_ROT_NMETHODS];
-    int nm, nsteps;
-    int st = sh_rot_choose_grid(o, ms, &nm, &nsteps);
-    if (st) return st;
-    const int nbeta = nsteps - 1;
-    /* the errors on the β grid: given (measured by shards), or measured now */
-    double *own = NULL;
-    const double *err = o->grid_errors;
-    if (!err) {
-        if (!(own = malloc(sizeof *own * (size_t)nsteps * (nm ? nm : 1))))
-            return sh_error(SH_ENOMEM, "plan: out of memory");
-        if ((st = sh_rot_choose_errors(o, NULL, own))) { free(own); return st; }
-        err = own;
-    }
-    for (int k = 0; k < nm; k++) {
-        cand[k] = (sh_rot_candidate){ms[k], sh_rot_method_is_exact(ms[k]), 0, 0, 0, 0, 0};
-        for (int j = 0; j < nsteps; j++) {
-            const double v = err[(size_t)j * nm + k];
-            if (j == 0 || v > cand[k].max_error) {
-                cand[k].max_error = v;
-                cand[k].worst_beta = nbeta ? o->max_beta * j / nbeta : 0;
-            }
-        }
-    }
-    free(own);
-    sh_bench_opts bo = SH_BENCH_OPTS_DEFAULT;
-    bo.max_beta = o->max_beta; /* rotations of the scene's range */
-    bo.conv = o->conv;
-    /* timing: every candidate one entry, interleaved in one run (measure.h) */
-    sh_bench_cfg cfg = SH_BENCH_CFG_DEFAULT;
-    cfg.min_sample_ms = o->target_ms > 0 ? o->target_ms : 2.0;
-    cfg.samples = o->repeat > 0 ? o->repeat : 5;
-    sh_bench_entry ent[SH_ROT_NMETHODS];
-    sh_bench_stats bs[SH_ROT_NMETHODS];
-    double mults[SH_ROT_NMETHODS];
-    for (int k = 0; k < nm && !o->cost && !st; k++)
-        if ((st = sh_rot_bench_entry(o->order, ms[k], o->prec, SH_BENCH_PER_ROTATION, &bo, &ent[k])))
-            for (int j = 0; j < k; j++) sh_bench_entry_free(&ent[j]);
-    if (st) return st;
-    if (!o->cost && nm > 0) {
-        st = sh_bench_interleaved(ent, nm, &cfg, NULL, bs, NULL);
-        for (int k = 0; k < nm; k++) {
-            mults[k] = ent[k].mults;
-            sh_bench_entry_free(&ent[k]);
-        }
-        if (st) return st;
-    }
-    for (int k = 0; k < nm; k++) {
-        cand[k].ok = cand[k].max_error <= o->tolerance;
-        if (o->cost) {
-            cand[k].ns_per_rotation = o->cost(o->cost_ctx, ms[k], o->order);
-            cand[k].mults = 0;
-        } else {
-            cand[k].ns_per_rotation = bs[k].ns_median;
-            cand[k].mults = mults[k];
-        }
-        if (o->progress) o->progress(o->progress_ctx, nbeta + 2 + k, nbeta + 1 + nm, "steps (timing the methods)");
-    }
-    qsort(cand, (size_t)nm, sizeof *cand, cand_cmp);
-    *ncand = nm;
-    if (nm > 0 && cand[0].ok) *choice = 0;
-    if (nm > 1 && cand[1].ok) *runner_up = 1;
-    return SH_OK;
 }
 
 /* ------------------------------------------------------- order for image */

@@ -96,7 +96,7 @@ int sh_scale_interp_reduce(const sh_scale_interp_point *pts, int dense, sh_scale
 
 int sh_scale_interp_points(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
                            double kmin, double kmax, sh_scale_interp_kind interp, int dense,
-                           const sh_shard *shard, sh_scale_interp_point *pts, sh_progress_fn fn,
+                           const sh_items *items, sh_scale_interp_point *pts, sh_progress_fn fn,
                            void *ctx)
 {
     int st = sh_check_order(order);
@@ -122,7 +122,7 @@ int sh_scale_interp_points(int order, const sh_scaling *base, int samples, sh_sc
     s.k = kmax;
     if ((st = sh_scaling_check(&s))) return st;
     int mine = 0, done = 0;
-    for (int d = 0; d < dense; d++) mine += sh_shard_owns(shard, d) != 0;
+    for (int d = 0; d < dense; d++) mine += sh_items_own(items, d) != 0;
 
     const size_t P = sh_scale_integrals_n(order);
     double *ks = malloc(sizeof(double) * (size_t)samples);
@@ -151,7 +151,7 @@ int sh_scale_interp_points(int order, const sh_scaling *base, int samples, sh_sc
      * two entries (m, −m), so it counts twice in the RMS. */
     gsl_error_handler_t *old = gsl_set_error_handler_off();
     for (int d = 0; d < dense && !st; d++) {
-        if (!sh_shard_owns(shard, d)) continue;
+        if (!sh_items_own(items, d)) continue;
         s.k = sh_scale_grid_point(spacing, kmin, kmax, d, dense);
         const int nb = sh_scale_breaks(&s, br);
         st = sh_scale_integrals_tau(order, sh_scale_family_tau, &s, s.energy, br, nb, I, work);

@@ -71,22 +71,21 @@ typedef double (*sh_sphere_fn)(const double dir[3], double theta, double phi, vo
  * (`done` of them finished), `what` naming the phase.  Never required. */
 typedef void (*sh_progress_fn)(void *ctx, int done, int total, const char *what);
 
-/* ----------------------------------------------------------------- shards
- * A long sweep (work items 0..n−1 in the order of the unsharded run) split
- * into N independent processes.  Items are dealt forth and back: with
- * r = j mod 2N, item j belongs to shard r if r < N, else to 2N−1−r
- * (N = 2: 0 1 1 0 0 1 1 0 ...), so costs that grow with j are shared evenly.
- * A work item's result must not depend on which shard computed it (seeds
- * come from the item, not from a running generator). */
-#define SH_SHARD_MAX 100000
+/* ------------------------------------------------------------ sweep items
+ * Which work items of a sweep a call computes (items 0..n−1 in the order of
+ * the unsharded run): owns(ctx, j) != 0.  A NULL sh_items means every item.
+ * A work item's result must not depend on which others are computed (seeds
+ * come from the item, not from a running generator), so a sweep can be split
+ * across processes (the lab's shards) and joined. */
 typedef struct {
-    int index, count; /* I and N; count 1 = the whole sweep */
-} sh_shard;
-#define SH_SHARD_ALL {0, 1}
-/* Parse "I/N" (decimal, 0 <= I < N <= SH_SHARD_MAX). */
-int sh_shard_parse(const char *s, sh_shard *out);
-/* Non-zero if shard s owns item j (always when s is NULL or count is 1). */
-int sh_shard_owns(const sh_shard *s, long item);
+    int (*owns)(void *ctx, long item);
+    void *ctx;
+} sh_items;
+/* Non-zero if items (NULL: all) include item j. */
+static inline int sh_items_own(const sh_items *items, long item)
+{
+    return !items || !items->owns || items->owns(items->ctx, item);
+}
 
 #ifdef __cplusplus
 }

@@ -58,10 +58,6 @@ int sh_exr_write(const char *path, const sh_image *img);
 /* The same with progress: fn(ctx, rows written, height, "rows written") as
  * chunks of rows are compressed and written (a 46340×23170 image: minutes). */
 int sh_exr_write_progress(const char *path, const sh_image *img, sh_progress_fn fn, void *ctx);
-/* Remove every temporary file that a writer of this library (sh_exr_write,
- * ...) has created and not yet renamed into place.  Async-signal-safe: meant
- * for SIGINT/SIGTERM handlers and atexit. */
-void sh_temp_files_unlink(void);
 
 /* ------------------------------------------------------------ input files
  * The policy every reader applies (input_file.c): regular files only (a

@@ -93,7 +93,7 @@ int sh_scale_interp_error_progress(int order, const sh_scaling *base, int sample
                                    sh_scale_interp_kind interp, int dense,
                                    sh_scale_interp_result *res, sh_progress_fn fn, void *ctx);
 /* The same in two steps, for a sweep split into shards: the error at each
- * point d of the dense grid that shard owns (shard NULL: every point; the
+ * point d of the dense grid in items (NULL: every point; the
  * sampled table is computed in full either way) — the point's k, its
  * largest entry error, Σ w·err² and Σ w over its entries (w = 2 for m ≠ 0) —
  * then the result from all points in grid order (the first point with the
@@ -101,7 +101,7 @@ int sh_scale_interp_error_progress(int order, const sh_scaling *base, int sample
 typedef struct { double k, max_error, sum_sq, weight; } sh_scale_interp_point;
 int sh_scale_interp_points(int order, const sh_scaling *base, int samples, sh_scale_spacing spacing,
                            double kmin, double kmax, sh_scale_interp_kind interp, int dense,
-                           const sh_shard *shard, sh_scale_interp_point *pts, sh_progress_fn fn,
+                           const sh_items *items, sh_scale_interp_point *pts, sh_progress_fn fn,
                            void *ctx);
 int sh_scale_interp_reduce(const sh_scale_interp_point *pts, int dense, sh_scale_interp_result *res);
 /* Scaling about an arbitrary axis a (scale_axis.c, [Wang Sec. 3.2]): rotate

@@ -1,4 +1,4 @@
-/* shard.c — splitting a sweep into N independent shards (see core.h).
+/* shard.c — splitting a sweep into N independent shards (lab.h).
  *
  * A sweep is a list of work items numbered 0..n−1 in the order of the
  * unsharded run.  The items are dealt to the shards like cards, forth and
@@ -9,7 +9,7 @@
  * last shard the dearer item of every round — and the owner depends on
  * nothing but (j, N).
  */
-#include "shlab.h"
+#include "lab/lab.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -43,4 +43,11 @@ int sh_shard_owns(const sh_shard *s, long item)
     if (item < 0) return 0;
     const long r = item % (2L * s->count);
     return (r < s->count ? r : 2L * s->count - 1 - r) == s->index;
+}
+
+static int shard_owns(void *ctx, long item) { return sh_shard_owns(ctx, item); }
+
+sh_items sh_shard_items(const sh_shard *s)
+{
+    return (sh_items){s ? shard_owns : NULL, (void *)s};
 }

@@ -1,4 +1,4 @@
-/* test_bench.c — the speed library (rotation_bench.c) and the generic error
+/* test_bench.c — the speed library (lab/bench.c) and the generic error
  * and choice (rotation_choose.c).  No timing is asserted (speed belongs to
  * `shlab bench`): the tests check the counted work against the paper's
  * formula, the bookkeeping of the result, clean refusal of methods that are

@@ -1,4 +1,4 @@
-/* rotation_bench.c — timing of the SH rotation methods (`shlab bench`, the
+/* bench.c — timing of the SH rotation methods (`shlab bench`, the
  * Table 1 and frontier experiments, `shlab plan`): an interleaved timing
  * engine over a table of entries, the rotation entries, and instruction
  * counts under valgrind.
@@ -34,6 +34,8 @@
  * Counted work: sh_rot_plan_mults after the last set/apply (the kernels
  * count their own multiplications in their loops), per rotated vector.
  */
+#include "lab/lab.h"
+
 #include "core/shlab_internal.h"
 
 #include <math.h>

@@ -1,0 +1,219 @@
+/* lab/lab.h — the workbench around the numerical library (not installed):
+ * the interleaved timing engine and machine-load probes (bench.c), sweeps
+ * split into shards (shard.c), the planner's timed choice (planner.c), and
+ * the removal of temporary files on a signal (io/tempfile.c).  Used by the
+ * command-line tool, the experiments and the tests; built as
+ * libshlab_lab.a, on top of libshlab.  Nothing in libshlab depends on it.
+ */
+#ifndef SHLAB_LAB_H
+#define SHLAB_LAB_H
+
+#include "shlab.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- shards (shard.c) ------------------------------------------------------
+ * A long sweep (work items 0..n−1 in the order of the unsharded run) split
+ * into N independent processes.  Items are dealt forth and back: with
+ * r = j mod 2N, item j belongs to shard r if r < N, else to 2N−1−r
+ * (N = 2: 0 1 1 0 0 1 1 0 ...), so costs that grow with j are shared evenly.
+ * A work item's result must not depend on which shard computed it (seeds
+ * come from the item, not from a running generator). */
+#define SH_SHARD_MAX 100000
+typedef struct {
+    int index, count; /* I and N; count 1 = the whole sweep */
+} sh_shard;
+#define SH_SHARD_ALL {0, 1}
+/* Parse "I/N" (decimal, 0 <= I < N <= SH_SHARD_MAX). */
+int sh_shard_parse(const char *s, sh_shard *out);
+/* Non-zero if shard s owns item j (always when s is NULL or count is 1). */
+int sh_shard_owns(const sh_shard *s, long item);
+/* The items of a sweep that shard s owns, as the library's sweeps take them
+ * (s NULL or count 1: every item).  items must not outlive s. */
+sh_items sh_shard_items(const sh_shard *s);
+
+/* ---- timing (bench.c) -------------------------------------------------------- */
+/* Timing of the rotation methods (lab/bench.c) and the choice of the
+ * cheapest method for an error budget (rotation_choose.c).  Generic over the
+ * methods table: every method built in (including the Taylor approximations
+ * once registered) can be timed, measured and chosen. */
+typedef enum {
+    SH_BENCH_PER_ROTATION = 0, /* per vector: matrix → sh_rotation → plan_set → apply */
+    SH_BENCH_BATCHED,          /* one set, then `batch` vectors applied; per vector */
+    SH_BENCH_KROT              /* `batch` rotations applied to `batch` vectors in one
+                                  sh_rot_plan_rotate_many call (structure of arrays);
+                                  per vector */
+} sh_bench_mode;
+/* How the rotation reaches the plan:
+ *   EULER   the user's 3×3 matrix → ZYZ angles (sh_euler_from_matrix) →
+ *           sh_rot_plan_set; vectors as double (sh_rot_plan_apply) — the
+ *           path every earlier version of shlab timed;
+ *   MATRIX  sh_rot_plan_set_matrix (no angles), vectors in the plan's
+ *           precision: float plans take float matrices and vectors
+ *           (sh_rot_plan_set_matrix_f, sh_rot_plan_apply_f); batched mode
+ *           applies the batch as one sh_rot_plan_apply_many call.
+ * SH_BENCH_KROT always takes matrices (structure of arrays). */
+typedef enum { SH_BENCH_INPUT_EULER = 0, SH_BENCH_INPUT_MATRIX } sh_bench_input;
+const char *sh_bench_input_name(sh_bench_input i);
+const char *sh_bench_mode_name(sh_bench_mode m);
+typedef struct {
+    int count;     /* timed iterations per repeat; 0 = calibrated to ~target_ms */
+    int repeat;    /* timed repeats (median/min/max over them); ≥ 1 */
+    int batch;     /* vectors per set in SH_BENCH_BATCHED; ≥ 1 */
+    double target_ms; /* calibration target per repeat (count = 0); 0 = 5 ms */
+    double max_beta;  /* the random rotations have β uniform in [0, max_beta] (the
+                         z method is always timed at β = 0, its only domain) */
+    uint64_t seed;    /* rotations and vectors (deterministic) */
+    sh_convention conv; /* convention of the plans timed (default SH_CS) */
+    sh_rot_kernel kernel; /* the plans' kernel (default SH_KERNEL_AUTO) */
+    sh_bench_input input; /* default SH_BENCH_INPUT_EULER */
+} sh_bench_opts;
+#define SH_BENCH_OPTS_DEFAULT                                                                      \
+    {0, 11, 16, 5.0, 3.14159265358979323846, 12345u, SH_CS, SH_KERNEL_AUTO, SH_BENCH_INPUT_EULER}
+typedef struct {
+    double ns_median, ns_min, ns_max; /* ns per rotated vector, over the repeats */
+    double mults;        /* counted multiplications per rotated vector:
+                            set + apply (per rotation), set/batch + apply (batched) */
+    double mults_per_ns; /* mults / ns_median */
+    uint64_t set_mults, apply_mults; /* as sh_rot_plan_mults reports them */
+    int count;           /* iterations per repeat actually used */
+    double checksum;     /* sum of outputs (keeps the work observable) */
+    double ns_q1, ns_q3; /* quartiles over the repeats */
+    double spread;       /* (ns_q3 − ns_q1) / ns_median */
+    double sample_ms;    /* median duration of one timed repeat */
+    int noisy;           /* the run breaks the noise criterion (sh_bench_noise) */
+} sh_bench_result;
+/* Time one (order, method, precision, mode).  A rotation is given to the
+ * plan as a user holding an orthonormal 3×3 frame must: copy R, extract the
+ * ZYZ angles (sh_euler_from_matrix), sh_rot_plan_set, sh_rot_plan_apply.
+ * A warm-up repeat precedes the timed ones (CLOCK_MONOTONIC).  SH_EINVAL
+ * for a method that is not built in or an order it refuses. */
+int sh_rot_bench(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
+                 const sh_bench_opts *opts, sh_bench_result *res);
+/* ns to build an sh_rotation from an orthonormal matrix as above (angles
+ * only) — the part of every per-rotation time that no method can avoid. */
+double sh_rot_bench_setup_ns(const sh_bench_opts *opts);
+
+/* ---- The interleaved timing engine (lab/bench.c) ---------------------
+ * What to time is a table of entries, each a closure: run(ctx, count) does
+ * `count` iterations of its work, `units` work units each (vectors rotated).
+ * A new variant to compare is one more entry; one engine times them all.
+ *
+ * sh_bench_interleaved: each entry's count is calibrated so that one sample
+ * lasts at least min_sample_ms; `warmup` untimed rounds follow (a warm-up
+ * shorter than min_sample_ms raises the count again); then `samples` rounds,
+ * and in every round each entry is timed once (CLOCK_MONOTONIC), round-robin,
+ * the first entry shifted by one each round.  A slow drift of the machine's
+ * load therefore reaches every entry alike, and two entries' samples of the
+ * same round form a pair (sh_bench_paired_ratio).
+ *
+ * Noise criterion (sh_bench_noise; a run that breaks it is "noisy"):
+ *   spread: some entry's (q3 − q1)/median over its samples > noise_spread
+ *           (default 0.05);
+ *   off-CPU: the timed samples spent more than noise_offcpu (default 0.02)
+ *           of their wall time off this CPU (wall − CLOCK_THREAD_CPUTIME_ID:
+ *           another process had the core);
+ *   load:   other processes (and the hypervisor's steal) used more than
+ *           noise_load CPUs (default 0.25) on average during the run
+ *           (/proc/stat busy time minus this process's own, Linux only;
+ *           runs shorter than 0.25 s are not judged by it).
+ * Timings of a noisy run are still returned; callers must not turn them into
+ * verdicts. */
+typedef struct {
+    const char *name;                  /* for messages */
+    int (*run)(void *ctx, long count); /* SH_OK or an error status */
+    void (*free)(void *ctx);           /* releases ctx (sh_bench_entry_free); may be NULL */
+    void *ctx;
+    double units; /* work units per iteration (0 counts as 1) */
+    double mults; /* multiplications counted per unit (0: not counted) */
+} sh_bench_entry;
+typedef struct {
+    double min_sample_ms; /* shortest sample (calibration target); 0 → 5 */
+    int samples;          /* timed rounds; 0 → 15 */
+    int warmup;           /* untimed rounds before them; < 0 → 0 */
+    long count;           /* iterations per sample; 0 = calibrated */
+    double noise_spread, noise_offcpu, noise_load; /* 0 → 0.05, 0.02, 0.25 */
+    sh_progress_fn progress; /* optional: after each round */
+    void *progress_ctx;
+} sh_bench_cfg;
+#define SH_BENCH_CFG_DEFAULT {5.0, 15, 1, 0, 0.05, 0.02, 0.25, NULL, NULL}
+typedef struct {
+    double ns_min, ns_q1, ns_median, ns_q3, ns_max; /* ns per unit over the samples */
+    double spread;    /* (ns_q3 − ns_q1) / ns_median */
+    double offcpu;    /* fraction of this entry's sample time spent off the CPU */
+    double sample_ms; /* median duration of one sample */
+    long count;       /* iterations per sample */
+} sh_bench_stats;
+typedef struct {
+    int noisy;       /* the criterion above is broken */
+    char why[200];   /* the parts broken, "" when quiet */
+    double spread;   /* largest entry spread */
+    double offcpu;   /* off-CPU fraction over all samples */
+    double load;     /* CPUs used by other processes (−1: not known) */
+    double seconds;  /* wall time of the whole run */
+} sh_bench_noise;
+/* samples: ne × cfg.samples ns per unit (entry-major, round r of entry i at
+ * samples[i·S + r]); may be NULL.  st: ne results.  noise may be NULL. */
+int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cfg, double *samples,
+                         sh_bench_stats *st, sh_bench_noise *noise);
+/* The paired ratio a/b of two entries timed in the same rounds: median (and
+ * quartiles) of the per-round ratios a[r]/b[r]; spread = (q3 − q1)/median;
+ * noisy when spread > noise_spread (0 → 0.05). */
+typedef struct { double median, q1, q3, spread; int noisy; } sh_bench_ratio;
+int sh_bench_paired_ratio(const double *a, const double *b, int n, double noise_spread, sh_bench_ratio *r);
+/* CPU seconds the whole machine has been busy (/proc/stat: all but idle and
+ * iowait, steal included); < 0 where unknown.  Its increase over an interval,
+ * minus the CPU time of one's own process (and children), divided by the
+ * interval, is the load of other processes (the criterion's "load"). */
+double sh_machine_busy_s(void);
+/* An entry that times one rotation method as sh_rot_bench does (per rotation
+ * or batched; units = vectors rotated per iteration; mults counted).  Free
+ * it with sh_bench_entry_free. */
+int sh_rot_bench_entry(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
+                       const sh_bench_opts *opts, sh_bench_entry *e);
+/* Bytes sh_rot_bench_entry allocates for that entry (its plan and its pools
+ * of rotations and vectors); the entries of one order live at once. */
+double sh_rot_bench_entry_bytes(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
+                                const sh_bench_opts *opts);
+/* An entry for the matrix → ZYZ angles step alone (per rotation). */
+int sh_rot_bench_setup_entry(const sh_bench_opts *opts, sh_bench_entry *e);
+void sh_bench_entry_free(sh_bench_entry *e);
+/* Instructions executed per unit, counted by valgrind's callgrind: each
+ * entry runs n iterations untimed (warm-up), then n and 2n iterations each
+ * between callgrind client requests, and ins[i] = (I(2n) − I(n)) / (n·units)
+ * (the difference removes the calls' fixed cost).  The process must run as
+ *   valgrind --tool=callgrind --instr-atstart=no --combine-dumps=yes
+ *            --callgrind-out-file=FILE ...
+ * and FILE is read back.  SH_ENOTSUP when not running under valgrind (or
+ * built without valgrind's header). */
+int sh_bench_instructions(const sh_bench_entry *e, int ne, long n, const char *callgrind_out,
+                          double *ins);
+
+
+/* ---- the planner's timed choice (planner.c) ----------------------------------- */
+typedef struct {
+    sh_rot_method method;
+    int exact;
+    double max_error;  /* largest error over the β grid (the chosen measure) */
+    double worst_beta; /* where */
+    double ns_per_rotation, mults;
+    int ok;            /* max_error ≤ tolerance */
+} sh_rot_candidate;
+/* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
+ * time first, then the others by error); *ncand their count; *choice and
+ * *runner_up index cand (−1 when none). */
+int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
+                  int *runner_up);
+
+/* ---- temporary files (io/tempfile.c) ------------------------------------------- */
+/* Remove every temporary file that a writer of this library (sh_exr_write,
+ * ...) has created and not yet renamed into place.  Async-signal-safe: meant
+ * for SIGINT/SIGTERM handlers and atexit. */
+void sh__temp_files_unlink(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SHLAB_LAB_H */
