@@ -189,6 +189,7 @@ END_TEST
 
 /* A command whose default of a group's option differs: CLI_DEFAULT. */
 static const cli_opt own_opts[] = {
+    CLI_REAL(args, beta, "beta", "B", 0.1, 170, CLI_LO_OPEN | CLI_HI_OPEN, NULL, "step"),
     CLI_GROUP(args, sub, sub_opts),
     CLI_DEFAULT("seed", "9"),
     CLI_END,
@@ -216,6 +217,8 @@ START_TEST(test_command_default)
     const char *h = capture(1, own_help, NULL, &rc);
     ck_assert_int_eq(rc, 0);
     ck_assert_ptr_nonnull(strstr(h, "  --seed S             random seed (default 9; 0..1000)\n"));
+    /* a limit is written as it was declared (not 0.10000000000000001 or 1.7e+02) */
+    ck_assert_ptr_nonnull(strstr(h, "  --beta B             step (in (0.1, 170))\n"));
 }
 END_TEST
 

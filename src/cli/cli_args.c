@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *const cli_format_names[] = {"table", "csv", "json", NULL};
@@ -48,16 +49,29 @@ static const flat_opt *find(const flat_table *f, const char *name, size_t len)
 
 /* ---- values ----------------------------------------------------------------- */
 
+/* v as %g writes it when that reads back as v, else with the digits it
+ * needs: 0.1 and 170, not 0.10000000000000001 or 1.7e+02 */
+static void shortest(double v, char *buf, size_t n)
+{
+    for (int digits = 6; digits <= 17; digits++) {
+        snprintf(buf, n, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v) return;
+    }
+}
+
 /* "must be in (0, 1]", "must be > 0", "must be <= 10": the range of a real. */
 static void real_range_text(const cli_opt *o, char *buf, size_t n)
 {
     const int lo_open = (o->flags & CLI_LO_OPEN) != 0, hi_open = (o->flags & CLI_HI_OPEN) != 0;
+    char lo[32], hi[32];
+    shortest(o->lo, lo, sizeof lo);
+    shortest(o->hi, hi, sizeof hi);
     if (isinf(o->hi))
-        snprintf(buf, n, "%s %.17g", lo_open ? ">" : ">=", o->lo);
+        snprintf(buf, n, "%s %s", lo_open ? ">" : ">=", lo);
     else if (isinf(o->lo))
-        snprintf(buf, n, "%s %.17g", hi_open ? "<" : "<=", o->hi);
+        snprintf(buf, n, "%s %s", hi_open ? "<" : "<=", hi);
     else
-        snprintf(buf, n, "in %c%.17g, %.17g%c", lo_open ? '(' : '[', o->lo, o->hi, hi_open ? ')' : ']');
+        snprintf(buf, n, "in %c%s, %s%c", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
 }
 
 static int has_range(const cli_opt *o) { return o->lo != 0 || o->hi != 0; }
