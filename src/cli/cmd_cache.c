@@ -84,8 +84,10 @@ static const cli_opt cache_opts[] = {
     CLI_CUSTOM(cache_args, brdf, "brdf", "diffuse|phong:E", parse_brdf, "diffuse", "the surfaces' BRDF"),
     CLI_FLAG(cache_args, bounce, "bounce", "add one bounce of the direct light (--rays per record)"),
     CLI_LONG(cache_args, env_samples, "env-samples", "S", 16, 1L << 22, "4096", "environment samples per record"),
-    CLI_REAL(cache_args, rmin, "rmin", "F", 0, INFINITY, CLI_LO_OPEN, "0.01", "lower clamp of R_i, a fraction of the diagonal"),
-    CLI_REAL(cache_args, rmax, "rmax", "F", 0, 100, CLI_LO_OPEN, "0.25", "upper clamp of R_i, a fraction of the diagonal"),
+    CLI_REAL(cache_args, rmin, "rmin", "F", 0, INFINITY, CLI_LO_OPEN, "0.01",
+             "lower clamp of R_i, a fraction of the diagonal"),
+    CLI_REAL(cache_args, rmax, "rmax", "F", 0, 100, CLI_LO_OPEN, "0.25",
+             "upper clamp of R_i, a fraction of the diagonal"),
     CLI_INT(cache_args, repeat, "repeat", "K", 1, 1000, "5", "timing rounds"),
     CLI_FLAG(cache_args, noise, "noise",
              "also compute every vertex with the next seed: the\ndirect computation's own noise, noise_l2 = rel_l2\n"
@@ -534,5 +536,6 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_cache = {"cache", run, "radiance cache: records rotated into each vertex's frame, error and time per method",
+const cli_command cmd_cache = {"cache", run,
+                               "radiance cache: records rotated into each vertex's frame, error and time per method",
                                NULL, &cache_decl};
