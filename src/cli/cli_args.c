@@ -6,6 +6,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *const cli_format_names[] = {"table", "csv", "json", NULL};
@@ -27,7 +28,7 @@ typedef struct {
 static int flatten(const cli_opt *t, size_t base, flat_table *f)
 {
     for (; t && t->type != CLI_T_END; t++) {
-        if (t->type == CLI_T_HEADING) continue;
+        if (t->type == CLI_T_HEADING || t->type == CLI_T_DEFAULT) continue;
         if (t->type == CLI_T_GROUP) {
             if (flatten(t->group, base + t->off, f)) return -1;
             continue;
@@ -49,16 +50,29 @@ static const flat_opt *find(const flat_table *f, const char *name, size_t len)
 
 /* ---- values ----------------------------------------------------------------- */
 
+/* v as %g writes it when that reads back as v, else with the digits it
+ * needs: 0.1 and 170, not 0.10000000000000001 or 1.7e+02 */
+static void shortest(double v, char *buf, size_t n)
+{
+    for (int digits = 6; digits <= 17; digits++) {
+        snprintf(buf, n, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v) return;
+    }
+}
+
 /* "must be in (0, 1]", "must be > 0", "must be <= 10": the range of a real. */
 static void real_range_text(const cli_opt *o, char *buf, size_t n)
 {
     const int lo_open = (o->flags & CLI_LO_OPEN) != 0, hi_open = (o->flags & CLI_HI_OPEN) != 0;
+    char lo[32], hi[32];
+    shortest(o->lo, lo, sizeof lo);
+    shortest(o->hi, hi, sizeof hi);
     if (isinf(o->hi))
-        snprintf(buf, n, "%s %.17g", lo_open ? ">" : ">=", o->lo);
+        snprintf(buf, n, "%s %s", lo_open ? ">" : ">=", lo);
     else if (isinf(o->lo))
-        snprintf(buf, n, "%s %.17g", hi_open ? "<" : "<=", o->hi);
+        snprintf(buf, n, "%s %s", hi_open ? "<" : "<=", hi);
     else
-        snprintf(buf, n, "in %c%.17g, %.17g%c", lo_open ? '(' : '[', o->lo, o->hi, hi_open ? ')' : ']');
+        snprintf(buf, n, "in %c%s, %s%c", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
 }
 
 static int has_range(const cli_opt *o) { return o->lo != 0 || o->hi != 0; }
@@ -156,11 +170,42 @@ int cli_given(const cli_parsed *seen, const char *name)
     return 0;
 }
 
+/* The command's own default of option `name` (a CLI_DEFAULT entry in its
+ * table or its groups; the last one wins), or NULL. */
+static const char *override_of(const cli_opt *t, const char *name)
+{
+    const char *def = NULL;
+    for (; t && t->type != CLI_T_END; t++) {
+        if (t->type == CLI_T_GROUP) {
+            const char *d = override_of(t->group, name);
+            if (d) def = d;
+        } else if (t->type == CLI_T_DEFAULT && !strcmp(t->name, name)) {
+            def = t->def;
+        }
+    }
+    return def;
+}
+
+/* A CLI_DEFAULT must name an option of the command (else a bug). */
+static int overrides_known(const cli_cmd *cmd, const cli_opt *t, const flat_table *f)
+{
+    for (; t && t->type != CLI_T_END; t++) {
+        if (t->type == CLI_T_GROUP && overrides_known(cmd, t->group, f)) return -1;
+        if (t->type == CLI_T_DEFAULT && !find(f, t->name, strlen(t->name)))
+            return cli_fail("%s: a default for --%s, which it does not take (a bug)", cmd->name, t->name);
+    }
+    return 0;
+}
+
 static int apply_defaults(const cli_cmd *cmd, const flat_table *f, void *args)
 {
-    for (int k = 0; k < f->n; k++)
-        if (f->v[k].o->def && set_value(&f->v[k], f->v[k].o->def, args))
+    if (overrides_known(cmd, cmd->opts, f)) return -1;
+    for (int k = 0; k < f->n; k++) {
+        const char *own = override_of(cmd->opts, f->v[k].o->name);
+        const char *def = own ? own : f->v[k].o->def;
+        if (def && set_value(&f->v[k], def, args))
             return cli_fail("%s: the default of --%s is refused (a bug)", cmd->name, f->v[k].o->name);
+    }
     return 0;
 }
 
@@ -223,12 +268,12 @@ int cli_args_parse(const cli_cmd *cmd, int argc, char **argv, void *args, cli_pa
 
 /* "(default D; 1..32)": what the table knows beyond the help line, unless
  * the help line says it already. */
-static void auto_text(const cli_opt *o, char *buf, size_t n)
+static void auto_text(const cli_opt *o, const char *def, char *buf, size_t n)
 {
     char parts[2][128];
     int np = 0;
     const int says_default = o->help && strstr(o->help, "default") != NULL;
-    if (o->def && !(o->flags & CLI_NO_DEFAULT) && !says_default) snprintf(parts[np++], sizeof parts[0], "default %s", o->def);
+    if (def && !(o->flags & CLI_NO_DEFAULT) && !says_default) snprintf(parts[np++], sizeof parts[0], "default %s", def);
     if (has_range(o) && (o->type == CLI_T_INT || o->type == CLI_T_LONG || o->type == CLI_T_ORDER)) {
         char r[64];
         int_range_text(o, r, sizeof r);
@@ -242,11 +287,11 @@ static void auto_text(const cli_opt *o, char *buf, size_t n)
     snprintf(buf, n, "(%s%s%s)", parts[0], np > 1 ? "; " : "", np > 1 ? parts[1] : "");
 }
 
-static void help_option(FILE *out, const cli_opt *o)
+static void help_option(FILE *out, const cli_opt *o, const char *def)
 {
     char head[96], extra[300];
     snprintf(head, sizeof head, "  --%s%s%s", o->name, o->meta ? " " : "", o->meta ? o->meta : "");
-    auto_text(o, extra, sizeof extra);
+    auto_text(o, def, extra, sizeof extra);
     if ((int)strlen(head) >= HELP_COL - 1) {
         fprintf(out, "%s\n%*s", head, HELP_COL - 1, "");
     } else {
@@ -269,13 +314,19 @@ static void help_option(FILE *out, const cli_opt *o)
     fputc('\n', out);
 }
 
-static void help_table(FILE *out, const cli_opt *t)
+/* root: the command's table, whose CLI_DEFAULT entries replace the defaults of t's options */
+static void help_table(FILE *out, const cli_opt *t, const cli_opt *root)
 {
     for (; t && t->type != CLI_T_END; t++) {
-        if (t->flags & CLI_HIDDEN) continue;
-        if (t->type == CLI_T_GROUP) help_table(out, t->group);
-        else if (t->type == CLI_T_HEADING) fprintf(out, "%s\n", t->help);
-        else help_option(out, t);
+        if (t->flags & CLI_HIDDEN || t->type == CLI_T_DEFAULT) continue;
+        if (t->type == CLI_T_GROUP) {
+            help_table(out, t->group, root);
+        } else if (t->type == CLI_T_HEADING) {
+            fprintf(out, "%s\n", t->help);
+        } else {
+            const char *own = override_of(root, t->name);
+            help_option(out, t, own ? own : t->def);
+        }
     }
 }
 
@@ -285,7 +336,7 @@ int cli_args_help(const cli_cmd *cmd)
     fprintf(out, "Usage: shlab %s\n", cmd->usage);
     if (cmd->about && *cmd->about) fprintf(out, "\n%s", cmd->about);
     fputs("\nOptions:\n", out);
-    help_table(out, cmd->opts);
+    help_table(out, cmd->opts, cmd->opts);
     fputs("  --help               this text\n", out);
     if (cmd->notes && *cmd->notes) fprintf(out, "\n%s", cmd->notes);
     fputs(cli_conventions_note, out);

@@ -41,6 +41,7 @@ typedef enum {
     CLI_T_ORDER,   /* int order in 1..hi ("order N is outside 1..MAX (why)", cli_order_check) */
     CLI_T_GROUP,   /* a shared group: every option of `group`, offsets relative to off */
     CLI_T_HEADING, /* a heading line in --help ("Rotation:"), no option */
+    CLI_T_DEFAULT, /* the command's own default of an option its groups declare (name, def) */
 } cli_type;
 
 enum {
@@ -95,6 +96,10 @@ typedef struct cli_opt {
      .why = WHY, .help = HELP}
 #define CLI_GROUP(S, F, TABLE) {.type = CLI_T_GROUP, .off = offsetof(S, F), .group = TABLE}
 #define CLI_HEADING(TEXT) {.type = CLI_T_HEADING, .help = TEXT}
+/* A shared group declares an option once, with the default most commands
+ * want; a command whose default differs (shadow-field's 4096 rays) says so
+ * in its own table: the parser applies it instead, --help prints it. */
+#define CLI_DEFAULT(NAME, DEF) {.type = CLI_T_DEFAULT, .name = NAME, .def = DEF}
 #define CLI_END {.type = CLI_T_END}
 
 /* Options every command words the same way (cli_args.c). */

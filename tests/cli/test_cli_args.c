@@ -187,6 +187,41 @@ START_TEST(test_wording_and_help)
 }
 END_TEST
 
+/* A command whose default of a group's option differs: CLI_DEFAULT. */
+static const cli_opt own_opts[] = {
+    CLI_REAL(args, beta, "beta", "B", 0.1, 170, CLI_LO_OPEN | CLI_HI_OPEN, NULL, "step"),
+    CLI_GROUP(args, sub, sub_opts),
+    CLI_DEFAULT("seed", "9"),
+    CLI_END,
+};
+static const cli_cmd own_cmd = {.name = "u", .usage = "u [OPTIONS]", .opts = own_opts};
+
+static int own_help(void *ctx)
+{
+    (void)ctx;
+    return cli_args_help(&own_cmd);
+}
+
+START_TEST(test_command_default)
+{
+    args a;
+    cli_parsed seen;
+    char *argv[] = {(char *)"u", NULL};
+    a.sub.seed = -1;
+    ck_assert_int_eq(cli_args_parse(&own_cmd, 1, argv, &a, &seen), -1);
+    ck_assert_int_eq(a.sub.seed, 9);
+    /* the group's own default still holds where no command says otherwise */
+    ck_assert_int_eq(PARSE("--quiet"), -1);
+    ck_assert_int_eq(a.sub.seed, 7);
+    int rc;
+    const char *h = capture(1, own_help, NULL, &rc);
+    ck_assert_int_eq(rc, 0);
+    ck_assert_ptr_nonnull(strstr(h, "  --seed S             random seed (default 9; 0..1000)\n"));
+    /* a limit is written as it was declared (not 0.10000000000000001 or 1.7e+02) */
+    ck_assert_ptr_nonnull(strstr(h, "  --beta B             step (in (0.1, 170))\n"));
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("cli_args");
@@ -194,6 +229,7 @@ static Suite *suite(void)
     tcase_add_test(tc, test_defaults_and_values);
     tcase_add_test(tc, test_refusals);
     tcase_add_test(tc, test_wording_and_help);
+    tcase_add_test(tc, test_command_default);
     suite_add_tcase(s, tc);
     return s;
 }
