@@ -103,39 +103,39 @@ static int parse_kernels(const char *opt, const char *s, void *field)
     return rc;
 }
 
-/* --mode LIST: the union of the sets named */
-static int parse_modes(const char *opt, const char *s, void *field)
+/* A list of names, each one of names[0..n) standing for bits[i], into the
+ * union of their bits; `expect` lists them for the error line. */
+static int parse_bits(const char *opt, const char *s, const char *const *names, const int *bits, int n,
+                      const char *expect, int *out)
 {
-    int *bits = field;
     char **t;
-    int n, rc = 0;
-    if (cli_split(opt, s, &t, &n)) return CLI_EXIT_USAGE;
-    *bits = 0;
-    for (int i = 0; i < n && !rc; i++) {
+    int k, rc = 0;
+    if (cli_split(opt, s, &t, &k)) return CLI_EXIT_USAGE;
+    *out = 0;
+    for (int i = 0; i < k && !rc; i++) {
         int b = 0;
-        for (size_t j = 0; j < sizeof mode_bits / sizeof *mode_bits; j++)
-            if (!strcmp(t[i], mode_sets[j])) b = mode_bits[j];
-        if (!b) rc = cli_fail("%s: '%s' (per-rotation, batched, both, k-rotations, all or oneshot)", opt, t[i]);
-        *bits |= b;
+        for (int j = 0; j < n; j++)
+            if (!strcmp(t[i], names[j])) b = bits[j];
+        if (!b) rc = cli_fail("%s: '%s' (%s)", opt, t[i], expect);
+        *out |= b;
     }
     free(t);
     return rc;
 }
 
+/* --mode LIST: the union of the sets named */
+static int parse_modes(const char *opt, const char *s, void *field)
+{
+    return parse_bits(opt, s, mode_sets, mode_bits, (int)(sizeof mode_bits / sizeof *mode_bits),
+                      "per-rotation, batched, both, k-rotations, all or oneshot", field);
+}
+
+/* --input LIST: bit 0 euler, bit 1 matrix */
 static int parse_inputs(const char *opt, const char *s, void *field)
 {
-    int *bits = field;
-    char **t;
-    int n, rc = 0;
-    if (cli_split(opt, s, &t, &n)) return CLI_EXIT_USAGE;
-    *bits = 0;
-    for (int i = 0; i < n && !rc; i++) {
-        if (!strcmp(t[i], "euler")) *bits |= 1;
-        else if (!strcmp(t[i], "matrix")) *bits |= 2;
-        else rc = cli_fail("%s: '%s' (euler or matrix)", opt, t[i]);
-    }
-    free(t);
-    return rc;
+    static const char *const names[] = {"euler", "matrix"};
+    static const int bits[] = {1, 2};
+    return parse_bits(opt, s, names, bits, 2, "euler or matrix", field);
 }
 
 static int parse_baseline(const char *opt, const char *s, void *field)
