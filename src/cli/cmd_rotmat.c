@@ -23,7 +23,7 @@ static const cli_opt rotmat_opts[] = {
     CLI_DEGREES(rotmat_args, degrees, "angles in degrees (radians otherwise; a warning on\n"
                                       "stderr when an angle in radians exceeds 2π)"),
     CLI_HEADING(""),
-    CLI_ORDER(rotmat_args, order, SHLAB_MAX_ORDER, NULL, "bands 0..N-1 (1..32 for the printed matrix)"),
+    CLI_ORDER(rotmat_args, order, SHLAB_MAX_ORDER, NULL, "bands 0..N-1: 1..32 for the printed matrix, 1..4097\nwith --band"),
     CLI_INT(rotmat_args, band, "band", "L", 0, ROTMAT_MAX_BAND, NULL,
             "one band only (below --order if both are given)"),
     CLI_GROUP(rotmat_args, m, cli_method_opts),
