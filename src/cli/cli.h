@@ -256,6 +256,15 @@ extern const cli_opt cli_rotation_opts[];
 int cli_parse_method(const char *opt, const char *s, void *field);
 int cli_parse_precision(const char *opt, const char *s, void *field);
 int cli_parse_kernel(const char *opt, const char *s, void *field);
+/* --method (default auto), --precision (double) and --kernel (auto) as one
+ * declared group, for the commands that make the rotation they print
+ * (rotate, rotmat): CLI_GROUP(its_args, field, cli_method_opts). */
+typedef struct {
+    sh_rot_method method; /* SH_ROT_AUTO: the command's choice by order */
+    sh_precision prec;
+    sh_rot_kernel kernel;
+} cli_method_args;
+extern const cli_opt cli_method_opts[];
 /* Handle a rotation option (returns -1 if o is not one, 0 if handled, or an
  * exit code after printing the error). */
 int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r);

@@ -202,23 +202,30 @@ int fx_apply_kernel(sh_rot_method m, sh_precision prec, sh_rot_kernel kernel, in
         free(B);
         return st;
     }
-    sh_rot_plan *p;
-    if ((st = sh_rot_plan_create_kernel(c->order, m, prec, conv, kernel, &p))) return st;
+    /* a whole order: one rotation applied once, by the rotator (the library
+     * picks the kernel and the path) */
+    sh_rotator_opts o = SH_ROTATOR_OPTS(c->order);
+    o.method = m;
+    o.prec = prec;
+    o.kernel = kernel;
+    o.conv = conv;
+    o.threads = 1;
+    sh_rotator *r;
+    if ((st = sh_rotator_create(&o, &r))) return st;
     if (!matrix) {
-        if (!(st = sh_rot_plan_set(p, rot))) st = sh_rot_plan_apply(p, in, out);
+        st = sh_rotator_apply(r, rot, 0, 1, in, out);
     } else if (prec == SH_PREC_DOUBLE) {
-        if (!(st = sh_rot_plan_set_matrix(p, rot->R))) st = sh_rot_plan_apply(p, in, out);
+        st = sh_rotator_apply_matrix(r, rot->R, 0, 1, in, out);
     } else {
         const size_t n = (size_t)c->n;
         float R[9], *x = malloc(2 * n * sizeof *x);
         if (!x) st = sh_error(SH_ENOMEM, "out of memory");
         for (int i = 0; i < 9; i++) R[i] = (float)rot->R[i];
         for (size_t i = 0; !st && i < n; i++) x[i] = (float)in[i];
-        if (!st) st = sh_rot_plan_set_matrix_f(p, R);
-        if (!st) st = sh_rot_plan_apply_f(p, x, x + n);
+        if (!st) st = sh_rotator_apply_matrix_f(r, R, x, x + n);
         for (size_t i = 0; !st && i < n; i++) out[i] = x[n + i];
         free(x);
     }
-    sh_rot_plan_free(p);
+    sh_rotator_free(r);
     return st;
 }

@@ -79,6 +79,19 @@ int cli_parse_kernel(const char *opt, const char *s, void *field)
     return 0;
 }
 
+const cli_opt cli_method_opts[] = {
+    CLI_CUSTOM(cli_method_args, method, "method", "M", cli_parse_method, "auto",
+               "auto (default) | z | ivanic | zxzxz | choi | blanco | wigner |\n"
+               "reference | halfpi (exact) or taylor1 | taylor1.5 | taylor2\n"
+               "(Krivánek et al.'s approximations)"),
+    CLI_CUSTOM(cli_method_args, prec, "precision", "P", cli_parse_precision, "double",
+               "double (default) | float (computed in float)"),
+    CLI_CUSTOM(cli_method_args, kernel, "kernel", "K", cli_parse_kernel, "auto",
+               "auto (default) | scalar | unrolled | sse2 | avx2 | avx512:\n"
+               "the code that runs"),
+    CLI_END,
+};
+
 /* ---- the getopt tables of the commands not yet declared ------------------------- */
 
 int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r)

@@ -2,64 +2,58 @@
  * identities, stable at β = 0 and β = π; see rotation.c). */
 #include "cli.h"
 
-#include <getopt.h>
 #include <math.h>
+#include <stddef.h>
 
-extern const cli_command cmd_euler;
+typedef struct {
+    cli_rotation_args rot;
+    int degrees, conv, fmt;
+} euler_args;
 
-static const char help[] =
-    "Usage: shlab euler ROTATION [OPTIONS]\n"
-    "\n"
-    "ZYZ active Euler angles (α, β, γ) with R = Rz(α) Ry(β) Rz(γ), α, γ in (-π, π],\n"
-    "β in [0, π].  At β = 0 only α+γ is defined (α = 0 is returned); at β = π only\n"
-    "α-γ (α = 0).  Also prints how well the angles reproduce the matrix.\n"
-    "\n"
-    "Rotation (exactly one): --matrix R00,...,R22 | --quat W,X,Y,Z |\n"
-    "  --axis X,Y,Z --angle T | --euler A,B,G   (see shlab rotmat --help);\n"
-    "  --inverse, --orthonormalize\n"
-    "  --degrees            angles in and out in degrees (the input forms --quat\n"
-    "                       and --matrix have none; the printed angles are then in\n"
-    "                       degrees)\n"
-    "  --convention cs|nocs reported only (the angles do not depend on it)\n"
-    "  --format table|csv|json\n"
-    "  --help               this text\n"
-    "\n"
-    "JSON: {\"alpha\",\"beta\",\"gamma\",\"unit\",\"residual\",\"convention\"}  (residual = max|R(α,β,γ) − R|)\n";
+static const cli_opt euler_opts[] = {
+    CLI_GROUP(euler_args, rot, cli_rotation_opts),
+    CLI_DEGREES(euler_args, degrees, "angles in and out in degrees (the input forms --quat\n"
+                                     "and --matrix have none; the printed angles are then in\n"
+                                     "degrees)"),
+    CLI_CHOICE(euler_args, conv, "convention", "cs|nocs", cli_convention_names, "cs",
+               "reported only (the angles do not depend on it)"),
+    CLI_FORMAT(euler_args, fmt),
+    CLI_END,
+};
+
+static const cli_cmd euler_decl = {
+    .name = "euler",
+    .usage = "euler ROTATION [OPTIONS]",
+    .about = "ZYZ active Euler angles (α, β, γ) with R = Rz(α) Ry(β) Rz(γ), α, γ in (-π, π],\n"
+             "β in [0, π].  At β = 0 only α+γ is defined (α = 0 is returned); at β = π only\n"
+             "α-γ (α = 0).  Also prints how well the angles reproduce the matrix.\n"
+             "The rotation: exactly one form (see shlab rotmat --help).\n",
+    .opts = euler_opts,
+    .notes = "JSON: {\"alpha\",\"beta\",\"gamma\",\"unit\",\"residual\",\"convention\"}  (residual = max|R(α,β,γ) − R|)\n",
+};
 
 static int run(int argc, char **argv)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE, CLI_LONGOPT_DEGREES, CLI_LONGOPT_CONVENTION,
-                                         CLI_LONGOPTS_ROTATION, {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    cli_rotation_args ra = {0};
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        int r = cli_rotation_opt("euler", o, optarg, &ra);
-        if (r > 0) return r;
-        if (r == 0) continue;
-        const int e = cli_common_opt(&cmd_euler, o, argv, &com);
-        if (e >= 0) return e;
-    }
-    if (optind < argc) return cli_fail("euler: unexpected argument '%s'", argv[optind]);
+    euler_args a = {0};
+    cli_parsed seen;
+    int rc = cli_args_parse(&euler_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
     sh_rotation rot, back;
-    int r = cli_rotation_finish("euler", &ra, com.degrees, 0, NULL, &rot);
-    if (r) return r;
-    double a, b, g;
-    sh_euler_from_matrix(rot.R, &a, &b, &g);
-    sh_rotation_from_euler(a, b, g, &back);
-    double res = 0;
+    if ((rc = cli_rotation_finish("euler", &a.rot, a.degrees, 0, NULL, &rot))) return rc;
+    double al, be, ga;
+    sh_euler_from_matrix(rot.R, &al, &be, &ga);
+    sh_rotation_from_euler(al, be, ga, &back);
+    double res = 0; /* max|R(α,β,γ) − R| */
     for (int i = 0; i < 9; i++) res = fmax(res, fabs(back.R[i] - rot.R[i]));
     json_t *root = json_object();
-    root = cli_put(root, "alpha", json_real(cli_angle_out(a, com.degrees)));
-    root = cli_put(root, "beta", json_real(cli_angle_out(b, com.degrees)));
-    root = cli_put(root, "gamma", json_real(cli_angle_out(g, com.degrees)));
-    root = cli_put(root, "unit", json_string(cli_angle_unit(com.degrees)));
+    root = cli_put(root, "alpha", json_real(cli_angle_out(al, a.degrees)));
+    root = cli_put(root, "beta", json_real(cli_angle_out(be, a.degrees)));
+    root = cli_put(root, "gamma", json_real(cli_angle_out(ga, a.degrees)));
+    root = cli_put(root, "unit", json_string(cli_angle_unit(a.degrees)));
     root = cli_put(root, "residual", json_real(res));
     /* last, so that the CSV columns of the angles keep their places */
-    root = cli_put(root, "convention", json_string(sh_convention_name(com.conv)));
-    return cli_emit(root, com.fmt);
+    root = cli_put(root, "convention", json_string(sh_convention_name((sh_convention)a.conv)));
+    return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_euler = {"euler", run, "ZYZ Euler angles of a rotation matrix", help, NULL};
+const cli_command cmd_euler = {"euler", run, "ZYZ Euler angles of a rotation matrix", NULL, &euler_decl};

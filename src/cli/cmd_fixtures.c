@@ -8,37 +8,47 @@
 #include "cli.h"
 #include "core/shlab_internal.h"
 
-#include <getopt.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-extern const cli_command cmd_fixtures;
+typedef struct {
+    const char *dir;
+    sh_rot_method method; /* SH_ROT_AUTO (the default): the MPFR reference */
+    int quiet, fmt;
+} fixtures_args;
 
-static const char help[] =
-    "Usage: shlab fixtures --out DIR [OPTIONS]\n"
-    "\n"
-    "Write the golden rotation fixtures into DIR:\n"
-    "  orders_1_10.json   orders 1..10 at the 10 rotations of 'shlab stability'\n"
-    "                     (β = 0, 1e-12, π/2, π-1e-9, π, gimbal lock, random), both\n"
-    "                     conventions: 200 cases\n"
-    "  bands_50_200.json  single bands l = 50 and 200 at three rotations, both\n"
-    "                     conventions: 12 cases\n"
-    "Each case gives the input vector (seeded, unit length), the rotation in every\n"
-    "form (euler, quat, matrix, axis+angle), the expected output (MPFR reference,\n"
-    "exact to double rounding), its float32 rounding, the convention and the\n"
-    "tolerances.  DIR and the targets are checked before anything is computed;\n"
-    "the files are written to temporary names and renamed only when all are\n"
-    "complete (all or nothing).\n"
-    "\n"
-    "  --out DIR            output directory (must exist)\n"
-    "  --method M           expected outputs from shlab's method M in double instead\n"
-    "                       of the MPFR reference, for a kernel that implements M\n"
-    "                       (e.g. taylor1.5): writes orders_1_10_M.json only\n"
-    "  --quiet              no progress on stderr\n"
-    "  --format table|csv|json   (the summary)\n"
-    "  --help               this text\n";
+static const cli_opt fixtures_opts[] = {
+    CLI_STRING(fixtures_args, dir, "out", "DIR", "output directory (must exist)"),
+    CLI_CUSTOM(fixtures_args, method, "method", "M", cli_parse_method, NULL,
+               "expected outputs from shlab's method M in double instead\n"
+               "of the MPFR reference, for a kernel that implements M\n"
+               "(e.g. taylor1.5): writes orders_1_10_M.json only"),
+    CLI_FLAG(fixtures_args, quiet, "quiet", "no progress on stderr"),
+    CLI_CHOICE(fixtures_args, fmt, "format", "table|csv|json", cli_format_names, "table",
+               "the summary's format"),
+    CLI_END,
+};
+
+static const cli_cmd fixtures_decl = {
+    .name = "fixtures",
+    .usage = "fixtures --out DIR [OPTIONS]",
+    .about = "Write the golden rotation fixtures into DIR:\n"
+             "  orders_1_10.json   orders 1..10 at the 10 rotations of 'shlab stability'\n"
+             "                     (β = 0, 1e-12, π/2, π-1e-9, π, gimbal lock, random), both\n"
+             "                     conventions: 200 cases\n"
+             "  bands_50_200.json  single bands l = 50 and 200 at three rotations, both\n"
+             "                     conventions: 12 cases\n"
+             "Each case gives the input vector (seeded, unit length), the rotation in every\n"
+             "form (euler, quat, matrix, axis+angle), the expected output (MPFR reference,\n"
+             "exact to double rounding), its float32 rounding, the convention and the\n"
+             "tolerances.  DIR and the targets are checked before anything is computed;\n"
+             "the files are written to temporary names and renamed only when all are\n"
+             "complete (all or nothing).\n",
+    .opts = fixtures_opts,
+};
 
 /* Tolerances, |candidate_i − expected_i| ≤ tol for a unit input.  Double:
  * 1e-13 everywhere (the stable methods stay below 5e-15 even at
@@ -68,10 +78,15 @@ static json_t *case_json(sh_rot_method method, const char *id, int order, int ba
          * that implements an approximation (taylor1.5) or a given method.
          * The scalar loop kernel: the same bytes on every CPU (the unrolled
          * and SIMD kernels fuse multiply-adds where the CPU has FMA). */
-        sh_rot_plan *p;
-        if ((*st = sh_rot_plan_create_kernel(order, method, SH_PREC_DOUBLE, conv, SH_KERNEL_SCALAR, &p))) goto fail;
-        if (!(*st = sh_rot_plan_set(p, rot))) *st = sh_rot_plan_apply(p, in, exp);
-        sh_rot_plan_free(p);
+        sh_rotator_opts o = SH_ROTATOR_OPTS(order);
+        o.method = method;
+        o.kernel = SH_KERNEL_SCALAR;
+        o.conv = conv;
+        o.threads = 1;
+        sh_rotator *r;
+        if ((*st = sh_rotator_create(&o, &r))) goto fail;
+        *st = sh_rotator_apply(r, rot, 0, 1, in, exp);
+        sh_rotator_free(r);
         if (*st) goto fail;
         for (int i = 0; i < n; i++) expf[i] = (double)(float)exp[i];
     }
@@ -148,51 +163,41 @@ static int write_file(const char *tmp, const char *path, const char *description
     return bad ? cli_fail("fixtures: cannot write '%s'", path) : 0;
 }
 
-static int run(int argc, char **argv)
+/* The files: orders_1_10[_M].json, and for the reference bands_50_200.json,
+ * opened (cli_out_open) before the work so that an unwritable target fails
+ * first. */
+typedef struct {
+    char path[2][4096];
+    const char *tmp[2];
+    int nfiles;
+} fixture_files;
+
+static int open_files(const char *dir, sh_rot_method method, fixture_files *f)
 {
-    static const struct option opts[] = {CLI_LONGOPTS_BASE, CLI_LONGOPT_METHOD,
-                                         {"out", required_argument, 0, 'o'},
-                                         {"quiet", no_argument, 0, 'q'}, {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    const char *dir = NULL;
-    int quiet = 0;
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        if (o == 'o') dir = optarg;
-        else if (o == 'q') quiet = 1;
-        else {
-            const int e = cli_common_opt(&cmd_fixtures, o, argv, &com);
-            if (e >= 0) return e;
-        }
-    }
-    if (optind < argc) return cli_fail("fixtures: unexpected argument '%s'", argv[optind]);
-    if (!dir || !*dir) return cli_fail("fixtures: --out DIR is required");
-    const sh_rot_method method = com.have_method ? com.method : SH_ROT_REFERENCE;
-    if (method == SH_ROT_Z) return cli_fail("fixtures: method z rotates about z only");
-
-    /* the output files first: an unwritable target fails before the work */
-    char p1[4096], p2[4096], desc[512];
-    const char *t1 = NULL, *t2 = NULL;
-    const char *suffix = method == SH_ROT_REFERENCE ? "" : "_";
-    const char *mname = method == SH_ROT_REFERENCE ? "" : sh_rot_method_name(method);
-    if ((size_t)snprintf(p1, sizeof p1, "%s/orders_1_10%s%s.json", dir, suffix, mname) >= sizeof p1 ||
-        (size_t)snprintf(p2, sizeof p2, "%s/bands_50_200.json", dir) >= sizeof p2)
+    const int ref = method == SH_ROT_REFERENCE;
+    f->nfiles = ref ? 2 : 1;
+    if ((size_t)snprintf(f->path[0], sizeof f->path[0], "%s/orders_1_10%s%s.json", dir, ref ? "" : "_",
+                         ref ? "" : sh_rot_method_name(method)) >= sizeof f->path[0] ||
+        (size_t)snprintf(f->path[1], sizeof f->path[1], "%s/bands_50_200.json", dir) >= sizeof f->path[1])
         return cli_fail("fixtures: --out: directory name too long");
-    if (cli_out_open("fixtures", p1, &t1) ||
-        (method == SH_ROT_REFERENCE && cli_out_open("fixtures", p2, &t2)))
-        return CLI_EXIT_USAGE;
+    for (int k = 0; k < f->nfiles; k++)
+        if (cli_out_open("fixtures", f->path[k], &f->tmp[k])) return CLI_EXIT_USAGE;
+    return 0;
+}
 
+/* The cases: orders 1..10 at every rotation of the stability set, both
+ * conventions (low); for the reference, bands 50 and 200 at three of them
+ * (high).  The inputs are drawn in this order from one seeded generator,
+ * so the files are the same bytes every time. */
+static int make_cases(const fixtures_args *a, sh_rot_method method, json_t *low, json_t *high, int *ncase)
+{
     sh_rotation set[SH_ROT_STABILITY_NSET];
     const char *names[SH_ROT_STABILITY_NSET];
     sh_rot_stability_set(set, names);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double *in = malloc(401 * sizeof *in);
-    json_t *low = json_array(), *high = json_array(), *root = NULL;
-    int st = SH_OK, ncase = 0, rc = 0;
-    if (!rng || !in || !low || !high) { st = SH_ENOMEM; goto done; }
-    gsl_rng_set(rng, 1);
+    int st = rng && in ? SH_OK : SH_ENOMEM;
+    if (rng) gsl_rng_set(rng, 1);
     char id[64];
     for (int k = 0; k < SH_ROT_STABILITY_NSET && !st; k++)
         for (int cv = 0; cv < 2 && !st; cv++)
@@ -200,9 +205,11 @@ static int run(int argc, char **argv)
                 const int n = order * order;
                 unit_vector(rng, in, n);
                 snprintf(id, sizeof id, "o%d-%s-%s", order, names[k], sh_convention_name(cv));
-                json_t *c = case_json(method, id, order, -1, cv, names[k], &set[k], in, n, TOL_D_LOW,
-                                      TOL_F_LOW, &st);
-                if (c) { json_array_append_new(low, c); ncase++; }
+                json_t *c = case_json(method, id, order, -1, cv, names[k], &set[k], in, n, TOL_D_LOW, TOL_F_LOW, &st);
+                if (c) {
+                    json_array_append_new(low, c);
+                    ++*ncase;
+                }
             }
     const int pick[3] = {2, 3, 8}; /* β = π/2, π − 1e-9, random1 */
     const int bands[2] = {50, 200};
@@ -210,43 +217,64 @@ static int run(int argc, char **argv)
         for (int q = 0; q < 3 && !st; q++)
             for (int cv = 0; cv < 2 && !st; cv++) {
                 const int l = bands[b], n = 2 * l + 1;
-                if (!quiet) fprintf(stderr, "fixtures: band %d, %s, %s\n", l, names[pick[q]], sh_convention_name(cv));
+                if (!a->quiet) fprintf(stderr, "fixtures: band %d, %s, %s\n", l, names[pick[q]], sh_convention_name(cv));
                 unit_vector(rng, in, n);
                 snprintf(id, sizeof id, "b%d-%s-%s", l, names[pick[q]], sh_convention_name(cv));
                 json_t *c = case_json(method, id, l + 1, l, cv, names[pick[q]], &set[pick[q]], in, n,
                                       b ? TOL_D_B200 : TOL_D_B50, b ? TOL_F_B200 : TOL_F_B50, &st);
-                if (c) { json_array_append_new(high, c); ncase++; }
+                if (c) {
+                    json_array_append_new(high, c);
+                    ++*ncase;
+                }
             }
-    if (st) goto done;
-    if (method == SH_ROT_REFERENCE) {
+    gsl_rng_free(rng);
+    free(in);
+    return st ? cli_fail("fixtures: %s", sh_last_error()) : 0;
+}
+
+static int write_files(sh_rot_method method, const fixture_files *f, json_t *low, json_t *high)
+{
+    char desc[512];
+    if (method == SH_ROT_REFERENCE)
         snprintf(desc, sizeof desc, "shlab golden SH rotation fixtures: orders 1-10, 10 rotations (extremes "
                                     "included), cs and nocs; expected = MPFR reference. See README.md.");
-    } else {
+    else
         snprintf(desc, sizeof desc, "shlab SH rotation fixtures for kernels implementing method %s: orders "
                                     "1-10, 10 rotations, cs and nocs; expected = shlab's %s in double%s. "
                                     "See README.md.", sh_rot_method_name(method), sh_rot_method_name(method),
                  sh_rot_method_is_exact(method) ? "" : " (an approximation, not the exact rotation)");
-    }
-    rc = write_file(t1, p1, desc, low);
-    if (!rc && method == SH_ROT_REFERENCE)
-        rc = write_file(t2, p2, "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
-                                "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
-    if (!rc) {
-        root = json_object();
-        root = cli_put(root, "out", json_string(dir));
-        root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
-        root = cli_put(root, "convention", json_string("cs+nocs")); /* every case names its own */
-        root = cli_put(root, "files", method == SH_ROT_REFERENCE ? json_pack("[s,s]", p1, p2) : json_pack("[s]", p1));
-        root = cli_put(root, "cases", json_integer(ncase));
-    }
-done:
-    gsl_rng_free(rng);
-    free(in);
-    json_decref(low);
-    json_decref(high);
-    if (st) return cli_fail("fixtures: %s", sh_last_error());
-    if (rc) return rc;
-    return cli_emit(root, com.fmt);
+    int rc = write_file(f->tmp[0], f->path[0], desc, low);
+    if (!rc && f->nfiles > 1)
+        rc = write_file(f->tmp[1], f->path[1], "shlab golden SH rotation fixtures: single bands 50 and 200, 3 "
+                                               "rotations, cs and nocs; expected = MPFR reference. See README.md.", high);
+    return rc;
 }
 
-const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", help, NULL};
+static int run(int argc, char **argv)
+{
+    fixtures_args a = {.method = SH_ROT_AUTO};
+    cli_parsed seen;
+    int rc = cli_args_parse(&fixtures_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
+    if (!a.dir) return cli_fail("fixtures: --out DIR is required");
+    const sh_rot_method method = a.method == SH_ROT_AUTO ? SH_ROT_REFERENCE : a.method;
+    if (method == SH_ROT_Z) return cli_fail("fixtures: method z rotates about z only");
+    fixture_files f;
+    if ((rc = open_files(a.dir, method, &f))) return rc;
+    json_t *low = json_array(), *high = json_array(), *root = NULL;
+    int ncase = 0;
+    rc = low && high ? make_cases(&a, method, low, high, &ncase) : cli_fail("fixtures: out of memory");
+    if (!rc) rc = write_files(method, &f, low, high);
+    json_decref(low);
+    json_decref(high);
+    if (rc) return rc;
+    root = json_object();
+    root = cli_put(root, "out", json_string(a.dir));
+    root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
+    root = cli_put(root, "convention", json_string("cs+nocs")); /* every case names its own */
+    root = cli_put(root, "files", f.nfiles > 1 ? json_pack("[s,s]", f.path[0], f.path[1]) : json_pack("[s]", f.path[0]));
+    root = cli_put(root, "cases", json_integer(ncase));
+    return cli_emit(root, (cli_format)a.fmt);
+}
+
+const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", NULL, &fixtures_decl};

@@ -5,62 +5,10 @@
 #include "core/shlab_internal.h"
 
 #include <errno.h>
-#include <getopt.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-
-extern const cli_command cmd_verify;
-
-static const char help[] =
-    "Usage: shlab verify --fixture F (--candidate C | --method M) [OPTIONS]\n"
-    "\n"
-    "Compare rotated coefficients with a golden fixture file (shlab fixtures).\n"
-    "A case passes if every |candidate_i - expected_i| <= the case's double\n"
-    "tolerance (--precision float: its float32 tolerance).  Exit 0 if all cases\n"
-    "pass, 1 if any fails (the worst case is printed), 2 on bad input.\n"
-    "\n"
-    "  --fixture F          a fixture file (data/fixtures/rotation/*.json)\n"
-    "  --candidate C        JSON {\"results\": {\"<case id>\": [outputs...], ...}}\n"
-    "                       from the kernel under test (every case id of F)\n"
-    "  --method M           instead of a candidate, run shlab's method M\n"
-    "  --precision P        double (default) | float: the tolerance (and, with\n"
-    "                       --method, the arithmetic) to use\n"
-    "  --kernel K           with --method: auto (default) | scalar | unrolled |\n"
-    "                       sse2 | avx2 | avx512, the code that runs (the fixture's\n"
-    "                       Euler angles reach the plan as angles; --matrix-input:\n"
-    "                       as the case's matrix, sh_rot_plan_set_matrix)\n"
-    "  --quiet              no progress on stderr\n"
-    "  --matrix-input       with --method: give each case's rotation as its matrix\n"
-    "  --diagnose           on failure, test what the candidate matches instead:\n"
-    "                       the other CS-phase convention, the inverse (frame)\n"
-    "                       rotation, α and γ swapped, β negated, degrees taken as\n"
-    "                       radians (or the reverse), m-descending order within a\n"
-    "                       band, or float precision only\n"
-    "  --format table|csv|json\n"
-    "  --help               this text\n"
-    "\n"
-    "  --emit-candidate F   with --method: also write the outputs as a candidate\n"
-    "                       file (the format a kernel under test must produce)\n"
-    "  --simulate MISTAKE   with --emit-candidate: write what a kernel with this\n"
-    "                       mistake would output: convention | inverse | swap |\n"
-    "                       beta | deg2rad | rad2deg | mdesc | mdesc-out | mdesc-in\n"
-    "                       | float (to try --diagnose).  The verdict printed is\n"
-    "                       that of the simulated kernel (it fails, as meant);\n"
-    "                       the exit status is 0 once the file is written\n"
-    "\n"
-    "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
-    "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
-    "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
-    "       cases mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
-    "       [\"simulated\" (with --simulate)],\n"
-    "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
-    "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
-    "The diagnosis compares at each case's float32 tolerance (1e-6 and more), so its\n"
-    "counts are not comparable with \"failed\": diagnosis_checked = the cases the\n"
-    "mistake changes by more than their float32 tolerance (a mistake that changes a\n"
-    "case less, at β ≈ 0 say, proves nothing there), diagnosis_matches = those of\n"
-    "them the candidate equals within it; a diagnosis must explain all it checks.\n";
 
 /* A transformation of the expected answer that a wrong kernel would produce. */
 typedef enum {
@@ -79,8 +27,12 @@ static const char *const t_name[T_COUNT] = {
     "m-descending order of the input within each band",
 };
 
-static const char *const t_short[T_COUNT] = {"convention", "inverse", "swap", "beta", "deg2rad",
-                                             "rad2deg", "mdesc", "mdesc-out", "mdesc-in"};
+/* --simulate's names: the mistakes (transform's order), then float
+ * precision only (T_COUNT) and none. */
+static const char *const t_short[] = {"convention", "inverse", "swap", "beta", "deg2rad", "rad2deg", "mdesc",
+                                      "mdesc-out", "mdesc-in", "float", "none", NULL};
+#define SIM_FLOAT T_COUNT
+#define SIM_NONE (T_COUNT + 1)
 
 static void reverse_bands(const fx_case *c, const double *in, double *out)
 {
@@ -158,209 +110,301 @@ static int write_candidate(const char *tmp, const char *path, const fx_set *fx, 
     return bad ? cli_fail("verify: cannot write candidate '%s'", path) : 0;
 }
 
-static int run(int argc, char **argv)
-{
-    static const struct option opts[] = {CLI_LONGOPTS_BASE,
-                                         CLI_LONGOPT_METHOD,
-                                         CLI_LONGOPT_PRECISION,
-                                         CLI_LONGOPT_KERNEL,
-                                         {"fixture", required_argument, 0, 'f'},
-                                         {"candidate", required_argument, 0, 'c'},
-                                         {"diagnose", no_argument, 0, 'd'},
-                                         {"emit-candidate", required_argument, 0, 'E'},
-                                         {"simulate", required_argument, 0, 'S'},
-                                         {"matrix-input", no_argument, 0, 'X'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         {0, 0, 0, 0}};
-    cli_common com = CLI_COMMON_DEFAULTS;
-    const char *fixture = NULL, *cand = NULL;
-    sh_rot_method method = SH_ROT_IVANIC;
-    sh_precision prec = SH_PREC_DOUBLE;
-    int have_method = 0, diagnose = 0, simulate = -1; /* -1 none, T_COUNT = float */
-    const char *emit = NULL;
-    int matrix_input = 0, quiet = 0;
-    opterr = 0;
-    optind = 1;
-    int o;
-    while ((o = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        switch (o) {
-        case 'f': fixture = optarg; break;
-        case 'c': cand = optarg; break;
-        case 'd': diagnose = 1; break;
-        case 'E': emit = optarg; break;
-        case 'X': matrix_input = 1; break;
-        case 'q': quiet = 1; break;
-        case 'S':
-            simulate = -2;
-            for (int t = 0; t < T_COUNT; t++)
-                if (!strcmp(optarg, t_short[t])) simulate = t;
-            if (!strcmp(optarg, "float")) simulate = T_COUNT;
-            if (!strcmp(optarg, "none")) simulate = -1;
-            if (simulate == -2)
-                return cli_fail("--simulate: unknown mistake '%s' (convention, inverse, swap, beta, "
-                                "deg2rad, rad2deg, mdesc, mdesc-out, mdesc-in, float, none)", optarg);
-            break;
-        default: {
-            const int e = cli_common_opt(&cmd_verify, o, argv, &com);
-            if (e >= 0) return e;
-        }
-        }
-    }
-    /* --method and --precision are kept by cli_common_opt */
-    method = com.method;
-    prec = com.prec;
-    have_method = com.have_method;
-    if (optind < argc) return cli_fail("verify: unexpected argument '%s'", argv[optind]);
-    if (!fixture) return cli_fail("verify: --fixture F is required");
-    if (!cand == !have_method) return cli_fail("verify: give exactly one of --candidate and --method");
-    if (emit && !have_method) return cli_fail("verify: --emit-candidate needs --method");
-    if (simulate != -1 && !emit) return cli_fail("verify: --simulate needs --emit-candidate");
-    if ((com.have_kernel || matrix_input) && !have_method) return cli_fail("verify: --kernel and --matrix-input need --method");
-    const char *emit_tmp = NULL;
-    if (emit && cli_out_open("verify", emit, &emit_tmp)) return CLI_EXIT_USAGE;
+
+typedef struct {
+    const char *fixture, *cand, *emit;
+    sh_rot_method method; /* SH_ROT_AUTO: none (a --candidate is verified) */
+    sh_precision prec;
+    sh_rot_kernel kernel;
+    int diagnose, simulate, matrix_input, quiet, fmt;
+} verify_args;
+
+/* {.needs}: an option that applies only with another one */
+#define NEEDS_FLAG(F, NAME, NEEDS, HELP)                                                           \
+    {.type = CLI_T_FLAG, .name = NAME, .off = offsetof(verify_args, F), .help = HELP, .needs = NEEDS}
+
+static const cli_opt verify_opts[] = {
+    CLI_STRING(verify_args, fixture, "fixture", "F", "a fixture file (data/fixtures/rotation/*.json)"),
+    CLI_STRING(verify_args, cand, "candidate", "C",
+               "JSON {\"results\": {\"<case id>\": [outputs...], ...}}\n"
+               "from the kernel under test (every case id of F)"),
+    CLI_CUSTOM(verify_args, method, "method", "M", cli_parse_method, NULL,
+               "instead of a candidate, run shlab's method M"),
+    CLI_CUSTOM(verify_args, prec, "precision", "P", cli_parse_precision, "double",
+               "double (default) | float: the tolerance (and, with\n--method, the arithmetic) to use"),
+    {.type = CLI_T_CUSTOM, .name = "kernel", .meta = "K", .off = offsetof(verify_args, kernel),
+     .parse = cli_parse_kernel, .def = "auto", .needs = "method",
+     .help = "with --method: auto (default) | scalar | unrolled |\n"
+             "sse2 | avx2 | avx512, the code that runs (the fixture's\n"
+             "Euler angles reach the plan as angles; --matrix-input:\n"
+             "as the case's matrix, sh_rot_plan_set_matrix)"},
+    CLI_FLAG(verify_args, quiet, "quiet", "no progress on stderr"),
+    NEEDS_FLAG(matrix_input, "matrix-input", "method", "with --method: give each case's rotation as its matrix"),
+    CLI_FLAG(verify_args, diagnose, "diagnose",
+             "on failure, test what the candidate matches instead:\n"
+             "the other CS-phase convention, the inverse (frame)\n"
+             "rotation, α and γ swapped, β negated, degrees taken as\n"
+             "radians (or the reverse), m-descending order within a\n"
+             "band, or float precision only"),
+    CLI_FORMAT(verify_args, fmt),
+    CLI_HEADING(""),
+    {.type = CLI_T_STRING, .name = "emit-candidate", .meta = "F", .off = offsetof(verify_args, emit),
+     .needs = "method",
+     .help = "with --method: also write the outputs as a candidate\n"
+             "file (the format a kernel under test must produce)"},
+    {.type = CLI_T_CHOICE, .name = "simulate", .meta = "MISTAKE", .off = offsetof(verify_args, simulate),
+     .choices = t_short, .def = "none", .flags = CLI_NO_DEFAULT, .needs = "emit-candidate",
+     .help = "with --emit-candidate: write what a kernel with this\n"
+             "mistake would output: convention | inverse | swap |\n"
+             "beta | deg2rad | rad2deg | mdesc | mdesc-out | mdesc-in\n"
+             "| float (to try --diagnose).  The verdict printed is\n"
+             "that of the simulated kernel (it fails, as meant);\n"
+             "the exit status is 0 once the file is written"},
+    CLI_END,
+};
+
+static const cli_cmd verify_decl = {
+    .name = "verify",
+    .usage = "verify --fixture F (--candidate C | --method M) [OPTIONS]",
+    .about = "Compare rotated coefficients with a golden fixture file (shlab fixtures).\n"
+             "A case passes if every |candidate_i - expected_i| <= the case's double\n"
+             "tolerance (--precision float: its float32 tolerance).  Exit 0 if all cases\n"
+             "pass, 1 if any fails (the worst case is printed), 2 on bad input.\n",
+    .opts = verify_opts,
+    .notes =
+        "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
+        "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
+        "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
+        "       cases mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
+        "       [\"simulated\" (with --simulate)],\n"
+        "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
+        "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
+        "The diagnosis compares at each case's float32 tolerance (1e-6 and more), so its\n"
+        "counts are not comparable with \"failed\": diagnosis_checked = the cases the\n"
+        "mistake changes by more than their float32 tolerance (a mistake that changes a\n"
+        "case less, at β ≈ 0 say, proves nothing there), diagnosis_matches = those of\n"
+        "them the candidate equals within it; a diagnosis must explain all it checks.\n",
+};
+
+/* The fixture, the outputs under test (got[k]: case k's n values) and scratch
+ * for the transformations (tmp: 2·maxn). */
+typedef struct {
     fx_set fx;
-    if (fx_load(fixture, &fx)) return CLI_EXIT_USAGE;
-    double **got = calloc((size_t)fx.ncases + 1, sizeof *got);
-    int rc = 0, st = 0, maxn = 1;
-    for (int k = 0; k < fx.ncases; k++) if (fx.cases[k].n > maxn) maxn = fx.cases[k].n;
-    double *tmp = malloc(2 * (size_t)maxn * sizeof *tmp);
-    for (int k = 0; got && k < fx.ncases; k++)
-        if (!(got[k] = malloc((size_t)fx.cases[k].n * sizeof **got))) { free(got); got = NULL; }
-    if (!got || !tmp) { rc = cli_fail("out of memory"); goto done; }
+    double **got, *tmp;
+    int maxn;
     cli_progress prog;
-    cli_progress_start(&prog, "verify", quiet);
-    if (cand) {
-        if ((rc = fx_load_candidate(cand, &fx, got))) goto done;
-    } else {
-        for (int k = 0; k < fx.ncases && !st; k++) {
-            const fx_case *c = &fx.cases[k];
-            if (c->order > sh_rot_method_max_order(method)) {
-                rc = cli_fail("verify: method %s is limited to order %d; case '%s' needs %d",
-                              sh_rot_method_name(method), sh_rot_method_max_order(method), c->id, c->order);
-                goto done;
-            }
-            if (method == SH_ROT_Z && c->rot.beta != 0) {
-                rc = cli_fail("verify: method z rotates about z only; case '%s' has β = %.3g rad", c->id, c->rot.beta);
-                goto done;
-            }
-            if (simulate >= 0 && simulate < T_COUNT)
-                st = transformed((transform)simulate, c, got[k], tmp);
-            else
-                st = fx_apply_kernel(method, simulate == T_COUNT ? SH_PREC_FLOAT : prec, com.kernel,
-                                     matrix_input, c, &c->rot, c->conv, c->input, got[k]);
-            cli_progress_step(&prog, k + 1, fx.ncases, "cases rotated");
-        }
-        if (st) { rc = cli_fail("verify: %s", sh_last_error()); goto done; }
-        if (emit && (rc = write_candidate(emit_tmp, emit, &fx, got))) goto done;
+} verify_work;
+
+static void work_free(verify_work *w)
+{
+    if (w->got)
+        for (int k = 0; k < w->fx.ncases; k++) free(w->got[k]);
+    free(w->got);
+    free(w->tmp);
+    fx_free(&w->fx);
+}
+
+static int work_load(const verify_args *a, verify_work *w)
+{
+    *w = (verify_work){.maxn = 1};
+    if (fx_load(a->fixture, &w->fx)) return CLI_EXIT_USAGE;
+    for (int k = 0; k < w->fx.ncases; k++) w->maxn = w->fx.cases[k].n > w->maxn ? w->fx.cases[k].n : w->maxn;
+    w->got = calloc((size_t)w->fx.ncases + 1, sizeof *w->got);
+    w->tmp = malloc(2 * (size_t)w->maxn * sizeof *w->tmp);
+    int ok = w->got && w->tmp;
+    for (int k = 0; ok && k < w->fx.ncases; k++) ok = (w->got[k] = malloc((size_t)w->fx.cases[k].n * sizeof **w->got)) != NULL;
+    return ok ? 0 : cli_fail("out of memory");
+}
+
+/* Every case rotated by shlab's method (or as the simulated mistake does it). */
+static int run_method(const verify_args *a, verify_work *w)
+{
+    const sh_rot_method m = a->method;
+    int st = 0;
+    for (int k = 0; k < w->fx.ncases && !st; k++) {
+        const fx_case *c = &w->fx.cases[k];
+        if (c->order > sh_rot_method_max_order(m))
+            return cli_fail("verify: method %s is limited to order %d; case '%s' needs %d", sh_rot_method_name(m),
+                            sh_rot_method_max_order(m), c->id, c->order);
+        if (m == SH_ROT_Z && c->rot.beta != 0)
+            return cli_fail("verify: method z rotates about z only; case '%s' has β = %.3g rad", c->id, c->rot.beta);
+        if (a->simulate < T_COUNT)
+            st = transformed((transform)a->simulate, c, w->got[k], w->tmp);
+        else
+            st = fx_apply_kernel(m, a->simulate == SIM_FLOAT ? SH_PREC_FLOAT : a->prec, a->kernel, a->matrix_input, c,
+                                 &c->rot, c->conv, c->input, w->got[k]);
+        cli_progress_step(&w->prog, k + 1, w->fx.ncases, "cases rotated");
     }
-    /* the verdict */
-    int failed = 0, fail_double = 0, worst_k = 0, worst_i = 0, failed_near = 0;
+    return st ? cli_fail("verify: %s", sh_last_error()) : 0;
+}
+
+/* The verdict: cases beyond their tolerance, and the worst one (by error
+ * over tolerance). */
+typedef struct {
+    int failed, failed_near, worst_k, worst_i;
+} verdict;
+
+static verdict judge(const verify_args *a, const verify_work *w)
+{
+    verdict v = {0};
     double worst_ratio = -1;
-    for (int k = 0; k < fx.ncases; k++) {
-        const fx_case *c = &fx.cases[k];
-        const double tol = prec == SH_PREC_FLOAT ? c->tol_float : c->tol_double;
+    for (int k = 0; k < w->fx.ncases; k++) {
+        const fx_case *c = &w->fx.cases[k];
+        const double tol = a->prec == SH_PREC_FLOAT ? c->tol_float : c->tol_double;
         int at;
-        const double e = max_err(got[k], c->expected, c->n, &at);
-        if (!(e <= tol)) failed++;
-        if (!(e <= tol) && e <= c->tol_float) failed_near++;
-        if (!(e <= c->tol_double)) fail_double++;
-        if (!(e / tol <= worst_ratio)) { worst_ratio = e / tol; worst_k = k; worst_i = at; }
+        const double e = max_err(w->got[k], c->expected, c->n, &at);
+        if (!(e <= tol)) v.failed++;
+        if (!(e <= tol) && e <= c->tol_float) v.failed_near++;
+        if (!(e / tol <= worst_ratio)) worst_ratio = e / tol, v.worst_k = k, v.worst_i = at;
     }
-    const fx_case *wc = &fx.cases[worst_k];
+    return v;
+}
+
+static json_t *result(const verify_args *a, int have_kernel, const verify_work *w, const verdict *v)
+{
+    const fx_case *wc = &w->fx.cases[v->worst_k];
+    const int have_method = a->method != SH_ROT_AUTO, fl = a->prec == SH_PREC_FLOAT;
     json_t *root = json_object();
-    root = cli_put(root, "fixture", json_string(fixture));
-    root = cli_put(root, "source", json_string(cand ? cand : sh_rot_method_name(method)));
-    root = cli_put(root, "tolerance_kind", json_string(prec == SH_PREC_FLOAT ? "float32" : "double"));
-    root = cli_put(root, "cases", json_integer(fx.ncases));
-    root = cli_put(root, "failed", json_integer(failed));
-    root = cli_put(root, "pass", json_boolean(failed == 0));
-    const double wg = got[worst_k][worst_i], we = fabs(wg - wc->expected[worst_i]);
+    root = cli_put(root, "fixture", json_string(a->fixture));
+    root = cli_put(root, "source", json_string(a->cand ? a->cand : sh_rot_method_name(a->method)));
+    root = cli_put(root, "tolerance_kind", json_string(fl ? "float32" : "double"));
+    root = cli_put(root, "cases", json_integer(w->fx.ncases));
+    root = cli_put(root, "failed", json_integer(v->failed));
+    root = cli_put(root, "pass", json_boolean(v->failed == 0));
+    const double wg = w->got[v->worst_k][v->worst_i], we = fabs(wg - wc->expected[v->worst_i]);
     root = cli_put(root, "worst_id", json_string(wc->id));
-    root = cli_put(root, "worst_index", json_integer(worst_i));
+    root = cli_put(root, "worst_index", json_integer(v->worst_i));
     root = cli_put(root, "worst_got", isfinite(wg) ? json_real(wg) : json_string("not finite"));
-    root = cli_put(root, "worst_expected", json_real(wc->expected[worst_i]));
+    root = cli_put(root, "worst_expected", json_real(wc->expected[v->worst_i]));
     root = cli_put(root, "worst_error", isfinite(we) ? json_real(we) : json_string("not finite"));
-    root = cli_put(root, "worst_tolerance",
-                   json_real(prec == SH_PREC_FLOAT ? wc->tol_float : wc->tol_double));
+    root = cli_put(root, "worst_tolerance", json_real(fl ? wc->tol_float : wc->tol_double));
     /* after the fields above, so that their CSV columns keep their places */
     int have_cs = 0, have_nocs = 0;
-    for (int k = 0; k < fx.ncases; k++) {
-        have_cs |= fx.cases[k].conv == SH_CS;
-        have_nocs |= fx.cases[k].conv == SH_NOCS;
+    for (int k = 0; k < w->fx.ncases; k++) {
+        have_cs |= w->fx.cases[k].conv == SH_CS;
+        have_nocs |= w->fx.cases[k].conv == SH_NOCS;
     }
-    root = cli_put(root, "convention",
-                   json_string(have_cs && have_nocs ? "cs+nocs" : have_nocs ? "nocs" : "cs"));
-    if (have_method) root = cli_put(root, "method", json_string(sh_rot_method_name(method)));
-    if (simulate >= 0) root = cli_put(root, "simulated", json_string(simulate < T_COUNT ? t_short[simulate] : "float"));
-    if (com.have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(com.kernel)));
-    if (matrix_input) root = cli_put(root, "input", json_string("matrix"));
-    if (diagnose && failed) {
-        /* float precision only: every case within its float32 tolerance */
-        int float_ok = 0, best = -1, best_n = 0, best_seen = 0;
-        for (int k = 0; k < fx.ncases; k++) {
+    root = cli_put(root, "convention", json_string(have_cs && have_nocs ? "cs+nocs" : have_nocs ? "nocs" : "cs"));
+    if (have_method) root = cli_put(root, "method", json_string(sh_rot_method_name(a->method)));
+    if (a->simulate != SIM_NONE) root = cli_put(root, "simulated", json_string(t_short[a->simulate]));
+    if (have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(a->kernel)));
+    if (a->matrix_input) root = cli_put(root, "input", json_string("matrix"));
+    return root;
+}
+
+/* The mistake that explains every case it changes (at the float32
+ * tolerance) and the most of them; -1 if none.  *n_ok, *n_seen: its counts. */
+static int best_mistake(verify_work *w, int *n_ok, int *n_seen)
+{
+    double *y = malloc((size_t)w->maxn * sizeof *y);
+    if (!y) return -2;
+    int best = -1;
+    *n_ok = *n_seen = 0;
+    for (int t = 0; t < T_COUNT; t++) {
+        /* β negated is the convention flip itself: d(-β) = S d(β) S with
+         * S = (-1)^m, and S commutes with the z rotations (see README) */
+        if (t == T_BETA) continue;
+        int ok = 0, seen = 0;
+        for (int k = 0; k < w->fx.ncases; k++) {
+            const fx_case *c = &w->fx.cases[k];
             int at;
-            if (max_err(got[k], fx.cases[k].expected, fx.cases[k].n, &at) <= fx.cases[k].tol_float) float_ok++;
+            if (transformed((transform)t, c, y, w->tmp)) continue;
+            /* a transformation that changes nothing (β = 0, say) proves nothing */
+            if (max_err(y, c->expected, c->n, &at) <= c->tol_float) continue;
+            seen++;
+            if (max_err(w->got[k], y, c->n, &at) <= c->tol_float) ok++;
+            cli_progress_step(&w->prog, t * w->fx.ncases + k + 1, T_COUNT * w->fx.ncases,
+                              "cases tried under the known mistakes (--diagnose)");
         }
-        const char *cause = NULL;
-        if (prec == SH_PREC_DOUBLE && float_ok == fx.ncases) {
-            cause = "float precision only: every case matches within its float32 tolerance";
-            best_n = best_seen = float_ok;
-        } else {
-            double *y = malloc((size_t)maxn * sizeof *y);
-            if (!y) { json_decref(root); rc = cli_fail("out of memory"); goto done; }
-            for (int t = 0; t < T_COUNT; t++) {
-                /* β negated is the convention flip itself: d(-β) = S d(β) S with
-                 * S = (-1)^m, and S commutes with the z rotations (see README) */
-                if (t == T_BETA) continue;
-                int n_ok = 0, n_seen = 0;
-                for (int k = 0; k < fx.ncases; k++) {
-                    const fx_case *c = &fx.cases[k];
-                    int at;
-                    if (transformed((transform)t, c, y, tmp)) continue;
-                    /* a transformation that changes nothing (β = 0, say) proves nothing */
-                    if (max_err(y, c->expected, c->n, &at) <= c->tol_float) continue;
-                    n_seen++;
-                    if (max_err(got[k], y, c->n, &at) <= c->tol_float) n_ok++;
-                    cli_progress_step(&prog, t * fx.ncases + k + 1, T_COUNT * fx.ncases,
-                                      "cases tried under the known mistakes (--diagnose)");
-                }
-                /* the transformation must explain every case it changes */
-                if (n_ok > best_n && n_ok == n_seen) { best_n = n_ok; best = t; best_seen = n_seen; }
-            }
-            free(y);
-            if (best >= 0) cause = t_name[best];
-        }
-        root = cli_put(root, "diagnosis", json_string(cause ? cause : "no known transformation explains the mismatch"));
-        root = cli_put(root, "diagnosis_matches", json_integer(best_n));
-        root = cli_put(root, "diagnosis_checked", json_integer(best_seen));
-        root = cli_put(root, "diagnosis_tolerance", json_string("float32"));
-        /* "failed" counts cases beyond the tolerance_kind tolerance (double:
-         * 1e-13); the diagnosis compares at the float32 tolerance, so the two
-         * counts differ: say what each one counts */
-        fprintf(stderr,
-                "verify: failed counts the cases beyond their %s tolerance; the diagnosis compares at "
-                "each case's float32 tolerance: diagnosis_checked = the %d cases the mistake changes "
-                "by more than that, diagnosis_matches = the %d of them the candidate equals (%d of the "
-                "%d failed cases are within their float32 tolerance: too close to tell)\n",
-                prec == SH_PREC_FLOAT ? "float32" : "double", best_seen, best_n, failed_near, failed);
+        /* the transformation must explain every case it changes */
+        if (ok > *n_ok && ok == seen) *n_ok = ok, best = t, *n_seen = seen;
     }
-    if (failed) fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n",
-                        failed, fx.ncases, prec == SH_PREC_FLOAT ? "float32" : "double", wc->id, worst_i,
-                        simulate >= 0 ? " (the simulated mistake, as asked)" : "");
-    rc = cli_emit(root, com.fmt);
-    /* --simulate asks for a wrong kernel's outputs: they are meant to fail,
-     * and the command succeeded once the candidate file is written */
-    if (rc == 0 && failed && simulate < 0) rc = CLI_EXIT_CHECK;
-    (void)fail_double;
-done:
-    if (got)
-        for (int k = 0; k < fx.ncases; k++) free(got[k]);
-    free(got);
-    free(tmp);
-    fx_free(&fx);
+    free(y);
+    return best;
+}
+
+/* --diagnose on a failure: the likely cause, into root, and one line on
+ * stderr saying what its counts count. */
+static int diagnose(const verify_args *a, verify_work *w, const verdict *v, json_t **root)
+{
+    /* float precision only: every case within its float32 tolerance */
+    int float_ok = 0, best = -1, best_n = 0, best_seen = 0;
+    for (int k = 0; k < w->fx.ncases; k++) {
+        int at;
+        if (max_err(w->got[k], w->fx.cases[k].expected, w->fx.cases[k].n, &at) <= w->fx.cases[k].tol_float) float_ok++;
+    }
+    const char *cause = NULL;
+    if (a->prec == SH_PREC_DOUBLE && float_ok == w->fx.ncases) {
+        cause = "float precision only: every case matches within its float32 tolerance";
+        best_n = best_seen = float_ok;
+    } else if ((best = best_mistake(w, &best_n, &best_seen)) == -2) {
+        return cli_fail("out of memory");
+    } else if (best >= 0) {
+        cause = t_name[best];
+    }
+    *root = cli_put(*root, "diagnosis", json_string(cause ? cause : "no known transformation explains the mismatch"));
+    *root = cli_put(*root, "diagnosis_matches", json_integer(best_n));
+    *root = cli_put(*root, "diagnosis_checked", json_integer(best_seen));
+    *root = cli_put(*root, "diagnosis_tolerance", json_string("float32"));
+    /* "failed" counts cases beyond the tolerance_kind tolerance (double:
+     * 1e-13); the diagnosis compares at the float32 tolerance, so the two
+     * counts differ: say what each one counts */
+    fprintf(stderr,
+            "verify: failed counts the cases beyond their %s tolerance; the diagnosis compares at "
+            "each case's float32 tolerance: diagnosis_checked = the %d cases the mistake changes "
+            "by more than that, diagnosis_matches = the %d of them the candidate equals (%d of the "
+            "%d failed cases are within their float32 tolerance: too close to tell)\n",
+            a->prec == SH_PREC_FLOAT ? "float32" : "double", best_seen, best_n, v->failed_near, v->failed);
+    return 0;
+}
+
+/* The outputs under test: the candidate's, or shlab's method's (and then
+ * the candidate file it writes with --emit-candidate). */
+static int outputs(const verify_args *a, const char *emit_tmp, verify_work *w)
+{
+    if (a->cand) return fx_load_candidate(a->cand, &w->fx, w->got);
+    int rc = run_method(a, w);
+    if (!rc && a->emit) rc = write_candidate(emit_tmp, a->emit, &w->fx, w->got);
     return rc;
 }
 
-const cli_command cmd_verify = {"verify", run,
-                                "check a kernel's rotated coefficients against golden fixtures",
-                                help, NULL};
+static int run(int argc, char **argv)
+{
+    verify_args a = {.method = SH_ROT_AUTO};
+    cli_parsed seen;
+    int rc = cli_args_parse(&verify_decl, argc, argv, &a, &seen);
+    if (rc >= 0) return rc;
+    if (!a.fixture) return cli_fail("verify: --fixture F is required");
+    /* --method auto is no method (the default) */
+    if (!a.cand == (a.method == SH_ROT_AUTO)) return cli_fail("verify: give exactly one of --candidate and --method");
+    const char *emit_tmp = NULL;
+    if (a.emit && cli_out_open("verify", a.emit, &emit_tmp)) return CLI_EXIT_USAGE;
+    verify_work w;
+    rc = work_load(&a, &w);
+    cli_progress_start(&w.prog, "verify", a.quiet);
+    if (!rc) rc = outputs(&a, emit_tmp, &w);
+    if (rc) {
+        work_free(&w);
+        return rc;
+    }
+    const verdict v = judge(&a, &w);
+    json_t *root = result(&a, cli_given(&seen, "kernel"), &w, &v);
+    if (a.diagnose && v.failed && (rc = diagnose(&a, &w, &v, &root))) {
+        json_decref(root);
+        work_free(&w);
+        return rc;
+    }
+    const int simulated = a.simulate != SIM_NONE;
+    if (v.failed)
+        fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n", v.failed,
+                w.fx.ncases, a.prec == SH_PREC_FLOAT ? "float32" : "double", w.fx.cases[v.worst_k].id, v.worst_i,
+                simulated ? " (the simulated mistake, as asked)" : "");
+    work_free(&w);
+    rc = cli_emit(root, (cli_format)a.fmt);
+    /* --simulate asks for a wrong kernel's outputs: they are meant to fail,
+     * and the command succeeded once the candidate file is written */
+    return rc == 0 && v.failed && !simulated ? CLI_EXIT_CHECK : rc;
+}
+
+const cli_command cmd_verify = {"verify", run, "check a kernel's rotated coefficients against golden fixtures", NULL,
+                                &verify_decl};

@@ -67,6 +67,21 @@ bad=$(awk -F, "NR > 1 && !($(col ratio_to) == \"zxzxz/scalar/euler/per-rotation\
 rows=$(($(wc -l <"$TMP/out") - 1))
 [ -z "$bad" ] && [ "$rows" = 10 ] && ok "bench --baseline METHOD/KERNEL/INPUT/MODE: 10 rows, one baseline" || notok "bench --baseline spec ($rows rows): $bad"
 expect_usage_error "bench baseline input not timed" bench --methods zxzxz --baseline zxzxz/scalar/matrix --order 3
+# oneshot: per rotation a rotator made, applied once and freed, timed round
+# by round with the plan's per-rotation entry and paired with it (no
+# timing asserted); its counted work is the plan's set + apply
+expect_success "bench --mode per-rotation,oneshot" bench --methods zxzxz --order 6 --precision float --mode per-rotation,oneshot \
+    --input matrix --baseline zxzxz/auto/matrix/per-rotation --count 20 --repeat 3 --format csv --quiet
+rows=$(($(wc -l <"$TMP/out") - 1))
+bad=$(awk -F, "NR > 1 && !($(col ratio_to) ~ /^zxzxz\/[a-z0-9]+\/matrix\/per-rotation$/ && $(col ratio_q1) <= $(col ratio) && $(col ratio) <= $(col ratio_q3) \
+      && $(col ns_median) > 0 && $(col count) == 20 && $(col batch) == 1 && $(col precision) == \"float\") { print }" "$TMP/out")
+one=$(awk -F, "$(col mode) == \"oneshot\" { print $(col mults) }" "$TMP/out")
+per=$(awk -F, "$(col mode) == \"per-rotation\" { print $(col mults) }" "$TMP/out")
+[ -z "$bad" ] && [ "$rows" = 2 ] && [ -n "$one" ] && [ "$one" = "$per" ] \
+    && ok "bench oneshot: a row paired with per-rotation, the same counted work ($one mults)" || notok "bench oneshot ($rows rows, mults '$one' vs '$per'): $bad"
+expect_success "bench --mode oneshot json" bench --methods zxzxz,ivanic --order 3 --mode oneshot --input euler,matrix --count 10 --repeat 2 --format json --quiet
+[ "$(grep -o '"mode":"oneshot"' "$TMP/out" | wc -l)" = 4 ] && grep -q '"ratio_to":"zxzxz/[a-z0-9]*/euler/oneshot"' "$TMP/out" \
+    && ok "bench --mode oneshot: 2 methods x 2 inputs, ratios to the first method's oneshot" || notok "bench oneshot json: $(head -c 300 "$TMP/out")"
 expect_usage_error "bench baseline bad mode" bench --methods zxzxz --baseline zxzxz/scalar/euler/sideways --order 3
 # instructions under valgrind (when it is installed): deterministic for the
 # same binary, per vector at least the counted multiplications' instructions
