@@ -9,7 +9,6 @@
 #ifndef SHLAB_CLI_H
 #define SHLAB_CLI_H
 
-#include <getopt.h>
 #include <jansson.h>
 #include <stdio.h>
 
@@ -27,16 +26,13 @@ typedef struct {
     const char *name;
     int (*run)(int argc, char **argv);
     const char *summary;
-    const char *help;           /* full --help text (commands not yet declared), or NULL */
-    const struct cli_cmd *decl; /* the declaration: --help is printed from it */
+    const cli_cmd *decl; /* the declaration: options, and --help printed from them */
 } cli_command;
 
 /* Print "shlab: error: <msg>" on stderr; returns CLI_EXIT_USAGE. */
 int cli_fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Fail with the library's last error for status st. */
 int cli_fail_status(int st);
-/* Error for an unknown/malformed option as reported by getopt_long. */
-int cli_fail_getopt(const char *cmd, char **argv, int optind_before, int optopt_val);
 
 /* Strict parsers: the whole string must be consumed; NaN/Inf refused.
  * Return 0 on success, else print the error and return CLI_EXIT_USAGE. */
@@ -163,77 +159,18 @@ extern const char cli_conventions_note[];
  * the option was not given or applies, else the exit code after the line. */
 int cli_applies(const char *cmd, int given, const char *opt, int applies, const char *what);
 
-/* Print help text to stdout; returns 0. */
-int cli_help(const cli_command *cmd);
 const cli_command *cli_find(const char *name);
 extern const cli_command cli_commands[];
 extern const int cli_ncommands;
 
-/* Option parsing.  Every command calls getopt_long; this header routes those
- * calls through cli_getopt_long (the macro below), which applies the rules
- * that hold for every command in one place: an option given twice is an
- * error ("option --order given twice"), whether or not the two values agree
- * and whatever the option (a flag, --out, --light, ...). */
-int cli_getopt_long(int argc, char *const argv[], const char *shortopts,
-                    const struct option *longopts, int *longind);
-#ifndef CLI_GETOPT_IMPL
-#define getopt_long cli_getopt_long
-#endif
-
-/* Options most commands share.  A command lists the ones it takes in its
- * getopt_long table (CLI_LONGOPTS_BASE always: --help and --format), keeps
- * their values in a cli_common, and hands every option it does not handle
- * itself to cli_common_opt(). */
-enum { CLI_OPT_FORMAT = 0x101, CLI_OPT_ORDER, CLI_OPT_CONVENTION, CLI_OPT_DEGREES };
-/* What cli_getopt_long returns for a repeated option (after the error line);
- * commands pass it, like any option they do not handle, to cli_common_opt,
- * which returns CLI_EXIT_USAGE. */
-#define CLI_OPT_REPEATED 0x1ff
-#define CLI_LONGOPTS_BASE {"help", no_argument, 0, 'h'}, {"format", required_argument, 0, CLI_OPT_FORMAT}
-#define CLI_LONGOPT_ORDER {"order", required_argument, 0, CLI_OPT_ORDER}
-#define CLI_LONGOPT_CONVENTION {"convention", required_argument, 0, CLI_OPT_CONVENTION}
-#define CLI_LONGOPT_DEGREES {"degrees", no_argument, 0, CLI_OPT_DEGREES}
-
-typedef struct {
-    cli_format fmt;       /* --format (default table) */
-    int order;            /* --order (0 = not given) */
-    sh_convention conv;   /* --convention (default cs) */
-    int degrees;          /* --degrees */
-    sh_rot_method method; /* --method of the rotation commands (default ivanic) */
-    int have_method;      /* --method was given */
-    sh_precision prec;    /* --precision (default double) */
-    sh_rot_kernel kernel; /* --kernel (default auto) */
-    int have_kernel;      /* --kernel was given */
-    /* the command's limits of --order, set before parsing (0: SHLAB_MAX_ORDER),
-     * and why, for the message (NULL: no reason given) */
-    int max_order;
-    const char *max_order_why;
-} cli_common;
-#define CLI_COMMON_DEFAULTS {CLI_TABLE, 0, SH_CS, 0, SH_ROT_IVANIC, 0, SH_PREC_DOUBLE, SH_KERNEL_AUTO, 0, 0, NULL}
-
-/* Handle getopt_long's result o for command cmd: --help (prints the help),
- * the shared options, and unknown options or missing values (one error
- * line).  Returns -1 when parsing should go on, otherwise the exit code the
- * command must return at once (0 after --help, CLI_EXIT_USAGE on error). */
-int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c);
+/* Options are declared per command and read by one parser (cli_args.h):
+ * a command's cli_cmd table, its groups (rotation, sweep, scene, image...),
+ * no process-global state. */
 
 /* ---- rotations (cli_rotation.c) ------------------------------------------
  * The rotation options every rotation command takes:
  *   --euler A,B,G | --quat W,X,Y,Z | --matrix R00,...,R22 | --axis X,Y,Z --angle T,
  *   --inverse, --orthonormalize   (angles in radians unless --degrees). */
-enum { CLI_OPT_EULER = 0x181, CLI_OPT_QUAT, CLI_OPT_MATRIX, CLI_OPT_AXIS, CLI_OPT_ANGLE,
-       CLI_OPT_INVERSE, CLI_OPT_ORTHO, CLI_OPT_METHOD, CLI_OPT_PRECISION, CLI_OPT_KERNEL };
-#define CLI_LONGOPTS_ROTATION                                                                      \
-    {"euler", required_argument, 0, CLI_OPT_EULER}, {"quat", required_argument, 0, CLI_OPT_QUAT},  \
-        {"matrix", required_argument, 0, CLI_OPT_MATRIX},                                          \
-        {"axis", required_argument, 0, CLI_OPT_AXIS},                                              \
-        {"angle", required_argument, 0, CLI_OPT_ANGLE},                                            \
-        {"inverse", no_argument, 0, CLI_OPT_INVERSE},                                              \
-        {"orthonormalize", no_argument, 0, CLI_OPT_ORTHO}
-#define CLI_LONGOPT_METHOD {"method", required_argument, 0, CLI_OPT_METHOD}
-#define CLI_LONGOPT_PRECISION {"precision", required_argument, 0, CLI_OPT_PRECISION}
-/* --kernel K of the rotation commands (sh_rot_kernel; refused if not available here) */
-#define CLI_LONGOPT_KERNEL {"kernel", required_argument, 0, CLI_OPT_KERNEL}
 /* A list of numbers of a fixed count, as a declared option reads it
  * (cli_rotation_opts: --euler 3, --quat 4, --matrix 9, --axis 3). */
 typedef struct {
@@ -265,9 +202,6 @@ typedef struct {
     sh_rot_kernel kernel;
 } cli_method_args;
 extern const cli_opt cli_method_opts[];
-/* Handle a rotation option (returns -1 if o is not one, 0 if handled, or an
- * exit code after printing the error). */
-int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r);
 /* Build the rotation (exactly one form required unless `optional`; then
  * *given says whether one was).  Returns 0 or an exit code. */
 int cli_rotation_finish(const char *cmd, cli_rotation_args *r, int degrees, int optional,
@@ -276,7 +210,6 @@ int cli_rotation_finish(const char *cmd, cli_rotation_args *r, int degrees, int 
  * "matrix":[9],"axis":[3],"angle":t} (radians). */
 json_t *cli_rotation_json(const sh_rotation *rot);
 int cli_method(const char *s, sh_rot_method *out);
-int cli_precision(const char *s, sh_precision *out);
 
 /* ---- rotation fixtures (cli_fixture.c) -----------------------------------
  * A golden case: rotate `input` (order² coefficients, or the 2L+1 of band L

@@ -9,6 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The closing paragraph of every --help (where the conventions are written). */
+const char cli_conventions_note[] =
+    "\nConventions (basis, index, rotations, angles and units, output): docs/CONVENTIONS.md\n"
+    "in the shlab source, installed as share/doc/shlab/CONVENTIONS.md.\n";
+
 const char *const cli_format_names[] = {"table", "csv", "json", NULL};
 const char *const cli_convention_names[] = {"cs", "nocs", NULL};
 

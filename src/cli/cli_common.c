@@ -1,11 +1,9 @@
 /* cli_common.c — argument parsing and error reporting shared by commands. */
 #define _GNU_SOURCE
-#define CLI_GETOPT_IMPL /* the real getopt_long below */
 #include "cli.h"
 #include "core/shlab_internal.h"
 
 #include <ctype.h>
-#include <getopt.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -72,32 +70,6 @@ void cli_progress_step(void *ctx, int done, int total, const char *what)
     p->printed = 1;
 }
 
-int cli_getopt_long(int argc, char *const argv[], const char *shortopts,
-                    const struct option *longopts, int *longind)
-{
-    /* the options seen in this parse: a new argv, or optind back at the
-     * start, begins a new one */
-    static char *const *seen_argv;
-    static int seen[64], nseen;
-    if (argv != seen_argv || optind <= 1) {
-        seen_argv = argv;
-        nseen = 0;
-    }
-    int idx = -1;
-    const int o = getopt_long(argc, argv, shortopts, longopts, &idx);
-    if (longind) *longind = idx;
-    if (o == -1 || o == '?' || o == ':') return o;
-    for (int k = 0; k < nseen; k++)
-        if (seen[k] == o) {
-            const char *cmd = argc > 0 && argv[0] ? argv[0] : "shlab";
-            if (idx >= 0) cli_fail("%s: option --%s given twice (give each option once)", cmd, longopts[idx].name);
-            else cli_fail("%s: option -%c given twice (give each option once)", cmd, o);
-            return CLI_OPT_REPEATED;
-        }
-    if (nseen < 64) seen[nseen++] = o;
-    return o;
-}
-
 int cli_applies(const char *cmd, int given, const char *opt, int applies, const char *what)
 {
     if (!given || applies) return 0;
@@ -108,44 +80,6 @@ int cli_fail_status(int st)
 {
     const char *why = sh_last_error();
     return cli_fail("%s", (why && *why) ? why : sh_strerror(st));
-}
-
-int cli_fail_getopt(const char *cmd, char **argv, int optind_now, int optopt_val)
-{
-    const char *arg = argv[optind_now - 1];
-    if (!arg) arg = "?";
-    if (optopt_val == 0 || (arg[0] == '-' && arg[1] != '-' && optopt_val != 'h'))
-        return cli_fail("%s: unknown option '%s' (see 'shlab %s --help')", cmd, arg, cmd);
-    return cli_fail("%s: option '%s' needs a value (see 'shlab %s --help')", cmd, arg, cmd);
-}
-
-int cli_common_opt(const cli_command *cmd, int o, char **argv, cli_common *c)
-{
-    switch (o) {
-    case CLI_OPT_REPEATED: return CLI_EXIT_USAGE; /* the error is printed */
-    case 'h': return cli_help(cmd);
-    case CLI_OPT_FORMAT: return cli_format_parse(optarg, &c->fmt) ? CLI_EXIT_USAGE : -1;
-    case CLI_OPT_ORDER:
-        return cli_order_max("--order", optarg, c->max_order, c->max_order_why, &c->order) ? CLI_EXIT_USAGE : -1;
-    case CLI_OPT_CONVENTION: return cli_convention(optarg, &c->conv) ? CLI_EXIT_USAGE : -1;
-    case CLI_OPT_DEGREES: c->degrees = 1; return -1;
-    case CLI_OPT_METHOD:
-        if (!strcmp(optarg, "auto")) { /* the command's default (rotate, rotmat: by band) */
-            c->have_method = 0;
-            return -1;
-        }
-        if (cli_method(optarg, &c->method)) return CLI_EXIT_USAGE;
-        c->have_method = 1;
-        return -1;
-    case CLI_OPT_PRECISION: return cli_precision(optarg, &c->prec) ? CLI_EXIT_USAGE : -1;
-    case CLI_OPT_KERNEL:
-        if (sh_rot_kernel_parse(optarg, &c->kernel)) return cli_fail("--kernel: %s", sh_last_error());
-        if (!sh_rot_kernel_available(c->kernel))
-            return cli_fail("--kernel: %s is not available on this machine", optarg);
-        c->have_kernel = 1;
-        return -1;
-    default: return cli_fail_getopt(cmd->name, argv, optind, optopt);
-    }
 }
 
 int cli_long(const char *opt, const char *s, long *out)

@@ -92,23 +92,6 @@ const cli_opt cli_method_opts[] = {
     CLI_END,
 };
 
-/* ---- the getopt tables of the commands not yet declared ------------------------- */
-
-int cli_rotation_opt(const char *cmd, int o, const char *arg, cli_rotation_args *r)
-{
-    (void)cmd;
-    switch (o) {
-    case CLI_OPT_EULER: return numbers_3("--euler", arg, &r->euler);
-    case CLI_OPT_QUAT: return numbers_4("--quat", arg, &r->quat);
-    case CLI_OPT_MATRIX: return numbers_9("--matrix", arg, &r->matrix);
-    case CLI_OPT_AXIS: return numbers_3("--axis", arg, &r->axis);
-    case CLI_OPT_ANGLE: return angle_value("--angle", arg, &r->angle);
-    case CLI_OPT_INVERSE: r->inverse = 1; return 0;
-    case CLI_OPT_ORTHO: r->ortho = 1; return 0;
-    default: return -1;
-    }
-}
-
 /* ---- the rotation ----------------------------------------------------------------- */
 
 /* The one form given (r->form), or an error line: two forms, or half of
@@ -185,8 +168,3 @@ int cli_method(const char *s, sh_rot_method *out)
     return 0;
 }
 
-int cli_precision(const char *s, sh_precision *out)
-{
-    if (sh_precision_parse(s, out)) return cli_fail("--precision: %s", sh_last_error());
-    return 0;
-}

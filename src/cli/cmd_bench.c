@@ -900,5 +900,4 @@ static int run(int argc, char **argv)
 
 const cli_command cmd_bench = {"bench", run,
                                "time per rotation of the rotation methods and kernels (interleaved, "
-                               "paired ratios, noise check), counted multiplications and instructions",
-                               NULL, &bench_decl};
+                               "paired ratios, noise check), counted multiplications and instructions", &bench_decl};

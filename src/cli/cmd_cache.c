@@ -537,5 +537,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_cache = {"cache", run,
-                               "radiance cache: records rotated into each vertex's frame, error and time per method",
-                               NULL, &cache_decl};
+                               "radiance cache: records rotated into each vertex's frame, error and time per method", &cache_decl};

@@ -74,5 +74,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_convert = {"convert", run, "convert coefficients between cs, nocs, 4pi and schmidt", NULL,
-                                 &convert_decl};
+const cli_command cmd_convert = {"convert", run, "convert coefficients between cs, nocs, 4pi and schmidt", &convert_decl};

@@ -106,5 +106,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_deriv = {"deriv", run, "k-th derivative of the SH rotation about y (Appendix A)", NULL,
-                               &deriv_decl};
+const cli_command cmd_deriv = {"deriv", run, "k-th derivative of the SH rotation about y (Appendix A)", &deriv_decl};

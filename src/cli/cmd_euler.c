@@ -56,4 +56,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_euler = {"euler", run, "ZYZ Euler angles of a rotation matrix", NULL, &euler_decl};
+const cli_command cmd_euler = {"euler", run, "ZYZ Euler angles of a rotation matrix", &euler_decl};

@@ -63,4 +63,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_eval = {"eval", run, "evaluate the real SH basis at a direction", NULL, &eval_decl};
+const cli_command cmd_eval = {"eval", run, "evaluate the real SH basis at a direction", &eval_decl};

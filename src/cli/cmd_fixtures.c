@@ -277,4 +277,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", NULL, &fixtures_decl};
+const cli_command cmd_fixtures = {"fixtures", run, "write the golden rotation fixtures", &fixtures_decl};

@@ -331,5 +331,4 @@ static int run(int argc, char **argv)
     return cli_sweep_emit(kind, result, cli_given(&seen, "format") ? a.fmt : fmt);
 }
 
-const cli_command cmd_merge = {"merge", run, "join the shard files of a sweep run with --shard I/N", NULL,
-                               &merge_decl};
+const cli_command cmd_merge = {"merge", run, "join the shard files of a sweep run with --shard I/N", &merge_decl};

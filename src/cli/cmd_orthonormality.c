@@ -118,5 +118,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_orthonormality = {"orthonormality", run,
-                                        "check the basis' orthonormality under a projection rule (Gram matrix)",
-                                        NULL, &ortho_decl};
+                                        "check the basis' orthonormality under a projection rule (Gram matrix)", &ortho_decl};

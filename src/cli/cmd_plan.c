@@ -371,4 +371,4 @@ static int run(int argc, char **argv)
 const cli_command cmd_plan = {"plan", run,
                               "the cheapest rotation method for an error budget up to a β "
                               "(measured now); --order auto from an EXR",
-                              NULL, &plan_decl};
+                              &plan_decl};

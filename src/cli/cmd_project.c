@@ -215,4 +215,4 @@ static int run(int argc, char **argv)
     return run_light(&a, &L, closed);
 }
 
-const cli_command cmd_project = {"project", run, "project a light or an EXR environment onto SH", NULL, &project_decl};
+const cli_command cmd_project = {"project", run, "project a light or an EXR environment onto SH", &project_decl};

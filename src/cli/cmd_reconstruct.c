@@ -181,5 +181,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_reconstruct = {"reconstruct", run, "coefficients → lat-long EXR, with windowing and ringing",
-                                     NULL, &reconstruct_decl};
+const cli_command cmd_reconstruct = {"reconstruct", run, "coefficients → lat-long EXR, with windowing and ringing", &reconstruct_decl};

@@ -250,5 +250,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_render = {"render", run, "picture of a scene under SH lighting (EXR, PNG) and its error image",
-                                NULL, &render_decl};
+const cli_command cmd_render = {"render", run, "picture of a scene under SH lighting (EXR, PNG) and its error image", &render_decl};

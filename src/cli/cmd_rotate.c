@@ -246,5 +246,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_rotate = {"rotate", run, "rotate SH coefficients (one plan, many channels)", NULL,
-                                &rotate_decl};
+const cli_command cmd_rotate = {"rotate", run, "rotate SH coefficients (one plan, many channels)", &rotate_decl};

@@ -192,5 +192,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_rotmat = {"rotmat", run,
-                                "SH rotation matrix of a rotation (exact methods and Taylor approximations)",
-                                NULL, &rotmat_decl};
+                                "SH rotation matrix of a rotation (exact methods and Taylor approximations)", &rotmat_decl};

@@ -144,5 +144,4 @@ static int run(int argc, char **argv)
     return rc;
 }
 
-const cli_command cmd_scale = {"scale", run, "SH scaling matrix of an angular scaling family (Wang 2006)", NULL,
-                               &scale_decl};
+const cli_command cmd_scale = {"scale", run, "SH scaling matrix of an angular scaling family (Wang 2006)", &scale_decl};

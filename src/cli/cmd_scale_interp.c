@@ -206,5 +206,4 @@ static int run(int argc, char **argv)
     return cli_sweep_close(&sw, compute(&a, &s, &sw));
 }
 const cli_command cmd_scale_interp = {"scale-interp", run,
-                                      "error of interpolating the scaling matrix over k (Wang Sec. 2.2)", NULL,
-                                      &scale_interp_decl};
+                                      "error of interpolating the scaling matrix over k (Wang Sec. 2.2)", &scale_interp_decl};

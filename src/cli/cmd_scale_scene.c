@@ -318,5 +318,4 @@ static int run(int argc, char **argv)
     return rc;
 }
 
-const cli_command cmd_scale_scene = {"scale-scene", run, "SH scaling against exact scenes (occluders, mid-range light)",
-                                     NULL, &scale_scene_decl};
+const cli_command cmd_scale_scene = {"scale-scene", run, "SH scaling against exact scenes (occluders, mid-range light)", &scale_scene_decl};

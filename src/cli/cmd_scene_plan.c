@@ -300,5 +300,4 @@ static int run(int argc, char **argv)
     return rc == CLI_EXIT_OK && missing ? CLI_EXIT_CHECK : rc;
 }
 
-const cli_command cmd_scene_plan = {"scene-plan", run, "smallest SH order for a shading error budget on a scene",
-                                    NULL, &plan_decl};
+const cli_command cmd_scene_plan = {"scene-plan", run, "smallest SH order for a shading error budget on a scene", &plan_decl};

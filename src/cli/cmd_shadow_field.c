@@ -481,5 +481,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_shadow_field = {"shadow-field", run,
-                                      "shadow field of a sphere sampled at one distance, scaled to the others (Wang)",
-                                      NULL, &sf_decl};
+                                      "shadow field of a sphere sampled at one distance, scaled to the others (Wang)", &sf_decl};

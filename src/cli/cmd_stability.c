@@ -246,5 +246,4 @@ static int run(int argc, char **argv)
 
 const cli_command cmd_stability = {"stability", run,
                                    "a rotation method's error band by band (orthogonality, "
-                                   "homomorphism, reference)",
-                                   NULL, &stability_decl};
+                                   "homomorphism, reference)", &stability_decl};

@@ -163,5 +163,4 @@ static int run(int argc, char **argv)
 }
 
 const cli_command cmd_taylor_error = {"taylor-error", run,
-                                      "error of the Taylor-approximated rotation (singular values, lobe)",
-                                      NULL, &taylor_error_decl};
+                                      "error of the Taylor-approximated rotation (singular values, lobe)", &taylor_error_decl};

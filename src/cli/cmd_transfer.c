@@ -300,5 +300,4 @@ static int run(int argc, char **argv)
     return rc == CLI_EXIT_OK && failed ? CLI_EXIT_CHECK : rc;
 }
 
-const cli_command cmd_transfer = {"transfer", run, "Green's transfer vectors of a mesh or procedural scene (rays/s)",
-                                  NULL, &transfer_decl};
+const cli_command cmd_transfer = {"transfer", run, "Green's transfer vectors of a mesh or procedural scene (rays/s)", &transfer_decl};

@@ -98,5 +98,4 @@ static int run(int argc, char **argv)
     return cli_emit(root, (cli_format)a.fmt);
 }
 
-const cli_command cmd_triple = {"triple", run, "triple-product transfer matrix of a light (Green eq. 8)", NULL,
-                                &triple_decl};
+const cli_command cmd_triple = {"triple", run, "triple-product transfer matrix of a light (Green eq. 8)", &triple_decl};

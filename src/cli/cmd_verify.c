@@ -406,5 +406,4 @@ static int run(int argc, char **argv)
     return rc == 0 && v.failed && !simulated ? CLI_EXIT_CHECK : rc;
 }
 
-const cli_command cmd_verify = {"verify", run, "check a kernel's rotated coefficients against golden fixtures", NULL,
-                                &verify_decl};
+const cli_command cmd_verify = {"verify", run, "check a kernel's rotated coefficients against golden fixtures", &verify_decl};

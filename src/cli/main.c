@@ -35,18 +35,7 @@ const cli_command *cli_find(const char *name)
 }
 
 /* Every help text ends by pointing at the conventions document. */
-const char cli_conventions_note[] =
-    "\nConventions (basis, index, rotations, angles and units, output): docs/CONVENTIONS.md\n"
-    "in the shlab source, installed as share/doc/shlab/CONVENTIONS.md.\n";
 
-int cli_help(const cli_command *cmd)
-{
-    if (cmd->decl) return cli_args_help(cmd->decl);
-    fputs(cmd->help, stdout);
-    fputs(cli_conventions_note, stdout);
-    if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
-    return CLI_EXIT_OK;
-}
 
 static void usage(FILE *o)
 {
@@ -81,7 +70,7 @@ int main(int argc, char **argv)
         if (argc > 2 && strcmp(c, "help") == 0) {
             const cli_command *cmd = cli_find(argv[2]);
             if (!cmd) return cli_fail("unknown command '%s' (try 'shlab --help')", argv[2]);
-            return cli_help(cmd);
+            return cli_args_help(cmd->decl);
         }
         usage(stdout);
         if (fflush(stdout) != 0 || ferror(stdout)) return cli_fail("cannot write to standard output");
