@@ -164,8 +164,8 @@ static int add_why(sh_bench_noise *nz, const char *fmt, double a, double b)
     return 1;
 }
 
-int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cfg_in, double *samples,
-                         sh_bench_stats *st, sh_bench_noise *noise)
+/* The configuration with every unset field at its default, or an error. */
+static int bench_config(const sh_bench_cfg *cfg_in, sh_bench_cfg *out)
 {
     const sh_bench_cfg def = SH_BENCH_CFG_DEFAULT;
     sh_bench_cfg c = cfg_in ? *cfg_in : def;
@@ -175,38 +175,41 @@ int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cf
     if (!(c.noise_spread > 0)) c.noise_spread = def.noise_spread;
     if (!(c.noise_offcpu > 0)) c.noise_offcpu = def.noise_offcpu;
     if (!(c.noise_load > 0)) c.noise_load = def.noise_load;
-    if (!e || ne < 1 || !st) return sh_error(SH_EINVAL, "bench: no entries to time");
     if (c.count < 0 || !isfinite(c.min_sample_ms) || c.min_sample_ms > 1e5 || c.samples > 100000)
         return sh_error(SH_EINVAL, "bench: need count >= 0, min sample time <= 1e5 ms, samples <= 100000");
-    for (int i = 0; i < ne; i++)
-        if (!e[i].run) return sh_error(SH_EINVAL, "bench: entry %d has nothing to run", i);
-    const int S = c.samples;
-    const size_t tot = (size_t)ne * (size_t)S;
-    double *ns = samples ? samples : malloc(tot * sizeof *ns);
-    double *wall = malloc(tot * sizeof *wall), *cpu = malloc(tot * sizeof *cpu);
-    double *tmp = malloc((size_t)S * sizeof *tmp);
-    long *count = malloc((size_t)ne * sizeof *count);
+    *out = c;
+    return SH_OK;
+}
+
+/* Iterations per sample of each entry: the fixed count, or calibrated and
+ * then warmed up (a calibrated count whose warm-up ran short is raised). */
+static int bench_counts(const sh_bench_entry *e, int ne, const sh_bench_cfg *c, long *count)
+{
+    const double target = c->min_sample_ms * 1e6;
     int rc = SH_OK;
-    if (!ns || !wall || !cpu || !tmp || !count) {
-        rc = sh_error(SH_ENOMEM, "bench: out of memory");
-        goto done;
-    }
-    const double busy0 = sh_machine_busy_s(), self0 = self_cpu_s(), t_start = now_ns();
-    const double target = c.min_sample_ms * 1e6;
     for (int i = 0; i < ne && !rc; i++) {
-        if (c.count > 0) count[i] = c.count;
+        if (c->count > 0) count[i] = c->count;
         else rc = calibrate(&e[i], target, &count[i]);
     }
-    /* warm-up rounds; a calibrated count whose warm-up ran short is raised */
-    for (int w = 0; w < c.warmup && !rc; w++)
+    for (int w = 0; w < c->warmup && !rc; w++)
         for (int i = 0; i < ne && !rc; i++) {
             double el;
             rc = time_entry(&e[i], count[i], &el, NULL);
-            if (!rc && c.count == 0 && el < target) {
+            if (!rc && c->count == 0 && el < target) {
                 const double want = ceil((double)count[i] * 1.1 * target / (el > 0 ? el : 1));
                 count[i] = want > (double)(1L << 40) ? (1L << 40) : (long)want;
             }
         }
+    return rc;
+}
+
+/* The timed rounds: each round times every entry once, starting one entry
+ * later than the round before (so no entry always follows the same one). */
+static int bench_rounds(const sh_bench_entry *e, int ne, const sh_bench_cfg *c, const long *count, double *ns,
+                        double *wall, double *cpu)
+{
+    const int S = c->samples;
+    int rc = SH_OK;
     for (int r = 0; r < S && !rc; r++) {
         for (int k = 0; k < ne && !rc; k++) {
             const int i = (k + r) % ne;
@@ -215,59 +218,102 @@ int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cf
             const double units = e[i].units > 0 ? e[i].units : 1;
             ns[at] = wall[at] / ((double)count[i] * units);
         }
-        if (!rc && c.progress) c.progress(c.progress_ctx, r + 1, S, "rounds");
+        if (!rc && c->progress) c->progress(c->progress_ctx, r + 1, S, "rounds");
     }
-    if (rc) {
-        if (sh_last_error()[0] == '\0') sh_error(rc, "bench: %s failed", e[0].name ? e[0].name : "entry");
+    if (rc && sh_last_error()[0] == '\0') sh_error(rc, "bench: %s failed", e[0].name ? e[0].name : "entry");
+    return rc;
+}
+
+/* Entry i's statistics over its S samples (tmp: S doubles of scratch); its
+ * wall and off-CPU totals added to *wall_all, *off_all. */
+static void bench_entry_stats(int i, int S, long count, const double *ns, const double *wall, const double *cpu,
+                              double *tmp, sh_bench_stats *st, double *wall_all, double *off_all)
+{
+    double w = 0, off = 0;
+    for (int r = 0; r < S; r++) {
+        const size_t at = (size_t)i * S + r;
+        w += wall[at];
+        off += fmax(0.0, wall[at] - cpu[at]);
+        tmp[r] = wall[at];
+    }
+    qsort(tmp, (size_t)S, sizeof *tmp, cmp_double);
+    st->sample_ms = quantile(tmp, S, 0.5) * 1e-6;
+    memcpy(tmp, ns + (size_t)i * S, (size_t)S * sizeof *tmp);
+    qsort(tmp, (size_t)S, sizeof *tmp, cmp_double);
+    st->ns_min = tmp[0];
+    st->ns_q1 = quantile(tmp, S, 0.25);
+    st->ns_median = quantile(tmp, S, 0.5);
+    st->ns_q3 = quantile(tmp, S, 0.75);
+    st->ns_max = tmp[S - 1];
+    st->spread = st->ns_median > 0 ? (st->ns_q3 - st->ns_q1) / st->ns_median : 0;
+    st->offcpu = w > 0 ? off / w : 0;
+    st->count = count;
+    *off_all += off;
+    *wall_all += w;
+}
+
+/* The noise rule: the largest spread, the share of time off the CPU, and
+ * the load of other processes over the run (busy CPU seconds of the machine
+ * less this process's), each against its threshold. */
+typedef struct {
+    double worst, off_all, wall_all, seconds, busy0, busy1, self0, self1;
+    int worst_i;
+} bench_tally;
+static void bench_noise(const sh_bench_entry *e, const sh_bench_cfg *c, const bench_tally *b, sh_bench_noise *noise)
+{
+    memset(noise, 0, sizeof *noise);
+    noise->spread = b->worst;
+    noise->offcpu = b->wall_all > 0 ? b->off_all / b->wall_all : 0;
+    noise->seconds = b->seconds;
+    noise->load = -1;
+    if (b->busy0 >= 0 && b->busy1 >= 0 && b->self0 >= 0 && b->self1 >= 0 && b->seconds >= 0.25)
+        noise->load = fmax(0.0, ((b->busy1 - b->busy0) - (b->self1 - b->self0)) / b->seconds);
+    if (b->worst > c->noise_spread) {
+        const size_t k = strlen(noise->why);
+        snprintf(noise->why + k, sizeof noise->why - k, "spread %.1f%% > %.1f%% (%s)", 100 * b->worst,
+                 100 * c->noise_spread, e[b->worst_i].name ? e[b->worst_i].name : "entry");
+        noise->noisy = 1;
+    }
+    if (noise->offcpu > c->noise_offcpu)
+        noise->noisy = add_why(noise, "off-CPU %.1f%% > %.1f%% of the sample time", 100 * noise->offcpu,
+                               100 * c->noise_offcpu);
+    if (noise->load > c->noise_load)
+        noise->noisy = add_why(noise, "other processes used %.2f CPUs > %.2f", noise->load, c->noise_load);
+}
+
+int sh_bench_interleaved(const sh_bench_entry *e, int ne, const sh_bench_cfg *cfg_in, double *samples,
+                         sh_bench_stats *st, sh_bench_noise *noise)
+{
+    sh_bench_cfg c = SH_BENCH_CFG_DEFAULT;
+    int rc = bench_config(cfg_in, &c);
+    if (rc) return rc;
+    if (!e || ne < 1 || !st) return sh_error(SH_EINVAL, "bench: no entries to time");
+    for (int i = 0; i < ne; i++)
+        if (!e[i].run) return sh_error(SH_EINVAL, "bench: entry %d has nothing to run", i);
+    const int S = c.samples;
+    const size_t tot = (size_t)ne * (size_t)S;
+    double *ns = samples ? samples : malloc(tot * sizeof *ns);
+    double *wall = malloc(tot * sizeof *wall), *cpu = malloc(tot * sizeof *cpu);
+    double *tmp = malloc((size_t)S * sizeof *tmp);
+    long *count = malloc((size_t)ne * sizeof *count);
+    if (!ns || !wall || !cpu || !tmp || !count) {
+        rc = sh_error(SH_ENOMEM, "bench: out of memory");
         goto done;
     }
-    const double seconds = (now_ns() - t_start) * 1e-9, busy1 = sh_machine_busy_s(), self1 = self_cpu_s();
-    double off_all = 0, wall_all = 0, worst = 0;
-    int worst_i = 0;
+    bench_tally b = {.busy0 = sh_machine_busy_s(), .self0 = self_cpu_s()};
+    const double t_start = now_ns();
+    if ((rc = bench_counts(e, ne, &c, count)) || (rc = bench_rounds(e, ne, &c, count, ns, wall, cpu))) {
+        if (rc && sh_last_error()[0] == '\0') sh_error(rc, "bench: %s failed", e[0].name ? e[0].name : "entry");
+        goto done;
+    }
+    b.seconds = (now_ns() - t_start) * 1e-9;
+    b.busy1 = sh_machine_busy_s();
+    b.self1 = self_cpu_s();
     for (int i = 0; i < ne; i++) {
-        double w = 0, off = 0;
-        for (int r = 0; r < S; r++) {
-            const size_t at = (size_t)i * S + r;
-            w += wall[at];
-            off += fmax(0.0, wall[at] - cpu[at]);
-            tmp[r] = wall[at];
-        }
-        qsort(tmp, (size_t)S, sizeof *tmp, cmp_double);
-        st[i].sample_ms = quantile(tmp, S, 0.5) * 1e-6;
-        memcpy(tmp, ns + (size_t)i * S, (size_t)S * sizeof *tmp);
-        qsort(tmp, (size_t)S, sizeof *tmp, cmp_double);
-        st[i].ns_min = tmp[0];
-        st[i].ns_q1 = quantile(tmp, S, 0.25);
-        st[i].ns_median = quantile(tmp, S, 0.5);
-        st[i].ns_q3 = quantile(tmp, S, 0.75);
-        st[i].ns_max = tmp[S - 1];
-        st[i].spread = st[i].ns_median > 0 ? (st[i].ns_q3 - st[i].ns_q1) / st[i].ns_median : 0;
-        st[i].offcpu = w > 0 ? off / w : 0;
-        st[i].count = count[i];
-        off_all += off;
-        wall_all += w;
-        if (st[i].spread > worst) { worst = st[i].spread; worst_i = i; }
+        bench_entry_stats(i, S, count[i], ns, wall, cpu, tmp, &st[i], &b.wall_all, &b.off_all);
+        if (st[i].spread > b.worst) { b.worst = st[i].spread; b.worst_i = i; }
     }
-    if (noise) {
-        memset(noise, 0, sizeof *noise);
-        noise->spread = worst;
-        noise->offcpu = wall_all > 0 ? off_all / wall_all : 0;
-        noise->seconds = seconds;
-        noise->load = -1;
-        if (busy0 >= 0 && busy1 >= 0 && self0 >= 0 && self1 >= 0 && seconds >= 0.25)
-            noise->load = fmax(0.0, ((busy1 - busy0) - (self1 - self0)) / seconds);
-        if (worst > c.noise_spread) {
-            const size_t k = strlen(noise->why);
-            snprintf(noise->why + k, sizeof noise->why - k, "spread %.1f%% > %.1f%% (%s)", 100 * worst,
-                     100 * c.noise_spread, e[worst_i].name ? e[worst_i].name : "entry");
-            noise->noisy = 1;
-        }
-        if (noise->offcpu > c.noise_offcpu)
-            noise->noisy = add_why(noise, "off-CPU %.1f%% > %.1f%% of the sample time", 100 * noise->offcpu,
-                                   100 * c.noise_offcpu);
-        if (noise->load > c.noise_load)
-            noise->noisy = add_why(noise, "other processes used %.2f CPUs > %.2f", noise->load, c.noise_load);
-    }
+    if (noise) bench_noise(e, &c, &b, noise);
 done:
     if (ns != samples) free(ns);
     free(wall);
