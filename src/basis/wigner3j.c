@@ -49,6 +49,99 @@ static double w3j_B(double j, double j2, double j3, double m1, double m2, double
 
 size_t sh_wigner3j_family_n(int j2, int j3) { return (size_t)(j2 + j3 + 1); }
 
+/* ---- forward from jmin: f(jmin) = 1; next value from the two-term
+ * relation (A(jmin) = 0), or, when jmin = 0 (j2 = j3, m1 = 0, where the
+ * relation degenerates to 0 = 0), from the closed forms
+ * (0 J J; 0 m −m) = (−1)^(J−m)/√(2J+1) and
+ * (1 J J; 0 m −m) = (−1)^(J−m) m / √(J(J+1)(2J+1))  [3, Table 2].
+ * Continues while the solution is still in the lower forbidden region:
+ * there |f| grows monotonically; stops at the first j where it does not
+ * (the lower turning point has been passed) or at a zero.  Returns the
+ * last j reached: f is valid on [jmin, that j]. */
+static int w3j_forward(int jmin, int jmax, int j2, int j3, int m2, int m3, double *f)
+{
+    const double J2 = j2, J3 = j3, M1 = -m2 - m3, M2 = m2, M3 = m3;
+    f[0] = 1.0;
+    if (jmin == 0)
+        f[1] = M2 / sqrt(J2 * (J2 + 1.0));
+    else
+        f[1] = -w3j_B(jmin, J2, J3, M1, M2, M3) / (jmin * w3j_A(jmin + 1, J2, J3, M1));
+    int jf = jmin + 1;
+    while (jf < jmax && fabs(f[jf - jmin]) > fabs(f[jf - jmin - 1])) {
+        const int j = jf;
+        const double a = j * w3j_A(j + 1, J2, J3, M1);
+        const double b = w3j_B(j, J2, J3, M1, M2, M3);
+        const double c = (j + 1.0) * w3j_A(j, J2, J3, M1);
+        f[j + 1 - jmin] = -(b * f[j - jmin] + c * f[j - 1 - jmin]) / a;
+        jf++;
+        if (fabs(f[jf - jmin]) > W3J_BIG)
+            for (int q = 0; q <= jf - jmin; q++) f[q] *= W3J_SMALL;
+    }
+    return jf;
+}
+
+/* ---- backward from jmax through the upper forbidden region (where the
+ * solution grows going down) and the classically allowed region (neutrally
+ * stable), down to jm-1: a two-point overlap {jm-1, jm} with the forward
+ * solution, which is valid on [jmin, jm] (jm < jmax).  The backward part is
+ * matched to f there, scaled into f[jm..jmax], and *top_sign set to the
+ * sign of the unnormalised f(jmax). */
+static int w3j_backward_match(int jm, int jmin, int jmax, int j2, int j3, int m2, int m3, double *f,
+                              double *top_sign)
+{
+    const double J2 = j2, J3 = j3, M1 = -m2 - m3, M2 = m2, M3 = m3;
+    /* backward sweep into the scratch tail: g(jmax) = 1 */
+    double *g = f; /* reuse: write g over [jm-1, jmax], keep f copies */
+    const double f_jm = f[jm - jmin], f_jm1 = f[jm - 1 - jmin];
+    g[jmax - jmin] = 1.0;
+    {
+        const int j = jmax;
+        g[j - 1 - jmin] = -w3j_B(j, J2, J3, M1, M2, M3) / ((j + 1.0) * w3j_A(j, J2, J3, M1));
+    }
+    for (int j = jmax - 1; j - 1 >= jm - 1; j--) {
+        const double a = j * w3j_A(j + 1, J2, J3, M1);
+        const double b = w3j_B(j, J2, J3, M1, M2, M3);
+        const double c = (j + 1.0) * w3j_A(j, J2, J3, M1);
+        g[j - 1 - jmin] = -(b * g[j - jmin] + a * g[j + 1 - jmin]) / c;
+        if (fabs(g[j - 1 - jmin]) > W3J_BIG)
+            for (int q = j - 1 - jmin; q <= jmax - jmin; q++) g[q] *= W3J_SMALL;
+    }
+    /* least-squares match of g to f on {jm-1, jm}: scale = <f,g>/<g,g> */
+    const double g_jm = g[jm - jmin], g_jm1 = g[jm - 1 - jmin];
+    const double gg = g_jm * g_jm + g_jm1 * g_jm1;
+    const double scale = (f_jm * g_jm + f_jm1 * g_jm1) / gg;
+    /* restore f at jm-1, jm; scale the backward part */
+    for (int q = jm - jmin; q <= jmax - jmin; q++) f[q] = g[q] * scale;
+    f[jm - 1 - jmin] = f_jm1;
+    f[jm - jmin] = f_jm;
+    *top_sign = scale < 0.0 ? -1.0 : 1.0; /* g(jmax) = 1 times positive rescalings */
+    /* f and g·scale agree on the overlap; keep f there.  If the
+     * match is badly conditioned (gg tiny) the normalisation below
+     * still fixes the overall scale, only the relative one is lost. */
+    if (!(gg > 0.0) || !isfinite(scale) || scale == 0.0)
+        return sh_error(SH_ENUM, "3j: recursion match failed (j2=%d j3=%d m2=%d m3=%d)",
+                        j2, j3, m2, m3);
+    return SH_OK;
+}
+
+/* normalise: Σ (2j+1) f² = 1, sign of f(jmax) = (−1)^(j2−j3−m1) */
+static int w3j_normalise(int n, int jmin, int j2, int j3, int m1, double top_sign, double *f)
+{
+    double s = 0.0, big = 0.0;
+    for (int q = 0; q < n; q++) big = fmax(big, fabs(f[q]));
+    for (int q = 0; q < n; q++) {
+        const double t = f[q] / big;
+        s += (2.0 * (jmin + q) + 1.0) * t * t;
+    }
+    double norm = 1.0 / (big * sqrt(s));
+    const int e = j2 - j3 - m1;
+    const int want_neg = (e % 2 != 0);
+    if ((top_sign < 0.0) != want_neg) norm = -norm;
+    for (int q = 0; q < n; q++) f[q] *= norm;
+    if (!isfinite(norm)) return sh_error(SH_ENUM, "3j: normalisation failed");
+    return SH_OK;
+}
+
 int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin_out, int *jmax_out,
                        double *f)
 {
@@ -70,88 +163,16 @@ int sh_wigner3j_family(int j2, int j3, int m2, int m3, int *jmin_out, int *jmax_
     /* sign of the unnormalised f(jmax), tracked separately: the stored
      * value may underflow to 0 deep in the upper forbidden region */
     double top_sign = 1.0;
-    const double J2 = j2, J3 = j3, M1 = m1, M2 = m2, M3 = m3;
     if (n == 1) {
         f[0] = 1.0 / sqrt(2.0 * jmin + 1.0);
     } else {
-        /* ---- forward from jmin: f(jmin) = 1; next value from the two-term
-         * relation (A(jmin) = 0), or, when jmin = 0 (j2 = j3, m1 = 0, where the
-         * relation degenerates to 0 = 0), from the closed forms
-         * (0 J J; 0 m −m) = (−1)^(J−m)/√(2J+1) and
-         * (1 J J; 0 m −m) = (−1)^(J−m) m / √(J(J+1)(2J+1))  [3, Table 2]. */
-        f[0] = 1.0;
-        if (jmin == 0)
-            f[1] = M2 / sqrt(J2 * (J2 + 1.0));
-        else
-            f[1] = -w3j_B(jmin, J2, J3, M1, M2, M3) / (jmin * w3j_A(jmin + 1, J2, J3, M1));
-        /* Continue while the solution is still in the lower forbidden region:
-         * there |f| grows monotonically; stop at the first j where it does
-         * not (the lower turning point has been passed) or at a zero. */
-        int jf = jmin + 1;
-        while (jf < jmax && fabs(f[jf - jmin]) > fabs(f[jf - jmin - 1])) {
-            const int j = jf;
-            const double a = j * w3j_A(j + 1, J2, J3, M1);
-            const double b = w3j_B(j, J2, J3, M1, M2, M3);
-            const double c = (j + 1.0) * w3j_A(j, J2, J3, M1);
-            f[j + 1 - jmin] = -(b * f[j - jmin] + c * f[j - 1 - jmin]) / a;
-            jf++;
-            if (fabs(f[jf - jmin]) > W3J_BIG)
-                for (int q = 0; q <= jf - jmin; q++) f[q] *= W3J_SMALL;
-        }
-        /* ---- backward from jmax through the upper forbidden region (where
-         * the solution grows going down) and the classically allowed region
-         * (neutrally stable), down to jm-1: a two-point overlap {jm-1, jm}
-         * with the forward solution, which is valid on [jmin, jm]. */
-        int jm = jf; /* forward values valid on [jmin, jm] */
+        const int jm = w3j_forward(jmin, jmax, j2, j3, m2, m3, f); /* f valid on [jmin, jm] */
         if (jm == jmax) top_sign = f[n - 1] < 0.0 ? -1.0 : 1.0;
-        if (jm < jmax) {
-            /* backward sweep into the scratch tail: g(jmax) = 1 */
-            double *g = f; /* reuse: write g over [jm-1, jmax], keep f copies */
-            const double f_jm = f[jm - jmin], f_jm1 = f[jm - 1 - jmin];
-            g[jmax - jmin] = 1.0;
-            {
-                const int j = jmax;
-                g[j - 1 - jmin] = -w3j_B(j, J2, J3, M1, M2, M3) / ((j + 1.0) * w3j_A(j, J2, J3, M1));
-            }
-            for (int j = jmax - 1; j - 1 >= jm - 1; j--) {
-                const double a = j * w3j_A(j + 1, J2, J3, M1);
-                const double b = w3j_B(j, J2, J3, M1, M2, M3);
-                const double c = (j + 1.0) * w3j_A(j, J2, J3, M1);
-                g[j - 1 - jmin] = -(b * g[j - jmin] + a * g[j + 1 - jmin]) / c;
-                if (fabs(g[j - 1 - jmin]) > W3J_BIG)
-                    for (int q = j - 1 - jmin; q <= jmax - jmin; q++) g[q] *= W3J_SMALL;
-            }
-            /* least-squares match of g to f on {jm-1, jm}: scale = <f,g>/<g,g> */
-            const double g_jm = g[jm - jmin], g_jm1 = g[jm - 1 - jmin];
-            const double gg = g_jm * g_jm + g_jm1 * g_jm1;
-            const double scale = (f_jm * g_jm + f_jm1 * g_jm1) / gg;
-            /* restore f at jm-1, jm; scale the backward part */
-            for (int q = jm - jmin; q <= jmax - jmin; q++) f[q] = g[q] * scale;
-            f[jm - 1 - jmin] = f_jm1;
-            f[jm - jmin] = f_jm;
-            top_sign = scale < 0.0 ? -1.0 : 1.0; /* g(jmax) = 1 times positive rescalings */
-            /* f and g·scale agree on the overlap; keep f there.  If the
-             * match is badly conditioned (gg tiny) the normalisation below
-             * still fixes the overall scale, only the relative one is lost. */
-            if (!(gg > 0.0) || !isfinite(scale) || scale == 0.0)
-                return sh_error(SH_ENUM, "3j: recursion match failed (j2=%d j3=%d m2=%d m3=%d)",
-                                j2, j3, m2, m3);
-        }
+        int st;
+        if (jm < jmax && (st = w3j_backward_match(jm, jmin, jmax, j2, j3, m2, m3, f, &top_sign)))
+            return st;
     }
-    /* normalise: Σ (2j+1) f² = 1, sign of f(jmax) = (−1)^(j2−j3−m1) */
-    double s = 0.0, big = 0.0;
-    for (int q = 0; q < n; q++) big = fmax(big, fabs(f[q]));
-    for (int q = 0; q < n; q++) {
-        const double t = f[q] / big;
-        s += (2.0 * (jmin + q) + 1.0) * t * t;
-    }
-    double norm = 1.0 / (big * sqrt(s));
-    const int e = j2 - j3 - m1;
-    const int want_neg = (e % 2 != 0);
-    if ((top_sign < 0.0) != want_neg) norm = -norm;
-    for (int q = 0; q < n; q++) f[q] *= norm;
-    if (!isfinite(norm)) return sh_error(SH_ENUM, "3j: normalisation failed");
-    return SH_OK;
+    return w3j_normalise(n, jmin, j2, j3, m1, top_sign, f);
 }
 
 int sh_wigner3j_e(int j1, int j2, int j3, int m1, int m2, int m3, double *result)

@@ -111,19 +111,34 @@ static int read_status(exr_result_t rv)
     return SH_EFORMAT;
 }
 
-/* ---- OpenEXRCore's allocations, within a budget ------------------------
+/* ---- reading from memory -------------------------------------------- */
+/* One read: the data (OpenEXRCore's read callbacks get it as user_data)
+ * and the memory the read may still use (lim->max_bytes at its start,
+ * less the image, the scratch and what OpenEXRCore holds). */
+typedef struct {
+    const unsigned char *data;
+    size_t size;
+    long long budget_left;
+} mem_src;
+
+/* ---- OpenEXRCore's allocations, within the read's budget ---------------
  * Each block carries its size in a 16-byte prefix (keeping malloc's
- * alignment); budget_left is this thread's remaining allowance during a
- * read.  A refused allocation is EXR_ERR_OUT_OF_MEMORY to the library. */
-static _Thread_local long long budget_left = 1LL << 62;
+ * alignment).  A refused allocation is EXR_ERR_OUT_OF_MEMORY to the
+ * library.  OpenEXRCore 3.1 calls the allocator with the size alone
+ * (exr_memory_allocation_func_t, openexr_base.h: no context argument), so
+ * the allocator finds the read it serves through budget_read: the read in
+ * progress on this thread (set by read_mem for its duration, NULL
+ * otherwise: then no budget applies). */
+static _Thread_local mem_src *budget_read;
 
 static void *budget_alloc(size_t n)
 {
-    if (n > (size_t)1 << 60 || (long long)n > budget_left) return NULL;
+    mem_src *r = budget_read;
+    if (n > (size_t)1 << 60 || (r && (long long)n > r->budget_left)) return NULL;
     unsigned char *p = malloc(n + 16);
     if (!p) return NULL;
     memcpy(p, &n, sizeof n);
-    budget_left -= (long long)n;
+    if (r) r->budget_left -= (long long)n;
     return p + 16;
 }
 
@@ -133,15 +148,9 @@ static void budget_free(void *q)
     unsigned char *p = (unsigned char *)q - 16;
     size_t n;
     memcpy(&n, p, sizeof n);
-    budget_left += (long long)n;
+    if (budget_read) budget_read->budget_left += (long long)n;
     free(p);
 }
-
-/* ---- reading from memory -------------------------------------------- */
-typedef struct {
-    const unsigned char *data;
-    size_t size;
-} mem_src;
 
 static int64_t mem_read(exr_const_context_t ctxt, void *ud, void *buf, uint64_t sz, uint64_t off,
                         exr_stream_error_func_ptr_t err)
@@ -378,8 +387,182 @@ static exr_result_t decode_core(const part_info *pi, const int *src, float *scra
     return rv;
 }
 
+/* An OpenEXRCore context reading m (errors to core_msg, allocations within
+ * m's budget, no chunk table reconstruction) into pi->ctxt. */
+static int start_read(mem_src *m, const char *name, part_info *pi)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = core_error_handler;
+    init.alloc_fn = budget_alloc;
+    init.free_fn = budget_free;
+    init.user_data = m;
+    init.read_fn = mem_read;
+    init.size_fn = mem_size;
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    core_msg[0] = '\0';
+    const exr_result_t rv = exr_start_read(&pi->ctxt, name, &init);
+    if (rv != EXR_ERR_SUCCESS)
+        return sh_error(read_status(rv), "%s: not a readable OpenEXR file (%s)", name, core_reason(rv));
+    return SH_OK;
+}
+
+/* The first flat (scanline or tiled, not deep) part: pi->part, pi->storage. */
+static int find_flat_part(part_info *pi, const char *name)
+{
+    int nparts = 0;
+    exr_get_count(pi->ctxt, &nparts);
+    for (int p = 0; p < nparts; p++) {
+        exr_storage_t s;
+        if (exr_get_storage(pi->ctxt, p, &s) == EXR_ERR_SUCCESS &&
+            (s == EXR_STORAGE_SCANLINE || s == EXR_STORAGE_TILED)) {
+            pi->part = p;
+            pi->storage = s;
+            break;
+        }
+    }
+    if (pi->part < 0) return sh_error(SH_ENOTSUP, "%s: no flat (non-deep) image part", name);
+    return SH_OK;
+}
+
+/* The part's header: channels (*cl; the used ones picked into img->nchan,
+ * img->names and src, none sub-sampled), data window and compression, and
+ * the image size within the limits. */
+static int read_header(part_info *pi, const char *name, const sh_exr_limits *lim, sh_image *img,
+                       int src[SH_IMAGE_MAX_CHANNELS], const exr_attr_chlist_t **cl)
+{
+    if (exr_get_channels(pi->ctxt, pi->part, cl) != EXR_ERR_SUCCESS || !*cl ||
+        exr_get_data_window(pi->ctxt, pi->part, &pi->dw) != EXR_ERR_SUCCESS ||
+        exr_get_compression(pi->ctxt, pi->part, &pi->comp) != EXR_ERR_SUCCESS)
+        return sh_error(SH_EFORMAT, "%s: header lacks channels, dataWindow or compression", name);
+    pi->nch = (*cl)->num_channels;
+    if (pi->nch < 1 || pi->nch > lim->max_channels)
+        return sh_error(SH_EFORMAT, "%s: %d channels (1 to %d are read)", name, pi->nch,
+                        lim->max_channels);
+    img->nchan = pick_channels(*cl, src, img->names);
+    if (img->nchan == 0) return no_channel_error(name, *cl);
+    for (int k = 0; k < img->nchan; k++) {
+        const exr_attr_chlist_entry_t *e = &(*cl)->entries[src[k]];
+        if (e->x_sampling != 1 || e->y_sampling != 1)
+            return sh_error(SH_ENOTSUP, "%s: channel %s is sub-sampled (%d×%d)", name, e->name.str,
+                            e->x_sampling, e->y_sampling);
+    }
+    pi->w = (int64_t)pi->dw.max.x - pi->dw.min.x + 1;
+    pi->h = (int64_t)pi->dw.max.y - pi->dw.min.y + 1;
+    if (pi->w < 1 || pi->h < 1 || pi->w > INT32_MAX / 4 || pi->h > INT32_MAX / 4 ||
+        pi->w * pi->h > lim->max_pixels)
+        return sh_error(SH_EFORMAT, "%s: data window %lld×%lld (at most %lld pixels are read)", name,
+                        (long long)pi->w, (long long)pi->h, lim->max_pixels);
+    return SH_OK;
+}
+
+/* The chunk table's shape: chunks of level 0 (scanline blocks or tiles)
+ * and the largest chunk, and the table's size against the data's. */
+static int read_chunk_layout(part_info *pi, const char *name, size_t size)
+{
+    int32_t count = 0;
+    if (exr_get_chunk_count(pi->ctxt, pi->part, &count) != EXR_ERR_SUCCESS || count < 1)
+        return sh_error(SH_EFORMAT, "%s: bad chunk count", name);
+    if (pi->storage == EXR_STORAGE_SCANLINE) {
+        int32_t spc = 0;
+        if (exr_get_scanlines_per_chunk(pi->ctxt, pi->part, &spc) != EXR_ERR_SUCCESS || spc < 1)
+            return sh_error(SH_EFORMAT, "%s: bad scanlines per chunk", name);
+        pi->spc = spc;
+        pi->nchunks = (pi->h + spc - 1) / spc;
+        pi->max_chunk_px = pi->w * (pi->h < spc ? pi->h : spc);
+    } else {
+        uint32_t tw = 0, th = 0;
+        exr_tile_level_mode_t lm;
+        exr_tile_round_mode_t rm;
+        if (exr_get_tile_descriptor(pi->ctxt, pi->part, &tw, &th, &lm, &rm) != EXR_ERR_SUCCESS ||
+            tw < 1 || th < 1)
+            return sh_error(SH_EFORMAT, "%s: bad tile description", name);
+        pi->tw = tw;
+        pi->th = th;
+        pi->ntx = (pi->w + pi->tw - 1) / pi->tw;
+        pi->nty = (pi->h + pi->th - 1) / pi->th;
+        pi->nchunks = pi->ntx * pi->nty;
+        pi->max_chunk_px = (pi->w < pi->tw ? pi->w : pi->tw) * (pi->h < pi->th ? pi->h : pi->th);
+    }
+    /* each chunk: an 8-byte offset, a header of at least 8 bytes, and data */
+    const int64_t min_bytes = 17 * (int64_t)(count > pi->nchunks ? count : pi->nchunks);
+    if (pi->nchunks > count || (uint64_t)min_bytes > size)
+        return sh_error(SH_EFORMAT,
+                        "%s: the header describes %lld×%lld pixels in %lld chunks (the table lists "
+                        "%d), which needs at least %lld bytes; the data has %zu", name,
+                        (long long)pi->w, (long long)pi->h, (long long)pi->nchunks, count,
+                        (long long)min_bytes, size);
+    return SH_OK;
+}
+
+/* The image, if the image, the scratch of one chunk (every channel as
+ * float) and OpenEXRCore's packed, unpacked and scratch buffers of one
+ * chunk (max_unpacked bytes each) fit in m's budget; the image is then
+ * taken from it. */
+static int alloc_image(const part_info *pi, const char *name, int64_t max_unpacked, mem_src *m,
+                       sh_image *img)
+{
+    const double img_bytes = (double)pi->w * (double)pi->h * img->nchan * sizeof(float);
+    const double scratch_bytes = (double)pi->max_chunk_px * pi->nch * sizeof(float);
+    const double need = img_bytes + scratch_bytes + 3.0 * (double)max_unpacked;
+    if (need > (double)m->budget_left) {
+        char a[32], b[32];
+        return sh_error(SH_ENOMEM, "%s: reading %lld×%lld pixels needs %s, more than the %s allowed",
+                        name, (long long)pi->w, (long long)pi->h, human(a, need),
+                        human(b, (double)(m->budget_left > 0 ? m->budget_left : 0)));
+    }
+    img->width = (int)pi->w;
+    img->height = (int)pi->h;
+    img->data = calloc((size_t)pi->w * (size_t)pi->h * (size_t)img->nchan, sizeof(float));
+    if (!img->data) {
+        char a[32];
+        return sh_error(SH_ENOMEM, "%s: cannot allocate %s for %d×%d×%d floats", name,
+                        human(a, img_bytes), img->width, img->height, img->nchan);
+    }
+    m->budget_left -= (long long)img_bytes;
+    return SH_OK;
+}
+
+/* Whether the C++ library decodes: what OpenEXRCore 3.1.5 cannot (DWA) or
+ * decodes wrongly (B44 with non-half channels, sub-sampled channels), and
+ * everything with force_cxx. */
+static int use_cxx_decoder(const part_info *pi, const exr_attr_chlist_t *cl, int force_cxx)
+{
+    int use_cxx = force_cxx || pi->comp == EXR_COMPRESSION_DWAA || pi->comp == EXR_COMPRESSION_DWAB;
+    for (int c = 0; c < pi->nch; c++) {
+        const exr_attr_chlist_entry_t *e = &cl->entries[c];
+        if (e->x_sampling != 1 || e->y_sampling != 1) use_cxx = 1;
+        if ((pi->comp == EXR_COMPRESSION_B44 || pi->comp == EXR_COMPRESSION_B44A) &&
+            e->pixel_type != EXR_PIXEL_HALF)
+            use_cxx = 1;
+    }
+    return use_cxx;
+}
+
+/* The pixels into img: by OpenEXRCore through a chunk's scratch (*scratch,
+ * the caller frees it), unless use_cxx or OpenEXRCore finds the
+ * compression not implemented; then by the C++ library (*used_fallback). */
+static int decode_pixels(const part_info *pi, const char *name, const int *src, int use_cxx, mem_src *m,
+                         float **scratch, sh_image *img, int *used_fallback)
+{
+    if (!use_cxx) {
+        const double scratch_bytes = (double)pi->max_chunk_px * pi->nch * sizeof(float);
+        *scratch = malloc((size_t)pi->max_chunk_px * (size_t)pi->nch * sizeof(float));
+        if (!*scratch) return sh_error(SH_ENOMEM, "%s: out of memory", name);
+        m->budget_left -= (long long)scratch_bytes;
+        int st = SH_OK;
+        const exr_result_t rv = decode_core(pi, src, *scratch, img, name, &st);
+        if (rv != EXR_ERR_FEATURE_NOT_IMPLEMENTED) return st;
+        /* a compression OpenEXRCore cannot decode: the C++ library */
+    }
+    const int st = sh__exr_read_cxx(m->data, m->size, name, pi->part, pi->dw.min.x, pi->dw.min.y, img);
+    if (st == SH_OK && used_fallback) *used_fallback = 1;
+    return st;
+}
+
 /* The reader behind sh_exr_read_mem and sh_exr_read_rgba (force_cxx: decode
- * with the C++ library whatever the compression). */
+ * with the C++ library whatever the compression): the header and the chunk
+ * table checked against the data and the limits before the image is
+ * allocated and the pixels decoded. */
 static int read_mem(const void *data, size_t size, const char *name, const sh_exr_limits *lim,
                     int force_cxx, sh_image *img, int *used_fallback)
 {
@@ -388,174 +571,28 @@ static int read_mem(const void *data, size_t size, const char *name, const sh_ex
         return sh_error(SH_EFORMAT, "%s: not an OpenEXR file (%s)", name,
                         size < 8 ? "too short" : "no OpenEXR magic number");
 
-    const long long budget_saved = budget_left;
-    budget_left = lim->max_bytes;
-    mem_src src_mem = {data, size};
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = core_error_handler;
-    init.alloc_fn = budget_alloc;
-    init.free_fn = budget_free;
-    init.user_data = &src_mem;
-    init.read_fn = mem_read;
-    init.size_fn = mem_size;
-    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    mem_src m = {data, size, lim->max_bytes};
+    mem_src *const outer = budget_read;
+    budget_read = &m;
     part_info pi;
     memset(&pi, 0, sizeof pi);
     pi.part = -1;
-    core_msg[0] = '\0';
-    int st = SH_OK;
     float *scratch = NULL;
     int src[SH_IMAGE_MAX_CHANNELS];
     const exr_attr_chlist_t *cl = NULL;
-    exr_result_t rv = exr_start_read(&pi.ctxt, name, &init);
-    if (rv != EXR_ERR_SUCCESS) {
-        st = sh_error(read_status(rv), "%s: not a readable OpenEXR file (%s)", name, core_reason(rv));
-        goto done;
-    }
-
-    int nparts = 0;
-    exr_get_count(pi.ctxt, &nparts);
-    for (int p = 0; p < nparts; p++) {
-        exr_storage_t s;
-        if (exr_get_storage(pi.ctxt, p, &s) == EXR_ERR_SUCCESS &&
-            (s == EXR_STORAGE_SCANLINE || s == EXR_STORAGE_TILED)) {
-            pi.part = p;
-            pi.storage = s;
-            break;
-        }
-    }
-    if (pi.part < 0) {
-        st = sh_error(SH_ENOTSUP, "%s: no flat (non-deep) image part", name);
-        goto done;
-    }
-    if (exr_get_channels(pi.ctxt, pi.part, &cl) != EXR_ERR_SUCCESS || !cl ||
-        exr_get_data_window(pi.ctxt, pi.part, &pi.dw) != EXR_ERR_SUCCESS ||
-        exr_get_compression(pi.ctxt, pi.part, &pi.comp) != EXR_ERR_SUCCESS) {
-        st = sh_error(SH_EFORMAT, "%s: header lacks channels, dataWindow or compression", name);
-        goto done;
-    }
-    pi.nch = cl->num_channels;
-    if (pi.nch < 1 || pi.nch > lim->max_channels) {
-        st = sh_error(SH_EFORMAT, "%s: %d channels (1 to %d are read)", name, pi.nch,
-                      lim->max_channels);
-        goto done;
-    }
-    img->nchan = pick_channels(cl, src, img->names);
-    if (img->nchan == 0) {
-        st = no_channel_error(name, cl);
-        goto done;
-    }
-    for (int k = 0; k < img->nchan; k++) {
-        const exr_attr_chlist_entry_t *e = &cl->entries[src[k]];
-        if (e->x_sampling != 1 || e->y_sampling != 1) {
-            st = sh_error(SH_ENOTSUP, "%s: channel %s is sub-sampled (%d×%d)", name, e->name.str,
-                          e->x_sampling, e->y_sampling);
-            goto done;
-        }
-    }
-    pi.w = (int64_t)pi.dw.max.x - pi.dw.min.x + 1;
-    pi.h = (int64_t)pi.dw.max.y - pi.dw.min.y + 1;
-    if (pi.w < 1 || pi.h < 1 || pi.w > INT32_MAX / 4 || pi.h > INT32_MAX / 4 ||
-        pi.w * pi.h > lim->max_pixels) {
-        st = sh_error(SH_EFORMAT, "%s: data window %lld×%lld (at most %lld pixels are read)", name,
-                      (long long)pi.w, (long long)pi.h, lim->max_pixels);
-        goto done;
-    }
-
-    /* the chunk table: its size against the data, then every level-0 chunk */
-    int32_t count = 0;
-    if (exr_get_chunk_count(pi.ctxt, pi.part, &count) != EXR_ERR_SUCCESS || count < 1) {
-        st = sh_error(SH_EFORMAT, "%s: bad chunk count", name);
-        goto done;
-    }
-    if (pi.storage == EXR_STORAGE_SCANLINE) {
-        int32_t spc = 0;
-        if (exr_get_scanlines_per_chunk(pi.ctxt, pi.part, &spc) != EXR_ERR_SUCCESS || spc < 1) {
-            st = sh_error(SH_EFORMAT, "%s: bad scanlines per chunk", name);
-            goto done;
-        }
-        pi.spc = spc;
-        pi.nchunks = (pi.h + spc - 1) / spc;
-        pi.max_chunk_px = pi.w * (pi.h < spc ? pi.h : spc);
-    } else {
-        uint32_t tw = 0, th = 0;
-        exr_tile_level_mode_t lm;
-        exr_tile_round_mode_t rm;
-        if (exr_get_tile_descriptor(pi.ctxt, pi.part, &tw, &th, &lm, &rm) != EXR_ERR_SUCCESS ||
-            tw < 1 || th < 1) {
-            st = sh_error(SH_EFORMAT, "%s: bad tile description", name);
-            goto done;
-        }
-        pi.tw = tw;
-        pi.th = th;
-        pi.ntx = (pi.w + pi.tw - 1) / pi.tw;
-        pi.nty = (pi.h + pi.th - 1) / pi.th;
-        pi.nchunks = pi.ntx * pi.nty;
-        pi.max_chunk_px = (pi.w < pi.tw ? pi.w : pi.tw) * (pi.h < pi.th ? pi.h : pi.th);
-    }
-    /* each chunk: an 8-byte offset, a header of at least 8 bytes, and data */
-    const int64_t min_bytes = 17 * (int64_t)(count > pi.nchunks ? count : pi.nchunks);
-    if (pi.nchunks > count || (uint64_t)min_bytes > size) {
-        st = sh_error(SH_EFORMAT,
-                      "%s: the header describes %lld×%lld pixels in %lld chunks (the table lists "
-                      "%d), which needs at least %lld bytes; the data has %zu", name,
-                      (long long)pi.w, (long long)pi.h, (long long)pi.nchunks, count,
-                      (long long)min_bytes, size);
-        goto done;
-    }
     int64_t raw_total = 0, max_unpacked = 0;
-    if ((st = check_chunks(&pi, name, data, size, lim, &raw_total, &max_unpacked))) goto done;
+    int st = start_read(&m, name, &pi);
+    if (!st) st = find_flat_part(&pi, name);
+    if (!st) st = read_header(&pi, name, lim, img, src, &cl);
+    if (!st) st = read_chunk_layout(&pi, name, size);
+    if (!st) st = check_chunks(&pi, name, data, size, lim, &raw_total, &max_unpacked);
+    if (!st) st = alloc_image(&pi, name, max_unpacked, &m, img);
+    if (!st) st = decode_pixels(&pi, name, src, use_cxx_decoder(&pi, cl, force_cxx), &m, &scratch, img,
+                                used_fallback);
 
-    /* memory: the image, the scratch of one chunk (every channel as float),
-     * and OpenEXRCore's packed, unpacked and scratch buffers of one chunk */
-    /* the C++ library decodes what OpenEXRCore 3.1.5 cannot (DWA) or decodes
-     * wrongly (B44 with non-half channels, sub-sampled channels) */
-    int use_cxx = force_cxx || pi.comp == EXR_COMPRESSION_DWAA || pi.comp == EXR_COMPRESSION_DWAB;
-    for (int c = 0; c < pi.nch; c++) {
-        const exr_attr_chlist_entry_t *e = &cl->entries[c];
-        if (e->x_sampling != 1 || e->y_sampling != 1) use_cxx = 1;
-        if ((pi.comp == EXR_COMPRESSION_B44 || pi.comp == EXR_COMPRESSION_B44A) &&
-            e->pixel_type != EXR_PIXEL_HALF)
-            use_cxx = 1;
-    }
-    const double img_bytes = (double)pi.w * (double)pi.h * img->nchan * sizeof(float);
-    const double scratch_bytes = (double)pi.max_chunk_px * pi.nch * sizeof(float);
-    const double need = img_bytes + scratch_bytes + 3.0 * (double)max_unpacked;
-    if (need > (double)budget_left) {
-        char a[32], b[32];
-        st = sh_error(SH_ENOMEM, "%s: reading %lld×%lld pixels needs %s, more than the %s allowed",
-                      name, (long long)pi.w, (long long)pi.h, human(a, need),
-                      human(b, (double)(budget_left > 0 ? budget_left : 0)));
-        goto done;
-    }
-    img->width = (int)pi.w;
-    img->height = (int)pi.h;
-    img->data = calloc((size_t)pi.w * (size_t)pi.h * (size_t)img->nchan, sizeof(float));
-    if (!img->data) {
-        char a[32];
-        st = sh_error(SH_ENOMEM, "%s: cannot allocate %s for %d×%d×%d floats", name,
-                      human(a, img_bytes), img->width, img->height, img->nchan);
-        goto done;
-    }
-    budget_left -= (long long)img_bytes;
-    if (!use_cxx) {
-        scratch = malloc((size_t)pi.max_chunk_px * (size_t)pi.nch * sizeof(float));
-        if (!scratch) {
-            st = sh_error(SH_ENOMEM, "%s: out of memory", name);
-            goto done;
-        }
-        budget_left -= (long long)scratch_bytes;
-        rv = decode_core(&pi, src, scratch, img, name, &st);
-        if (rv != EXR_ERR_FEATURE_NOT_IMPLEMENTED) goto done;
-        st = SH_OK; /* a compression OpenEXRCore cannot decode: the C++ library */
-    }
-    st = sh__exr_read_cxx(data, size, name, pi.part, pi.dw.min.x, pi.dw.min.y, img);
-    if (st == SH_OK && used_fallback) *used_fallback = 1;
-
-done:
     free(scratch);
     if (pi.ctxt) exr_finish(&pi.ctxt);
-    budget_left = budget_saved;
+    budget_read = outer;
     if (st != SH_OK) {
         sh_image_free(img);
         memset(img, 0, sizeof *img);

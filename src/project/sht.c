@@ -263,10 +263,9 @@ void sh_sht_destroy(sh_sht *p)
     free(p);
 }
 
-int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht **out)
+/* The arguments of sh_sht_create, checked (order, grid, channels). */
+static int sht_check_args(int order, const sh_grid *g, int nchan)
 {
-    if (!out) return sh_error(SH_EINVAL, "sh_sht_create: output is NULL");
-    *out = NULL;
     int st = sh_check_order(order);
     if (st) return st;
     if (!g || !g->cos_theta || g->nrings < 1 || g->nphi < 1)
@@ -284,21 +283,14 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
         if (g->weight && !isfinite(g->weight[r]))
             return sh_error(SH_EINVAL, "sh_sht_create: weight of ring %d is not finite", r);
     }
-    const size_t need = sh_sht_bytes(order, g, nchan, nthreads);
-    sh_sht *p = calloc(1, sizeof *p);
-    if (!p) return sh_error(SH_ENOMEM, "out of memory (transform plan)");
-    const int L = order - 1, N = g->nphi, T = nthreads_eff(nthreads);
-    p->order = order;
-    p->lmax = L;
-    p->nrings = g->nrings;
-    p->nphi = N;
-    p->nchan = nchan;
-    p->nthreads = T;
-    p->phi0 = g->phi0;
-    p->npairs = count_pairs(g);
-    p->chunk = chunk_pairs(L, nchan, p->npairs);
-    p->nchunks = (p->npairs + p->chunk - 1) / p->chunk;
-    p->chunk_alloc = p->chunk;
+    return SH_OK;
+}
+
+/* Every array of the plan (p's sizes set; pm polar m): 0, or 1 if an
+ * allocation failed (sh_sht_destroy frees what was allocated). */
+static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
+{
+    const int L = p->lmax, N = p->nphi, T = p->nthreads, nchan = p->nchan;
     const size_t nl_all = (size_t)(L + 1) * (L + 2) / 2;
     p->pn = malloc(sizeof(int) * p->npairs);
     p->ps = malloc(sizeof(int) * p->npairs);
@@ -308,7 +300,6 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->rc = malloc(sizeof(double) * 2 * nl_all);
     p->moff = malloc(sizeof(size_t) * (L + 1));
     p->fm = malloc(sizeof(double) * (L + 1));
-    const int pm = polar_m(L);
     p->pal = pm ? malloc(sizeof(double) * polar_len(L, pm)) : NULL;
     p->poff = pm ? malloc(sizeof(size_t) * pm) : NULL;
     p->cph = malloc(sizeof(double) * (L + 1));
@@ -337,12 +328,13 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
         p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)(L + 1) * 2);
         bad = !p->ring[t] || !p->fbuf[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->gsp[t];
     }
-    if (bad) {
-        sh_sht_destroy(p);
-        return sh_error(SH_ENOMEM, "out of memory: the transform (order %d, %d × %d grid, %d channels, "
-                                   "%d threads) needs %.3g MB", order, g->nrings, N, nchan, T, need / 1e6);
-    }
-    /* ring pairs: k and nrings−1−k when their cosθ are exact negatives */
+    return bad;
+}
+
+/* ring pairs: k and nrings−1−k when their cosθ are exact negatives; the
+ * pairs' cosθ and sinθ, and the ring weights */
+static void sht_pair_rings(sh_sht *p, const sh_grid *g)
+{
     int q = 0;
     for (int k = 0, j = g->nrings - 1; k <= j; k++, j--) {
         if (k < j && g->cos_theta[k] == -g->cos_theta[j]) {
@@ -358,9 +350,15 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
         p->psin[q] = sqrt((1.0 - x) * (1.0 + x));
     }
     if (p->w) memcpy(p->w, g->weight, sizeof(double) * g->nrings);
-    /* recursion tables (sht_kern.c), in long double: a_l = sqrt((4l²−1)/(l²−m²)),
-     * c_l = a_l·sqrt(((l−1)²−m²)/(4(l−1)²−1)), g_0 = g_1 = 1, g_i = c_{m+i} g_{i−2},
-     * α_i = a_{m+i} g_{i−1} / g_i, for i = l − m */
+}
+
+/* recursion tables (sht_kern.c), in long double: a_l = sqrt((4l²−1)/(l²−m²)),
+ * c_l = a_l·sqrt(((l−1)²−m²)/(4(l−1)²−1)), g_0 = g_1 = 1, g_i = c_{m+i} g_{i−2},
+ * α_i = a_{m+i} g_{i−1} / g_i, for i = l − m; the polar path's α_i − 2 for
+ * m < pm; the normalisation f_m and the phase cos, sin mφ0 */
+static void sht_recursion_tables(sh_sht *p, int pm)
+{
+    const int L = p->lmax;
     size_t off = 0, poff = 0;
     p->pol = (sht_polar){pm, cos(SHT_POLAR_THETA), p->pal, p->poff};
     for (int m = 0; m <= L; m++) {
@@ -389,6 +387,37 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
         p->cph[m] = cos(m * p->phi0);
         p->sph[m] = sin(m * p->phi0);
     }
+}
+
+int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht **out)
+{
+    if (!out) return sh_error(SH_EINVAL, "sh_sht_create: output is NULL");
+    *out = NULL;
+    int st = sht_check_args(order, g, nchan);
+    if (st) return st;
+    const size_t need = sh_sht_bytes(order, g, nchan, nthreads);
+    sh_sht *p = calloc(1, sizeof *p);
+    if (!p) return sh_error(SH_ENOMEM, "out of memory (transform plan)");
+    const int L = order - 1, N = g->nphi, T = nthreads_eff(nthreads);
+    p->order = order;
+    p->lmax = L;
+    p->nrings = g->nrings;
+    p->nphi = N;
+    p->nchan = nchan;
+    p->nthreads = T;
+    p->phi0 = g->phi0;
+    p->npairs = count_pairs(g);
+    p->chunk = chunk_pairs(L, nchan, p->npairs);
+    p->nchunks = (p->npairs + p->chunk - 1) / p->chunk;
+    p->chunk_alloc = p->chunk;
+    const int pm = polar_m(L);
+    if (sht_alloc(p, g, pm)) {
+        sh_sht_destroy(p);
+        return sh_error(SH_ENOMEM, "out of memory: the transform (order %d, %d × %d grid, %d channels, "
+                                   "%d threads) needs %.3g MB", order, g->nrings, N, nchan, T, need / 1e6);
+    }
+    sht_pair_rings(p, g);
+    sht_recursion_tables(p, pm);
     pthread_mutex_lock(&fftw_lock);
     p->r2c = fftw_plan_dft_r2c_1d(N, p->ring[0], p->spec[0], FFTW_ESTIMATE);
     p->c2r = fftw_plan_dft_c2r_1d(N, p->spec[0], p->ring[0], FFTW_ESTIMATE);

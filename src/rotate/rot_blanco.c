@@ -145,8 +145,98 @@ static uint64_t SH_R(blanco_block)(int l, const sh_real *g, int L, int W, const 
     return 6u * (uint64_t)l + 12u * (uint64_t)l * l;
 }
 
+#define IX(a, b) ((size_t)((a) + L) * W + (size_t)((b) + L))
+
+/* Band l ≥ 2, region |m'| ≤ m ≤ l−2, from bands l−1 (dm1) and l−2 (dm2) by
+ * eq. 64 (ia, bb: the band's tables; c2 = cos²(β/2), s2 = sin²(β/2)).
+ * Returns the multiplications. */
+static inline uint64_t SH_R(blanco_interior)(int l, int L, int W, const sh_real *ia, const sh_real *bb,
+                                             sh_real c2, sh_real s2, int lower, const sh_real *dm1,
+                                             const sh_real *dm2, sh_real *cur)
+{
+    uint64_t count = 0;
+    /* eq. 64, |m'| ≤ m ≤ l−2:
+     *   d^l_{m'm} = l(2l−1)/√((l²−m²)(l²−m'²)) · [ (cosβ − m m'/(l(l−1))) d^{l−1}_{m'm}
+     *              − √(((l−1)²−m²)((l−1)²−m'²))/((l−1)(2l−1)) · d^{l−2}_{m'm} ] */
+    const sh_real k1 = (sh_real)l * (2 * l - 1), k3 = (sh_real)1 / ((sh_real)(l - 1) * (2 * l - 1));
+    const sh_real kg = (sh_real)1 / ((sh_real)l * (l - 1));
+    /* cosβ as 1 − 2sin²(β/2) or 2cos²(β/2) − 1: cosβ itself rounds to ±1
+     * within 1e-8 of 0 or π, and the recurrence then amplifies the
+     * mismatch with the edge columns (which carry the exact β) — measured
+     * at β = π − 1e-9: error 99 at l = 200 with cosβ, ~1e-12 with this */
+    const sh_real tws2 = 2 * s2, tcs2 = 2 * c2;
+    for (int mp = -(l - 2); mp <= l - 2; mp++) {
+        const sh_real A = k1 * ia[mp + l], B = k3 * bb[mp + l], G = (sh_real)mp * kg;
+        const int m0 = mp < 0 ? -mp : mp;
+        for (int m = m0; m <= l - 2; m++) {
+            const sh_real fac1 = A * ia[m + l], fac3 = B * bb[m + l];
+            const sh_real fac2 = lower ? (1 - (sh_real)m * G) - tws2 : tcs2 - (1 + (sh_real)m * G);
+            cur[IX(mp, m)] = fac1 * (fac2 * dm1[IX(mp, m)] - fac3 * dm2[IX(mp, m)]);
+        }
+        count += 3 + 6u * (uint64_t)(l - 1 - m0);
+    }
+    return count;
+}
+
+/* The edge columns m = l (eqs. 65, 67) and m = l−1 (eqs. 66, 68 via (E2))
+ * of band l for β ≤ π/2: from the corner d_{ll} down in m' (t = tan(β/2),
+ * rr: the band's edge ratios).  Returns the multiplications. */
+static inline uint64_t SH_R(blanco_edges_lower)(int l, int L, int W, const sh_real *rr, sh_real t,
+                                                sh_real cb, sh_real c2, const sh_real *dm1, sh_real *cur)
+{
+    uint64_t count = 0;
+    /* eq. 65: d_{ll} = cos²(β/2) d^{l−1}_{l−1,l−1}; eq. 66 corner f_{l−1} = d^{l−1}_{l−1,l−1} */
+    sh_real e = c2 * dm1[IX(l - 1, l - 1)], f = dm1[IX(l - 1, l - 1)];
+    cur[IX(l, l)] = e;
+    cur[IX(l - 1, l)] = e = rr[l + l] * t * e;
+    cur[IX(l - 1, l - 1)] = ((sh_real)l * cb - (sh_real)(l - 1)) * f;
+    count += 1 + 2 + 2;
+    /* eq. 67: d_{m'−1,l} = r(m') tan(β/2) d_{m',l}; the same ratio for f */
+    for (int mp = l - 1; mp > -l; mp--) {
+        const sh_real q = rr[mp + l] * t;
+        e = q * e;
+        cur[IX(mp - 1, l)] = e;
+        if (mp - 1 >= -(l - 1)) {
+            f = q * f;
+            cur[IX(mp - 1, l - 1)] = ((sh_real)l * cb - (sh_real)(mp - 1)) * f;
+            count += 2;
+        }
+        count += 2;
+    }
+    return count;
+}
+
+/* The same edge columns for β > π/2, from the other corner upward
+ * (t = cot(β/2)). */
+static inline uint64_t SH_R(blanco_edges_upper)(int l, int L, int W, const sh_real *rr, sh_real t,
+                                                sh_real cb, sh_real s2, const sh_real *dm1, sh_real *cur)
+{
+    uint64_t count = 0;
+    /* the other corner: d_{−l,l} = sin²(β/2) d^{l−1}_{−(l−1),l−1} and
+     * f_{−(l−1)} = d^{l−1}_{−(l−1),l−1}; upward: d_{m'+1} = d_{m'} cot(β/2) / r(m'+1) */
+    sh_real e = s2 * dm1[IX(-(l - 1), l - 1)], f = dm1[IX(-(l - 1), l - 1)];
+    cur[IX(-l, l)] = e;
+    cur[IX(-(l - 1), l - 1)] = ((sh_real)l * cb + (sh_real)(l - 1)) * f;
+    count += 1 + 2;
+    for (int mp = -l; mp < l; mp++) {
+        const sh_real q = t / rr[mp + 1 + l];
+        e = q * e;
+        cur[IX(mp + 1, l)] = e;
+        if (mp + 1 <= l - 1 && mp + 1 > -(l - 1)) {
+            f = q * f;
+            cur[IX(mp + 1, l - 1)] = ((sh_real)l * cb - (sh_real)(mp + 1)) * f;
+            count += 2;
+        }
+        count += 2;
+    }
+    return count;
+}
+
 /* The blocks from cos β, sin β, c = cos(β/2), s = sin(β/2), lower = (β ≤ π/2)
- * and the multiple angles of α, γ already in work (csa, csg; blanco_work). */
+ * and the multiple angles of α, γ already in work (csa, csg; blanco_work):
+ * bands 0 and 1 directly, then band l from bands l−1 and l−2, its region
+ * m ≥ |m'| by eq. 64 and its edge columns by eqs. 65–68, each turned into
+ * its real block. */
 static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c, sh_real s,
                                     int lower, const void *tables, sh_real *blocks, void *work,
                                     uint64_t *mults)
@@ -156,7 +246,6 @@ static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c
     sh_real *g0 = work, *g1 = g0 + (size_t)W * W, *g2 = g1 + (size_t)W * W;
     sh_real *d = g2 + (size_t)W * W, *csa = d + (size_t)W * W, *csg = csa + 2 * (size_t)(L + 1);
     uint64_t count = 0;
-#define IX(a, b) ((size_t)((a) + L) * W + (size_t)((b) + L))
     const sh_real c2 = c * c, s2 = s * s;
     const sh_real t = lower ? s / c : c / s;  /* tan(β/2) or cot(β/2), ≤ 1 */
     count += 2;
@@ -178,65 +267,9 @@ static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c
         sh__rot_band_done(l, order); /* bands 0..l−1 done */
         const int w = 2 * l + 1;
         const sh_real *ia = tab + 3 * (size_t)l * l, *bb = ia + w, *rr = bb + w;
-        /* eq. 64, |m'| ≤ m ≤ l−2:
-         *   d^l_{m'm} = l(2l−1)/√((l²−m²)(l²−m'²)) · [ (cosβ − m m'/(l(l−1))) d^{l−1}_{m'm}
-         *              − √(((l−1)²−m²)((l−1)²−m'²))/((l−1)(2l−1)) · d^{l−2}_{m'm} ] */
-        const sh_real k1 = (sh_real)l * (2 * l - 1), k3 = (sh_real)1 / ((sh_real)(l - 1) * (2 * l - 1));
-        const sh_real kg = (sh_real)1 / ((sh_real)l * (l - 1));
-        /* cosβ as 1 − 2sin²(β/2) or 2cos²(β/2) − 1: cosβ itself rounds to ±1
-         * within 1e-8 of 0 or π, and the recurrence then amplifies the
-         * mismatch with the edge columns (which carry the exact β) — measured
-         * at β = π − 1e-9: error 99 at l = 200 with cosβ, ~1e-12 with this */
-        const sh_real tws2 = 2 * s2, tcs2 = 2 * c2;
-        for (int mp = -(l - 2); mp <= l - 2; mp++) {
-            const sh_real A = k1 * ia[mp + l], B = k3 * bb[mp + l], G = (sh_real)mp * kg;
-            const int m0 = mp < 0 ? -mp : mp;
-            for (int m = m0; m <= l - 2; m++) {
-                const sh_real fac1 = A * ia[m + l], fac3 = B * bb[m + l];
-                const sh_real fac2 = lower ? (1 - (sh_real)m * G) - tws2 : tcs2 - (1 + (sh_real)m * G);
-                cur[IX(mp, m)] = fac1 * (fac2 * dm1[IX(mp, m)] - fac3 * dm2[IX(mp, m)]);
-            }
-            count += 3 + 6u * (uint64_t)(l - 1 - m0);
-        }
-        /* edge columns m = l (eqs. 65, 67) and m = l−1 (eqs. 66, 68 via (E2)) */
-        if (lower) {
-            /* eq. 65: d_{ll} = cos²(β/2) d^{l−1}_{l−1,l−1}; eq. 66 corner f_{l−1} = d^{l−1}_{l−1,l−1} */
-            sh_real e = c2 * dm1[IX(l - 1, l - 1)], f = dm1[IX(l - 1, l - 1)];
-            cur[IX(l, l)] = e;
-            cur[IX(l - 1, l)] = e = rr[l + l] * t * e;
-            cur[IX(l - 1, l - 1)] = ((sh_real)l * cb - (sh_real)(l - 1)) * f;
-            count += 1 + 2 + 2;
-            /* eq. 67: d_{m'−1,l} = r(m') tan(β/2) d_{m',l}; the same ratio for f */
-            for (int mp = l - 1; mp > -l; mp--) {
-                const sh_real q = rr[mp + l] * t;
-                e = q * e;
-                cur[IX(mp - 1, l)] = e;
-                if (mp - 1 >= -(l - 1)) {
-                    f = q * f;
-                    cur[IX(mp - 1, l - 1)] = ((sh_real)l * cb - (sh_real)(mp - 1)) * f;
-                    count += 2;
-                }
-                count += 2;
-            }
-        } else {
-            /* the other corner: d_{−l,l} = sin²(β/2) d^{l−1}_{−(l−1),l−1} and
-             * f_{−(l−1)} = d^{l−1}_{−(l−1),l−1}; upward: d_{m'+1} = d_{m'} cot(β/2) / r(m'+1) */
-            sh_real e = s2 * dm1[IX(-(l - 1), l - 1)], f = dm1[IX(-(l - 1), l - 1)];
-            cur[IX(-l, l)] = e;
-            cur[IX(-(l - 1), l - 1)] = ((sh_real)l * cb + (sh_real)(l - 1)) * f;
-            count += 1 + 2;
-            for (int mp = -l; mp < l; mp++) {
-                const sh_real q = t / rr[mp + 1 + l];
-                e = q * e;
-                cur[IX(mp + 1, l)] = e;
-                if (mp + 1 <= l - 1 && mp + 1 > -(l - 1)) {
-                    f = q * f;
-                    cur[IX(mp + 1, l - 1)] = ((sh_real)l * cb - (sh_real)(mp + 1)) * f;
-                    count += 2;
-                }
-                count += 2;
-            }
-        }
+        count += SH_R(blanco_interior)(l, L, W, ia, bb, c2, s2, lower, dm1, dm2, cur);
+        if (lower) count += SH_R(blanco_edges_lower)(l, L, W, rr, t, cb, c2, dm1, cur);
+        else count += SH_R(blanco_edges_upper)(l, L, W, rr, t, cb, s2, dm1, cur);
         count += SH_R(blanco_block)(l, cur, L, W, csa, csg, blocks + sh_rot_block_offset(l), d);
         sh_real *tmp = dm2;
         dm2 = dm1;
@@ -244,11 +277,11 @@ static int SH_R(blanco_blocks_trig)(int order, sh_real cb, sh_real sb, sh_real c
         cur = tmp;
     }
 done:
-#undef IX
     sh__rot_band_done(order, order);
     if (mults) *mults += count;
     return SH_OK;
 }
+#undef IX
 
 /* work layout of blanco_blocks_trig: three regions, d, then csa, csg */
 static sh_real *SH_R(blanco_csa)(int order, void *work)

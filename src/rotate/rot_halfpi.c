@@ -338,23 +338,22 @@ HP_INLINE const sh_real *SH_R(hp_next)(HPGEN *g, int r, int nj, int *na, uint64_
 }
 
 /* ---- the band kernel ------------------------------------------------------ */
-/* Rotate band l of nj vectors: job j has the multiple-angle table cs[j]
- * (csa = cos, sin of mα at cs[j][2m], csb = of mβ at + 2(M+1), csg = of mγ at
- * + 4(M+1); M ≥ l), input in[j] and output out[j] (2l+1 values each; out
- * may equal in).  nocs: the vectors are in the nocs convention (odd m
- * negated on the way in and out).  work: sh__rot_halfpi_work_bytes(≥ l, ≥ nj). */
-HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs, int M,
-                               const sh_real *const *in, sh_real *const *out, void *work,
-                               uint64_t *mults)
+/* The stages of sh__rot_halfpi_band (the letters and numbers of the header
+ * comment), each over every job; inlined (HP_INLINE) so that every clone of
+ * the kernel (HP_CLONES) compiles them for its instruction set.  Job j keeps
+ * its ten vectors of n = l+1 at g->job + 10·n·j (zc, zs, E, O, GE, GO, U, V;
+ * stage B overwrites zc, zs with hE, hO).  Each returns its multiplications. */
+
+/* A: Z(γ), σ, √2 into zc, zs; E and O cleared. */
+HP_INLINE uint64_t SH_R(hp_stage_a)(HPGEN *g, int nocs, int nj, const sh_real *const *cs, int M,
+                                    const sh_real *const *in)
 {
-    HPGEN g;
-    SH_R(hp_layout)(l, nj, work, &g);
+    const int l = g->l;
     const size_t n = (size_t)l + 1;
     const sh_real r2 = SH_SQRT((sh_real)2);
     uint64_t count = 0;
-    /* A: Z(γ), σ, √2 */
     for (int j = 0; j < nj; j++) {
-        sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n;
+        sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n;
         const sh_real *x = in[j] + l, *csg = cs[j] + 4 * (size_t)(M + 1);
         const sh_real fl = nocs ? -1 : 1;
         zc[0] = x[0];
@@ -368,14 +367,22 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
         memset(E, 0, 2 * n * sizeof *E);
         count += 6u * (uint64_t)l;
     }
-    /* generation with stage 3 (rows l..0) */
-    SH_R(hp_init)(&g);
+    return count;
+}
+
+/* 3: the wedge generated (rows l..0), each row's dot products into E, O. */
+HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj)
+{
+    const int l = g->l;
+    const size_t n = (size_t)l + 1;
+    uint64_t count = 0;
+    SH_R(hp_init)(g);
     for (int r = l; r >= 0; r--) {
         int na;
-        const sh_real *row = SH_R(hp_next)(&g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
         const int off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
-            sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
+            sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
             const sh_real *z = ((l - r) & 1) ? zs : zc;
             const sh_real *zev = (l & 1) ? zs : zc, *zod = (l & 1) ? zc : zs;
             sh_real se, so;
@@ -391,10 +398,18 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
             count += 2u * (uint64_t)off + 1;
         }
     }
-    /* B: t_k, e^{−ikβ}, and the stage-5 coefficients h (hE for even m', hO
-     * for odd m', w_k included) and G = (−1)^k h */
+    return count;
+}
+
+/* B: t_k, e^{−ikβ}, and the stage-5 coefficients h (hE for even m', hO
+ * for odd m', w_k included) and G = (−1)^k h; U and V cleared. */
+HP_INLINE uint64_t SH_R(hp_stage_b)(HPGEN *g, int nj, const sh_real *const *cs, int M)
+{
+    const int l = g->l;
+    const size_t n = (size_t)l + 1;
+    uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        sh_real *zc = g.job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
+        sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
         sh_real *hE = zc, *hO = zs, *GE = O + n, *GO = GE + n, *U = GO + n; /* V = U + n */
         const sh_real *csb = cs[j] + 2 * (size_t)(M + 1);
         for (int k = 0; k <= l; k++) {
@@ -410,14 +425,22 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
         memset(U, 0, 2 * n * sizeof *U);
         count += 6u * (uint64_t)(l + 1);
     }
-    /* stage 5: the wedge generated again (rows l..0) */
-    SH_R(hp_init)(&g);
+    return count;
+}
+
+/* 5: the wedge generated again (rows l..0), each row's sums into U, V. */
+HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj)
+{
+    const int l = g->l;
+    const size_t n = (size_t)l + 1;
+    uint64_t count = 0;
+    SH_R(hp_init)(g);
     for (int r = l; r >= 0; r--) {
         int na;
-        const sh_real *row = SH_R(hp_next)(&g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
         const int same = !((l - r) & 1), off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
-            sh_real *hE = g.job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
+            sh_real *hE = g->job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
             sh_real *U = GO + n, *V = U + n;
             sh_real se, so;
             /* (k, m') = (r, c): U/V_c += Δ_{rc} h_r; (k, m') = (c, r), c < r:
@@ -430,9 +453,19 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
             count += 2u * (uint64_t)off + 1;
         }
     }
-    /* D: a'' = 2 i^{m'} (R + iI), b = e^{−im'α} a'', out */
+    return count;
+}
+
+/* D: a'' = 2 i^{m'} (R + iI), b = e^{−im'α} a'', out. */
+HP_INLINE uint64_t SH_R(hp_stage_d)(HPGEN *g, int nocs, int nj, const sh_real *const *cs,
+                                    sh_real *const *out)
+{
+    const int l = g->l;
+    const size_t n = (size_t)l + 1;
+    const sh_real r2 = SH_SQRT((sh_real)2);
+    uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        const sh_real *U = g.job + 10 * n * j + 6 * n, *V = U + n;
+        const sh_real *U = g->job + 10 * n * j + 6 * n, *V = U + n;
         const sh_real *csa = cs[j];
         sh_real *y = out[j] + l;
         const sh_real fl = nocs ? -1 : 1, t2 = 2 * r2;
@@ -448,6 +481,26 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
         }
         count += 6u * (uint64_t)l;
     }
+    return count;
+}
+
+/* Rotate band l of nj vectors: job j has the multiple-angle table cs[j]
+ * (csa = cos, sin of mα at cs[j][2m], csb = of mβ at + 2(M+1), csg = of mγ at
+ * + 4(M+1); M ≥ l), input in[j] and output out[j] (2l+1 values each; out
+ * may equal in).  nocs: the vectors are in the nocs convention (odd m
+ * negated on the way in and out).  work: sh__rot_halfpi_work_bytes(≥ l, ≥ nj). */
+HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real *const *cs, int M,
+                               const sh_real *const *in, sh_real *const *out, void *work,
+                               uint64_t *mults)
+{
+    HPGEN g;
+    SH_R(hp_layout)(l, nj, work, &g);
+    uint64_t count = 0;
+    count += SH_R(hp_stage_a)(&g, nocs, nj, cs, M, in); /* Z(γ), σ, √2 */
+    count += SH_R(hp_stage3)(&g, nj);                    /* × Δ (the wedge's first generation) */
+    count += SH_R(hp_stage_b)(&g, nj, cs, M);            /* e^{−ikβ} */
+    count += SH_R(hp_stage5)(&g, nj);                    /* × Δ (the second generation) */
+    count += SH_R(hp_stage_d)(&g, nocs, nj, cs, out);    /* e^{−im'α}, out */
     if (mults) *mults += count;
 }
 

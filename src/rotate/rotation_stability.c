@@ -137,27 +137,41 @@ double sh_rot_block_orthogonality(const double *B, int w, int exact)
     return worst;
 }
 
-int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
-                     const int *bands, int nbands, int ref_max, int exact_max, double stop_above,
-                     sh_rot_stability_cb cb, void *ctx)
+/* Where the blocks of a band come from: the n rotations of the set and the
+ * n products ab[k] = set[k]·set[(k+3) mod n], by 2n iterators, or for a
+ * method that computes each band alone (single) by sh_rot_band. */
+typedef struct {
+    sh_rot_method method;
+    sh_precision prec;
+    sh_convention conv;
+    int n;
+    const sh_rotation *set, *ab;
+    sh_rot_bands **it; /* 2n: the set, then the products */
+    int single;
+} stab_blocks;
+
+/* The set (without β ≠ 0 for the z method) and its products. */
+static int stab_rotations(sh_rot_method method, sh_rotation set[SH_ROT_STABILITY_NSET],
+                          sh_rotation ab[SH_ROT_STABILITY_NSET], int *n)
 {
-    sh_rotation all[SH_ROT_STABILITY_NSET], set[SH_ROT_STABILITY_NSET], ab[SH_ROT_STABILITY_NSET];
+    sh_rotation all[SH_ROT_STABILITY_NSET];
     int st = sh_rot_stability_set(all, NULL);
     if (st) return st;
-    int n = 0;
+    *n = 0;
     for (int k = 0; k < SH_ROT_STABILITY_NSET; k++)
-        if (method != SH_ROT_Z || all[k].beta == 0) set[n++] = all[k];
-    for (int k = 0; k < n; k++) sh_rotation_compose(&set[k], &set[(k + 3) % n], &ab[k]);
-    if (lmax < 0) return sh_error(SH_EINVAL, "stability: lmax %d < 0", lmax);
-    if (!bands) nbands = lmax + 1;
-    for (int q = 0; bands && q < nbands; q++)
-        if (bands[q] < 0 || bands[q] > lmax || (q && bands[q] <= bands[q - 1]))
-            return sh_error(SH_EINVAL, "stability: bands must increase within 0..%d", lmax);
+        if (method != SH_ROT_Z || all[k].beta == 0) set[(*n)++] = all[k];
+    for (int k = 0; k < *n; k++) sh_rotation_compose(&set[k], &set[(k + 3) % *n], &ab[k]);
+    return SH_OK;
+}
 
-    /* bands above exact_max and ref_max of a method that applies a band to
-     * vectors (halfpi, in double) need no block: row_matrix_free */
+/* The largest band that needs blocks: lmax, except for a method that
+ * applies a band to vectors (halfpi, in double), whose bands above
+ * exact_max and ref_max need none (row_matrix_free). */
+static int stab_block_lmax(sh_rot_method method, sh_precision prec, int lmax, const int *bands,
+                           int nbands, int ref_max, int exact_max)
+{
     const int mfree = method == SH_ROT_HALFPI && prec == SH_PREC_DOUBLE;
-    int lblk = lmax; /* the largest band that needs blocks */
+    int lblk = lmax;
     if (mfree) {
         lblk = 0;
         for (int q = 0; q < nbands; q++) {
@@ -165,83 +179,123 @@ int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv
             if (l <= exact_max || l <= ref_max) lblk = l;
         }
     }
+    return lblk;
+}
+
+/* The 2n iterators up to band lblk.  A method that computes each band
+ * alone gets each block from sh_rot_band instead (one workspace at a time:
+ * 2n of them, each sized for lmax, would be 20 GB at band 4000 for
+ * blanco); the others keep their iterators (streams, stored plans). */
+static int stab_blocks_open(stab_blocks *b, int lblk)
+{
+    int st = SH_OK;
+    for (int k = 0; k < 2 * b->n && !st; k++)
+        st = sh_rot_bands_create(b->method, b->prec, b->conv, lblk, k < b->n ? &b->set[k] : &b->ab[k - b->n],
+                                 &b->it[k]);
+    b->single = !st && sh__rot_bands_single(b->it[0]);
+    for (int k = 0; b->single && k < 2 * b->n; k++) {
+        sh_rot_bands_free(b->it[k]);
+        b->it[k] = NULL;
+    }
+    return st;
+}
+
+/* Block l of rotation k (k < n: set[k], else ab[k − n]). */
+static int stab_block(const stab_blocks *b, int k, int l, double *out)
+{
+    return b->single ? sh_rot_band(l, b->method, b->prec, b->conv, k < b->n ? &b->set[k] : &b->ab[k - b->n], out)
+                     : sh_rot_bands_get(b->it[k], l, out);
+}
+
+/* A row from the blocks of band l: the n blocks of the set (blk, stride
+ * W² each) and, one at a time after them, each product's block; orth
+ * (exact or probed), hom over two probes from rng, ref against the MPFR
+ * reference (ref: W_ref² doubles), broken if a block is not finite.
+ * v: 4·W doubles. */
+static int row_from_blocks(const stab_blocks *b, int l, size_t W, double *blk, double *ref, double *v,
+                           gsl_rng *rng, sh_rot_stability_row *row)
+{
+    const int n = b->n, w = 2 * l + 1;
+    int st = SH_OK;
+    for (int k = 0; k < n && !st; k++) st = stab_block(b, k, l, blk + (size_t)k * W * W);
+    if (st) return st;
+    double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
+    for (int k = 0; k < n; k++) {
+        const double *A = blk + (size_t)k * W * W;
+        const double *B = blk + (size_t)((k + 3) % n) * W * W;
+        double *C = blk + (size_t)n * W * W;
+        if ((st = stab_block(b, n + k, l, C))) break;
+        for (int i = 0; i < w * w && !row->broken; i++)
+            if (!isfinite(C[i])) row->broken = 1;
+        row->orth = fmax(row->orth, sh_rot_block_orthogonality(A, w, row->orth_exact));
+        /* hom: A(B x) − C x over two unit probes */
+        for (int probe = 0; probe < 2; probe++) {
+            double nn = 0;
+            for (int i = 0; i < w; i++) { x[i] = gsl_rng_uniform(rng) - 0.5; nn += x[i] * x[i]; }
+            nn = sqrt(nn);
+            for (int i = 0; i < w; i++) x[i] /= nn;
+            matvec(w, B, x, y, 0);
+            matvec(w, A, y, z, 0);
+            matvec(w, C, x, u, 0);
+            for (int i = 0; i < w; i++) row->hom = fmax(row->hom, fabs(z[i] - u[i]));
+        }
+        if (row->have_ref) {
+            if ((st = sh_rot_reference_band(l, b->conv, &b->set[k], 32, ref, NULL))) break;
+            for (int i = 0; i < w * w; i++) row->ref = fmax(row->ref, fabs(A[i] - ref[i]));
+        }
+    }
+    if (st) return st;
+    /* fmax drops NaN, so look at the blocks themselves */
+    for (size_t i = 0; i < (size_t)n * W * W && !row->broken; i += 1)
+        if ((i % (W * W)) < (size_t)w * w && !isfinite(blk[i])) row->broken = 1;
+    return SH_OK;
+}
+
+int sh_rot_stability(sh_rot_method method, sh_precision prec, sh_convention conv, int lmax,
+                     const int *bands, int nbands, int ref_max, int exact_max, double stop_above,
+                     sh_rot_stability_cb cb, void *ctx)
+{
+    sh_rotation set[SH_ROT_STABILITY_NSET], ab[SH_ROT_STABILITY_NSET];
+    int n = 0;
+    int st = stab_rotations(method, set, ab, &n);
+    if (st) return st;
+    if (lmax < 0) return sh_error(SH_EINVAL, "stability: lmax %d < 0", lmax);
+    if (!bands) nbands = lmax + 1;
+    for (int q = 0; bands && q < nbands; q++)
+        if (bands[q] < 0 || bands[q] > lmax || (q && bands[q] <= bands[q - 1]))
+            return sh_error(SH_EINVAL, "stability: bands must increase within 0..%d", lmax);
+
+    const int lblk = stab_block_lmax(method, prec, lmax, bands, nbands, ref_max, exact_max);
     /* the n blocks of the set and one block of a product (n + 1 blocks of
      * W² doubles: 5.6 GB at band 4000) */
     const size_t W = 2 * (size_t)lblk + 1, WV = 2 * (size_t)lmax + 1;
-    sh_rot_bands **it = calloc(2 * (size_t)n, sizeof *it);
+    stab_blocks b = {.method = method, .prec = prec, .conv = conv, .n = n, .set = set, .ab = ab};
+    b.it = calloc(2 * (size_t)n, sizeof *b.it);
     double *blk = malloc(((size_t)n + 1) * W * W * sizeof *blk);
     const size_t WR = 2 * (size_t)(ref_max < 0 ? 0 : ref_max < lmax ? ref_max : lmax) + 1; /* bands with ref */
     double *ref = malloc(WR * WR * sizeof *ref), *v = malloc(8 * WV * sizeof *v);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (!it || !blk || !ref || !v || !rng) {
+    if (!b.it || !blk || !ref || !v || !rng) {
         st = sh_error(SH_ENOMEM, "stability: out of memory (lmax %d)", lmax);
         goto done;
     }
-    for (int k = 0; k < 2 * n && !st; k++)
-        st = sh_rot_bands_create(method, prec, conv, lblk, k < n ? &set[k] : &ab[k - n], &it[k]);
-    /* a method that computes each band alone gets each block from
-     * sh_rot_band (one workspace at a time: 2n of them, each sized for lmax,
-     * would be 20 GB at band 4000 for blanco); the others keep their
-     * iterators (streams, stored plans) */
-    const int single = !st && sh__rot_bands_single(it[0]);
-    for (int k = 0; single && k < 2 * n; k++) {
-        sh_rot_bands_free(it[k]);
-        it[k] = NULL;
-    }
-#define GET_BLOCK(k, l, out)                                                                   \
-    (single ? sh_rot_band((l), method, prec, conv, (k) < n ? &set[k] : &ab[(k) - n], (out))   \
-            : sh_rot_bands_get(it[k], (l), (out)))
-    for (int q = 0; q < nbands && !st; q++) {
+    if ((st = stab_blocks_open(&b, lblk))) goto done;
+    for (int q = 0; q < nbands; q++) {
         const int l = bands ? bands[q] : q;
-        const int w = 2 * l + 1;
         sh_rot_stability_row row = {.band = l, .orth_exact = l <= exact_max, .have_ref = l <= ref_max};
         /* the probes are seeded by the band, so a band's row is the same
          * whichever other bands are computed (--bands, shards) */
         gsl_rng_set(rng, 7 + (unsigned long)l);
-        if (l > lblk) {
-            if ((st = row_matrix_free(l, conv, n, set, ab, rng, v, &row))) break;
-            if (cb && (st = cb(&row, ctx))) break;
-            if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
-            continue;
-        }
-        for (int k = 0; k < n && !st; k++) st = GET_BLOCK(k, l, blk + (size_t)k * W * W);
+        if (l > lblk) st = row_matrix_free(l, conv, n, set, ab, rng, v, &row);
+        else st = row_from_blocks(&b, l, W, blk, ref, v, rng, &row);
         if (st) break;
-        double *x = v, *y = v + W, *z = v + 2 * W, *u = v + 3 * W;
-        for (int k = 0; k < n; k++) {
-            const double *A = blk + (size_t)k * W * W;
-            const double *B = blk + (size_t)((k + 3) % n) * W * W;
-            double *C = blk + (size_t)n * W * W;
-            if ((st = GET_BLOCK(n + k, l, C))) break;
-            for (int i = 0; i < w * w && !row.broken; i++)
-                if (!isfinite(C[i])) row.broken = 1;
-            row.orth = fmax(row.orth, sh_rot_block_orthogonality(A, w, row.orth_exact));
-            for (int probe = 0; probe < 2; probe++) {
-                double nn = 0;
-                for (int i = 0; i < w; i++) { x[i] = gsl_rng_uniform(rng) - 0.5; nn += x[i] * x[i]; }
-                nn = sqrt(nn);
-                for (int i = 0; i < w; i++) x[i] /= nn;
-                matvec(w, B, x, y, 0);
-                matvec(w, A, y, z, 0);
-                matvec(w, C, x, u, 0);
-                for (int i = 0; i < w; i++) row.hom = fmax(row.hom, fabs(z[i] - u[i]));
-            }
-            if (row.have_ref) {
-                if ((st = sh_rot_reference_band(l, conv, &set[k], 32, ref, NULL))) break;
-                for (int i = 0; i < w * w; i++) row.ref = fmax(row.ref, fabs(A[i] - ref[i]));
-            }
-        }
-        if (st) break;
-        /* fmax drops NaN, so look at the blocks themselves */
-        for (size_t i = 0; i < (size_t)n * W * W && !row.broken; i += 1)
-            if ((i % (W * W)) < (size_t)w * w && !isfinite(blk[i])) row.broken = 1;
         if (cb && (st = cb(&row, ctx))) break;
         if (row.broken || (stop_above > 0 && row.orth > stop_above)) break;
     }
-#undef GET_BLOCK
 done:
-    if (it)
-        for (int k = 0; k < 2 * n; k++) sh_rot_bands_free(it[k]);
-    free(it);
+    if (b.it)
+        for (int k = 0; k < 2 * n; k++) sh_rot_bands_free(b.it[k]);
+    free(b.it);
     free(blk);
     free(ref);
     free(v);

@@ -469,6 +469,119 @@ static int setup_brdf(sh_cache *c)
     return st;
 }
 
+/* [2] R(v) at every vertex (harm_pass), clamped to [rmin, rmax]; the
+ * clamped fractions and the rays cast into c->info. */
+static int harmonic_radii(sh_cache *c, const sh_cache_opts *o, int threads, double rmin, double rmax)
+{
+    const int nv = c->nv;
+    hctx hc = {.s = c->s, .harm = c->harm, .eps = o->ray_eps, .seed = o->seed};
+    atomic_init(&hc.rays, 0);
+    int st = sh__parallel_for(threads, nv, 64, harm_pass, &hc, o->progress, o->progress_ctx, "harmonic mean distances");
+    long long lo = 0, hi = 0;
+    for (int v = 0; v < nv && !st; v++) {
+        if (c->harm[v] < rmin) { c->harm[v] = rmin; lo++; }
+        else if (c->harm[v] > rmax) { c->harm[v] = rmax; hi++; }
+    }
+    c->info.harm_clamped_lo = (double)lo / nv;
+    c->info.harm_clamped_hi = (double)hi / nv;
+    c->info.rays = atomic_load(&hc.rays);
+    return st;
+}
+
+/* [2] lazy placement: vertices in a seeded random order (Fisher-Yates);
+ * one no record covers (1/w < a) becomes a record.  perm: nv ints. */
+static void place_records(sh_cache *c, const sh_cache_opts *o, double a, int *perm)
+{
+    const sh_mesh *m = &c->s->mesh;
+    const int nv = c->nv;
+    for (int v = 0; v < nv; v++) perm[v] = v;
+    uint64_t x = vertex_stream(o->seed, -1, 0x4444);
+    for (int k = nv - 1; k > 0; k--) {
+        const int j = (int)(sh__uniform(&x) * (k + 1));
+        const int t = perm[k];
+        perm[k] = perm[j];
+        perm[j] = t;
+    }
+    for (int k = 0; k < nv; k++) {
+        const int v = perm[k];
+        int covered = 0;
+        for (int r = c->nrec - 1; r >= 0 && !covered; r--) covered = inv_weight(m, c->harm, v, c->rec_vertex[r]) < a;
+        if (!covered) c->rec_vertex[c->nrec++] = v;
+    }
+}
+
+/* the records each vertex uses (1/w < a): two passes (count, fill), each
+ * use with its 1/w, the rotation from the record's frame into the
+ * vertex's and that rotation's β.  *total: the uses. */
+static int record_uses(sh_cache *c, double a, long long *total)
+{
+    const sh_mesh *m = &c->s->mesh;
+    const int nv = c->nv;
+    int st = SH_OK;
+    for (int v = 0; v < nv && !st; v++) {
+        c->nb_start[v] = (int)*total;
+        for (int r = 0; r < c->nrec; r++) *total += inv_weight(m, c->harm, v, c->rec_vertex[r]) < a;
+        if (*total > INT32_MAX / 16) st = sh_error(SH_ENOMEM, "radiance cache: too many record uses (a = %g too large)", a);
+    }
+    if (st) return st;
+    const long long n = *total;
+    c->nb_start[nv] = (int)n;
+    c->nb_rec = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    c->nb_iw = malloc(sizeof(double) * (size_t)(n ? n : 1));
+    c->nb_R = malloc(sizeof(double) * 9 * (size_t)(n ? n : 1));
+    c->nb_beta = malloc(sizeof(double) * (size_t)(n ? n : 1));
+    if (!c->nb_rec || !c->nb_iw || !c->nb_R || !c->nb_beta) return sh_error(SH_ENOMEM, "out of memory");
+    for (int v = 0; v < nv; v++) {
+        int k = c->nb_start[v];
+        const double *Mv = c->frames + 9 * (size_t)v;
+        for (int r = 0; r < c->nrec; r++) {
+            const int i = c->rec_vertex[r];
+            const double iw = inv_weight(m, c->harm, v, i);
+            if (!(iw < a)) continue;
+            c->nb_rec[k] = r;
+            c->nb_iw[k] = iw;
+            /* the rotation from the record's frame into v's: M_vᵀ M_i */
+            const double *Mi = c->frames + 9 * (size_t)i;
+            double *R = c->nb_R + 9 * (size_t)k;
+            for (int p = 0; p < 3; p++)
+                for (int q = 0; q < 3; q++)
+                    R[3 * p + q] = Mv[p] * Mi[q] + Mv[3 + p] * Mi[3 + q] + Mv[6 + p] * Mi[6 + q];
+            c->nb_beta[k] = acos(fmax(-1.0, fmin(1.0, R[8])));
+            k++;
+        }
+    }
+    return SH_OK;
+}
+
+/* mean, max and percentiles of the uses' rotation angles β into c->info */
+static int beta_statistics(sh_cache *c, long long total)
+{
+    double *b = malloc(sizeof(double) * (size_t)total);
+    if (!b) return sh_error(SH_ENOMEM, "out of memory");
+    memcpy(b, c->nb_beta, sizeof(double) * (size_t)total);
+    qsort(b, (size_t)total, sizeof(double), cmp_double);
+    double sum = 0;
+    for (long long k = 0; k < total; k++) sum += b[k];
+    c->info.beta_mean = sum / total;
+    c->info.beta_max = b[total - 1];
+    c->info.beta_p50 = b[(size_t)(0.50 * (total - 1))];
+    c->info.beta_p90 = b[(size_t)(0.90 * (total - 1))];
+    c->info.beta_p99 = b[(size_t)(0.99 * (total - 1))];
+    free(b);
+    return SH_OK;
+}
+
+/* the records themselves: the incident radiance (R, G, B) at each */
+static int compute_records(sh_cache *c, const sh_env *env, const sh_cache_opts *o)
+{
+    if (!(c->L = malloc(sizeof(double) * 3 * (size_t)c->nrec * c->n2))) return sh_error(SH_ENOMEM, "out of memory");
+    sh_transfer_stats rs;
+    const int st = sh_incident_radiance(c->s, env, o, c->rec_vertex, c->nrec, c->L, &rs);
+    c->info.seconds_records = rs.seconds;
+    c->info.rays += rs.rays;
+    return st;
+}
+
 int sh_cache_create(const sh_scene *s, const sh_env *env, const sh_cache_opts *o, sh_cache **out)
 {
     if (!out) return sh_error(SH_EINVAL, "sh_cache_create: no output");
@@ -500,100 +613,18 @@ int sh_cache_create(const sh_scene *s, const sh_env *env, const sh_cache_opts *o
         return sh_error(SH_ENOMEM, "out of memory");
     }
     for (int v = 0; v < nv; v++) sh__tangent_frame(m->normal + 3 * v, c->frames + 9 * (size_t)v);
-    /* R at every vertex */
     const double t0 = sh__now();
-    hctx hc = {.s = s, .harm = c->harm, .eps = o->ray_eps, .seed = o->seed};
-    atomic_init(&hc.rays, 0);
-    st = sh__parallel_for(threads, nv, 64, harm_pass, &hc, o->progress, o->progress_ctx, "harmonic mean distances");
-    long long lo = 0, hi = 0;
-    for (int v = 0; v < nv && !st; v++) {
-        if (c->harm[v] < rmin) { c->harm[v] = rmin; lo++; }
-        else if (c->harm[v] > rmax) { c->harm[v] = rmax; hi++; }
-    }
-    c->info.harm_clamped_lo = (double)lo / nv;
-    c->info.harm_clamped_hi = (double)hi / nv;
-    c->info.rays = atomic_load(&hc.rays);
-    /* [2] lazy placement: vertices in a seeded random order (Fisher-Yates);
-     * one no record covers becomes a record */
-    if (!st) {
-        for (int v = 0; v < nv; v++) perm[v] = v;
-        uint64_t x = vertex_stream(o->seed, -1, 0x4444);
-        for (int k = nv - 1; k > 0; k--) {
-            const int j = (int)(sh__uniform(&x) * (k + 1));
-            const int t = perm[k];
-            perm[k] = perm[j];
-            perm[j] = t;
-        }
-        for (int k = 0; k < nv; k++) {
-            const int v = perm[k];
-            int covered = 0;
-            for (int r = c->nrec - 1; r >= 0 && !covered; r--) covered = inv_weight(m, c->harm, v, c->rec_vertex[r]) < a;
-            if (!covered) c->rec_vertex[c->nrec++] = v;
-        }
-    }
+    st = harmonic_radii(c, o, threads, rmin, rmax);
+    if (!st) place_records(c, o, a, perm);
     free(perm);
-    /* the records each vertex uses: two passes (count, fill) */
     long long total = 0;
-    for (int v = 0; v < nv && !st; v++) {
-        c->nb_start[v] = (int)total;
-        for (int r = 0; r < c->nrec; r++) total += inv_weight(m, c->harm, v, c->rec_vertex[r]) < a;
-        if (total > INT32_MAX / 16) st = sh_error(SH_ENOMEM, "radiance cache: too many record uses (a = %g too large)", a);
-    }
-    if (!st) {
-        c->nb_start[nv] = (int)total;
-        c->nb_rec = malloc(sizeof(int) * (size_t)(total ? total : 1));
-        c->nb_iw = malloc(sizeof(double) * (size_t)(total ? total : 1));
-        c->nb_R = malloc(sizeof(double) * 9 * (size_t)(total ? total : 1));
-        c->nb_beta = malloc(sizeof(double) * (size_t)(total ? total : 1));
-        if (!c->nb_rec || !c->nb_iw || !c->nb_R || !c->nb_beta) st = sh_error(SH_ENOMEM, "out of memory");
-    }
-    for (int v = 0; v < nv && !st; v++) {
-        int k = c->nb_start[v];
-        const double *Mv = c->frames + 9 * (size_t)v;
-        for (int r = 0; r < c->nrec; r++) {
-            const int i = c->rec_vertex[r];
-            const double iw = inv_weight(m, c->harm, v, i);
-            if (!(iw < a)) continue;
-            c->nb_rec[k] = r;
-            c->nb_iw[k] = iw;
-            /* the rotation from the record's frame into v's: M_vᵀ M_i */
-            const double *Mi = c->frames + 9 * (size_t)i;
-            double *R = c->nb_R + 9 * (size_t)k;
-            for (int p = 0; p < 3; p++)
-                for (int q = 0; q < 3; q++)
-                    R[3 * p + q] = Mv[p] * Mi[q] + Mv[3 + p] * Mi[3 + q] + Mv[6 + p] * Mi[6 + q];
-            c->nb_beta[k] = acos(fmax(-1.0, fmin(1.0, R[8])));
-            k++;
-        }
-    }
+    if (!st) st = record_uses(c, a, &total);
     c->info.seconds_placement = sh__now() - t0;
     c->info.records = c->nrec;
     c->info.uses = total;
     c->info.mean_uses = (double)total / nv;
-    if (!st && total > 0) {
-        double *b = malloc(sizeof(double) * (size_t)total);
-        if (!b) st = sh_error(SH_ENOMEM, "out of memory");
-        else {
-            memcpy(b, c->nb_beta, sizeof(double) * (size_t)total);
-            qsort(b, (size_t)total, sizeof(double), cmp_double);
-            double sum = 0;
-            for (long long k = 0; k < total; k++) sum += b[k];
-            c->info.beta_mean = sum / total;
-            c->info.beta_max = b[total - 1];
-            c->info.beta_p50 = b[(size_t)(0.50 * (total - 1))];
-            c->info.beta_p90 = b[(size_t)(0.90 * (total - 1))];
-            c->info.beta_p99 = b[(size_t)(0.99 * (total - 1))];
-            free(b);
-        }
-    }
-    /* the records themselves */
-    if (!st && !(c->L = malloc(sizeof(double) * 3 * (size_t)c->nrec * c->n2))) st = sh_error(SH_ENOMEM, "out of memory");
-    if (!st) {
-        sh_transfer_stats rs;
-        st = sh_incident_radiance(s, env, o, c->rec_vertex, c->nrec, c->L, &rs);
-        c->info.seconds_records = rs.seconds;
-        c->info.rays += rs.rays;
-    }
+    if (!st && total > 0) st = beta_statistics(c, total);
+    if (!st) st = compute_records(c, env, o);
     if (!st) st = setup_brdf(c);
     if (st) {
         sh_cache_free(c);

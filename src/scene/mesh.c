@@ -113,22 +113,17 @@ static void tri_normal(const sh_mesh *m, int t, double c[3])
     cross(e1, e2, c); /* |c| = twice the area */
 }
 
-int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
+/* The arguments, the size limits, and every coordinate, normal and index:
+ * Embree drops primitives with NaN/Inf corners silently, and holds
+ * coordinates in single precision: both are refused here. */
+static int check_elements(const sh_mesh *m, int flags)
 {
-    sh_mesh_report r0;
-    if (!rep) rep = &r0;
-    const int keep_sub = rep->submeshes, keep_skip = rep->skipped_primitives;
-    memset(rep, 0, sizeof *rep);
-    rep->submeshes = keep_sub;
-    rep->skipped_primitives = keep_skip;
     if (!m || m->nvert < 0 || m->ntri < 0 || (m->nvert > 0 && !m->pos) || (m->ntri > 0 && !m->tri))
         return sh_error(SH_EINVAL, "mesh: bad arguments");
     if (m->nvert > SH_MESH_MAX_ELEMS || m->ntri > SH_MESH_MAX_ELEMS)
         return sh_error(SH_EFORMAT, "mesh: %d vertices and %d triangles exceed the limit %d", m->nvert,
                         m->ntri, SH_MESH_MAX_ELEMS);
     if (m->ntri == 0 || m->nvert == 0) return sh_error(SH_EFORMAT, "mesh: no triangles");
-    /* Embree drops primitives with NaN/Inf corners silently, and holds
-     * coordinates in single precision: refuse both here */
     for (int v = 0; v < m->nvert; v++)
         for (int k = 0; k < 3; k++) {
             if (!isfinite(m->pos[3 * v + k]))
@@ -143,15 +138,25 @@ int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
         if (m->tri[i] < 0 || m->tri[i] >= m->nvert)
             return sh_error(SH_EFORMAT, "mesh: triangle %lld refers to vertex %d of %d", i / 3, m->tri[i],
                             m->nvert);
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    return SH_OK;
+}
+
+static void bounding_box(const sh_mesh *m, double lo[3], double hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
     for (int v = 0; v < m->nvert; v++)
         for (int k = 0; k < 3; k++) {
             lo[k] = fmin(lo[k], m->pos[3 * v + k]);
             hi[k] = fmax(hi[k], m->pos[3 * v + k]);
         }
-    const double diag2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                         (hi[2] - lo[2]) * (hi[2] - lo[2]);
-    /* degenerate triangles: a repeated corner or area ≤ 1e-14·diag² */
+}
+
+/* degenerate triangles: a repeated corner or area ≤ 1e-14·diag², removed */
+static int drop_degenerate(sh_mesh *m, double diag2, sh_mesh_report *rep)
+{
     int nt = 0;
     for (int t = 0; t < m->ntri; t++) {
         const int *c = m->tri + 3 * t;
@@ -167,7 +172,13 @@ int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
     }
     m->ntri = nt;
     if (nt == 0) return sh_error(SH_EFORMAT, "mesh: every triangle is degenerate (%d removed)", rep->degenerate_removed);
-    /* unused vertices */
+    return SH_OK;
+}
+
+/* unused vertices, removed (the triangles renumbered) */
+static int drop_unused(sh_mesh *m, sh_mesh_report *rep)
+{
+    const int nt = m->ntri;
     int *map = malloc(sizeof(int) * (size_t)m->nvert);
     if (!map) return sh_error(SH_ENOMEM, "out of memory");
     for (int v = 0; v < m->nvert; v++) map[v] = -1;
@@ -183,50 +194,51 @@ int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
     for (int i = 0; i < 3 * nt; i++) m->tri[i] = map[m->tri[i]];
     m->nvert = nv;
     free(map);
-    for (int k = 0; k < 3; k++) {
-        lo[k] = INFINITY;
-        hi[k] = -INFINITY;
+    return SH_OK;
+}
+
+/* normals: area-weighted face normals summed over welded positions */
+static int compute_normals(sh_mesh *m, const int *weld, sh_mesh_report *rep)
+{
+    const int nv = m->nvert, nt = m->ntri;
+    double *nrm = calloc(3 * (size_t)nv, sizeof(double));
+    if (!nrm) return sh_error(SH_ENOMEM, "out of memory");
+    for (int t = 0; t < nt; t++) {
+        double c[3];
+        tri_normal(m, t, c);
+        for (int j = 0; j < 3; j++) {
+            const int w = weld[m->tri[3 * t + j]];
+            for (int k = 0; k < 3; k++) nrm[3 * w + k] += c[k];
+        }
     }
     for (int v = 0; v < nv; v++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], m->pos[3 * v + k]);
-            hi[k] = fmax(hi[k], m->pos[3 * v + k]);
-        }
-    int *weld = malloc(sizeof(int) * (size_t)nv);
-    long long *edges = malloc(sizeof(long long) * 3 * (size_t)nt);
-    if (!weld || !edges) { free(weld); free(edges); return sh_error(SH_ENOMEM, "out of memory"); }
-    int st = weld_positions(m, weld);
-    if (st) { free(weld); free(edges); return st; }
-    /* normals: area-weighted face normals summed over welded positions */
-    if (!m->normal || (flags & SH_MESH_COMPUTE_NORMALS)) {
-        double *nrm = calloc(3 * (size_t)nv, sizeof(double));
-        if (!nrm) { free(weld); free(edges); return sh_error(SH_ENOMEM, "out of memory"); }
-        for (int t = 0; t < nt; t++) {
-            double c[3];
-            tri_normal(m, t, c);
-            for (int j = 0; j < 3; j++) {
-                const int w = weld[m->tri[3 * t + j]];
-                for (int k = 0; k < 3; k++) nrm[3 * w + k] += c[k];
-            }
-        }
-        for (int v = 0; v < nv; v++)
-            if (weld[v] != v) memcpy(nrm + 3 * v, nrm + 3 * weld[v], 3 * sizeof(double));
-        free(m->normal);
-        m->normal = nrm;
-        rep->normals_computed = 1;
-    }
-    for (int v = 0; v < nv; v++) {
+        if (weld[v] != v) memcpy(nrm + 3 * v, nrm + 3 * weld[v], 3 * sizeof(double));
+    free(m->normal);
+    m->normal = nrm;
+    rep->normals_computed = 1;
+    return SH_OK;
+}
+
+/* every normal to unit length; a zero (or non-finite) one is refused */
+static int unit_normals(sh_mesh *m, const sh_mesh_report *rep)
+{
+    for (int v = 0; v < m->nvert; v++) {
         double *n = m->normal + 3 * v;
         const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(len > 0) || !isfinite(len)) {
-            free(weld);
-            free(edges);
+        if (!(len > 0) || !isfinite(len))
             return sh_error(SH_EFORMAT, "mesh: vertex %d has a zero normal%s", v,
                             rep->normals_computed ? " (its triangles cancel)" : "");
-        }
         for (int k = 0; k < 3; k++) n[k] /= len;
     }
-    /* edges of the welded mesh: key (min, max) of welded indices */
+    return SH_OK;
+}
+
+/* edges of the welded mesh, key (min, max) of welded indices, sorted:
+ * those of one triangle are boundary edges, those of more than two
+ * non-manifold (the first one's vertices kept).  edges: 3·ntri. */
+static void count_edges(const sh_mesh *m, const int *weld, long long *edges, sh_mesh_report *rep)
+{
+    const int nv = m->nvert, nt = m->ntri;
     for (int t = 0; t < nt; t++)
         for (int j = 0; j < 3; j++) {
             long long a = weld[m->tri[3 * t + j]], b = weld[m->tri[3 * t + (j + 1) % 3]];
@@ -247,8 +259,42 @@ int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
         }
         k = j;
     }
+}
+
+/* What needs the welded positions: the normals (computed when missing or
+ * asked for, then made unit) and the edge counts. */
+static int check_welded(sh_mesh *m, int flags, sh_mesh_report *rep)
+{
+    int *weld = malloc(sizeof(int) * (size_t)m->nvert);
+    long long *edges = malloc(sizeof(long long) * 3 * (size_t)m->ntri);
+    if (!weld || !edges) { free(weld); free(edges); return sh_error(SH_ENOMEM, "out of memory"); }
+    int st = weld_positions(m, weld);
+    if (!st && (!m->normal || (flags & SH_MESH_COMPUTE_NORMALS))) st = compute_normals(m, weld, rep);
+    if (!st) st = unit_normals(m, rep);
+    if (!st) count_edges(m, weld, edges, rep);
     free(weld);
     free(edges);
+    return st;
+}
+
+int sh_mesh_check(sh_mesh *m, int flags, sh_mesh_report *rep)
+{
+    sh_mesh_report r0;
+    if (!rep) rep = &r0;
+    const int keep_sub = rep->submeshes, keep_skip = rep->skipped_primitives;
+    memset(rep, 0, sizeof *rep);
+    rep->submeshes = keep_sub;
+    rep->skipped_primitives = keep_skip;
+    int st = check_elements(m, flags);
+    if (st) return st;
+    double lo[3], hi[3];
+    bounding_box(m, lo, hi);
+    const double diag2 = (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                         (hi[2] - lo[2]) * (hi[2] - lo[2]);
+    if ((st = drop_degenerate(m, diag2, rep))) return st;
+    if ((st = drop_unused(m, rep))) return st;
+    bounding_box(m, lo, hi);
+    if ((st = check_welded(m, flags, rep))) return st;
     memcpy(rep->bbox_min, lo, sizeof lo);
     memcpy(rep->bbox_max, hi, sizeof hi);
     if (rep->nonmanifold_edges > 0 && !(flags & SH_MESH_ALLOW_NONMANIFOLD))

@@ -214,112 +214,153 @@ static const char *first_line(char *err, size_t n)
 /* Mark fd close-on-exec (a program another thread starts must not hold the pipes open). */
 static int set_cloexec(int fd) { return fcntl(fd, F_SETFD, FD_CLOEXEC); }
 
-int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
+/* The result pipe and the stderr pipe, close-on-exec. */
+static int open_pipes(int res[2], int err[2])
 {
-    memset(out, 0, sizeof *out);
-    int res[2] = {-1, -1}, err[2] = {-1, -1};
     if (pipe(res) || pipe(err)) {
         const int e = errno;
         if (res[0] >= 0) close(res[0]), close(res[1]);
         return sh_error(SH_EIO, "cannot start the mesh importer: pipe: %s", strerror(e));
     }
     for (int k = 0; k < 2; k++) set_cloexec(res[k]), set_cloexec(err[k]);
+    return SH_OK;
+}
+
+/* Fork the child with every signal blocked (see the top of this file); in
+ * the parent keep the pipes' read ends.  *rss0: the parent's resident
+ * memory at the fork (−1 without a memory budget), *t0: the time. */
+static int start_child(const sh_mesh_job *job, int res[2], int err[2], pid_t *pid, long long *rss0, double *t0)
+{
     const int devnull = open("/dev/null", O_RDWR | O_CLOEXEC);
     sigset_t all, old;
     sigfillset(&all);
     pthread_sigmask(SIG_SETMASK, &all, &old);
     const pid_t parent = getpid();
-    const long long rss0 = job->mem_bytes > 0 ? statm(0, 1) : -1;
-    const double t0 = now_s();
-    const pid_t pid = fork();
-    if (pid == 0) child(job, res[1], err[1], devnull, parent);
+    *rss0 = job->mem_bytes > 0 ? statm(0, 1) : -1;
+    *t0 = now_s();
+    *pid = fork();
+    if (*pid == 0) child(job, res[1], err[1], devnull, parent);
     const int fork_errno = errno;
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     close(res[1]);
     close(err[1]);
     if (devnull >= 0) close(devnull);
-    if (pid < 0) {
+    if (*pid < 0) {
         close(res[0]);
         close(err[0]);
         return sh_error(SH_EIO, "cannot start the mesh importer: fork: %s", strerror(fork_errno));
     }
-    const double deadline = t0 + (job->wall_seconds > 0 ? job->wall_seconds : 1);
-    sh_mesh_frame_reader fr;
-    sh__mesh_frame_begin(&fr, job->max_vertices, job->max_triangles);
-    char errbuf[1024];
-    size_t errlen = 0;
-    int fds[2] = {res[0], err[0]}, bad = 0, over = 0;
+    return SH_OK;
+}
+
+/* What the parent saw of the running child. */
+typedef struct {
+    sh_mesh_frame_reader fr; /* the result pipe's frame */
+    char errbuf[1024];       /* the start of what it wrote to stderr */
+    size_t errlen;
+    int fds[2];              /* result and stderr pipes, −1 once closed */
+    int bad, over;           /* the frame broke a rule; it outgrew its memory */
+} child_watch;
+
+/* Poll both pipes until both are closed, the deadline, a broken frame or
+ * the child's resident memory more than its budget above rss0 (read every
+ * 10 ms). */
+static void watch_child(const sh_mesh_job *job, pid_t pid, long long rss0, double deadline, child_watch *w)
+{
     unsigned char chunk[1 << 16];
-    while ((fds[0] >= 0 || fds[1] >= 0) && !bad && !over) {
+    while ((w->fds[0] >= 0 || w->fds[1] >= 0) && !w->bad && !w->over) {
         const double left = deadline - now_s();
         if (left <= 0) break;
-        struct pollfd pf[2] = {{fds[0], POLLIN, 0}, {fds[1], POLLIN, 0}};
+        struct pollfd pf[2] = {{w->fds[0], POLLIN, 0}, {w->fds[1], POLLIN, 0}};
         const int k = poll(pf, 2, rss0 >= 0 && left > 0.01 ? 10 : (int)ceil(left * 1000));
         if (rss0 >= 0) {
             const long long r = statm(pid, 1);
-            over = r > 0 && r - rss0 > job->mem_bytes;
+            w->over = r > 0 && r - rss0 > job->mem_bytes;
         }
         if (k < 0 && errno == EINTR) continue;
         if (k < 0) break;
         for (int i = 0; i < 2; i++) {
-            if (fds[i] < 0 || !(pf[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-            const ssize_t r = read(fds[i], chunk, sizeof chunk);
+            if (w->fds[i] < 0 || !(pf[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+            const ssize_t r = read(w->fds[i], chunk, sizeof chunk);
             if (r < 0 && (errno == EINTR || errno == EAGAIN)) continue;
             if (r <= 0) {
-                close(fds[i]);
-                fds[i] = -1;
+                close(w->fds[i]);
+                w->fds[i] = -1;
             } else if (i == 0) {
-                bad = sh__mesh_frame_feed(&fr, chunk, (size_t)r) != 0;
+                w->bad = sh__mesh_frame_feed(&w->fr, chunk, (size_t)r) != 0;
             } else {
-                const size_t take = errlen + (size_t)r < sizeof errbuf - 1 ? (size_t)r : sizeof errbuf - 1 - errlen;
-                memcpy(errbuf + errlen, chunk, take);
-                errlen += take;
+                const size_t take = w->errlen + (size_t)r < sizeof w->errbuf - 1 ? (size_t)r
+                                                                                  : sizeof w->errbuf - 1 - w->errlen;
+                memcpy(w->errbuf + w->errlen, chunk, take);
+                w->errlen += take;
             }
         }
     }
-    const int unfinished = fds[0] >= 0 && !bad && !over; /* the deadline came first */
-    if (bad || unfinished || over) kill(pid, SIGKILL);
+}
+
+/* The import's outcome, from what was watched and the child's wait status
+ * (status; −1 if it could not be reaped) and resource use: the first
+ * failure that explains it, else the mesh into out. */
+static int import_result(const sh_mesh_job *job, child_watch *w, int unfinished, int late, int status,
+                         const struct rusage *ru, sh_mesh *out, sh_mesh_report *rep)
+{
+    const double cpu = (double)ru->ru_utime.tv_sec + 1e-6 * (double)ru->ru_utime.tv_usec + (double)ru->ru_stime.tv_sec +
+                       1e-6 * (double)ru->ru_stime.tv_usec;
+    const int complete = !w->bad && !unfinished && !w->over && sh__mesh_frame_complete(&w->fr);
+    const char *line = first_line(w->errbuf, w->errlen);
+    const double cpu_limit = ceil(job->cpu_seconds > 0 ? job->cpu_seconds : 1);
+    const sh_mesh_frame_reader *fr = &w->fr;
+    if (w->over || (status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == CHILD_OVER_MEMORY))
+        return sh_error(SH_EFORMAT, "the importer went over its memory limit of %lld MB (stopped)", job->mem_bytes >> 20);
+    if (unfinished || late)
+        return sh_error(SH_EFORMAT, "the importer did not finish within %g s (stopped)", job->wall_seconds);
+    if (w->bad) return sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr->why);
+    if (status >= 0 && WIFSIGNALED(status)) {
+        const int sig = WTERMSIG(status);
+        if (sig == SIGXCPU || (sig == SIGKILL && cpu >= cpu_limit - 0.05))
+            return sh_error(SH_EFORMAT, "the importer used more than its %g s of CPU time (stopped)", cpu_limit);
+        return sh_error(SH_EFORMAT, "the importer (assimp) was killed by signal %d (%s)%s%s", sig, strsignal(sig),
+                        *line ? ": " : "", line);
+    }
+    if (status < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return sh_error(SH_EFORMAT, "the importer exited with status %d%s%s", status < 0 ? -1 : WEXITSTATUS(status),
+                        *line ? ": " : "", line);
+    if (!complete) return sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr->why);
+    if (fr->hdr.kind == SH_FRAME_ERROR) {
+        const int oom = strstr(fr->msg, "bad_alloc") != NULL;
+        if (oom && job->mem_bytes > 0)
+            return sh_error(fr->hdr.status, "%s (over the importer's memory limit of %lld MB)", fr->msg, job->mem_bytes >> 20);
+        return sh_error(fr->hdr.status, "%s", fr->msg);
+    }
+    *out = w->fr.mesh;
+    memset(&w->fr.mesh, 0, sizeof w->fr.mesh);
+    rep->submeshes = fr->hdr.submeshes;
+    rep->skipped_primitives = fr->hdr.skipped;
+    return SH_OK;
+}
+
+int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
+{
+    memset(out, 0, sizeof *out);
+    int res[2] = {-1, -1}, err[2] = {-1, -1};
+    int st = open_pipes(res, err);
+    if (st) return st;
+    pid_t pid;
+    long long rss0;
+    double t0;
+    if ((st = start_child(job, res, err, &pid, &rss0, &t0))) return st;
+    const double deadline = t0 + (job->wall_seconds > 0 ? job->wall_seconds : 1);
+    child_watch w = {.errlen = 0, .fds = {res[0], err[0]}, .bad = 0, .over = 0};
+    sh__mesh_frame_begin(&w.fr, job->max_vertices, job->max_triangles);
+    watch_child(job, pid, rss0, deadline, &w);
+    const int unfinished = w.fds[0] >= 0 && !w.bad && !w.over; /* the deadline came first */
+    if (w.bad || unfinished || w.over) kill(pid, SIGKILL);
     for (int i = 0; i < 2; i++)
-        if (fds[i] >= 0) close(fds[i]);
+        if (w.fds[i] >= 0) close(w.fds[i]);
     int status;
     struct rusage ru;
     const int late = reap(pid, deadline, &status, &ru);
-    const double cpu = (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
-                       1e-6 * (double)ru.ru_stime.tv_usec;
-    const int complete = !bad && !unfinished && !over && sh__mesh_frame_complete(&fr);
-    const char *line = first_line(errbuf, errlen);
-    const double cpu_limit = ceil(job->cpu_seconds > 0 ? job->cpu_seconds : 1);
-    int st;
-    if (over || (status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == CHILD_OVER_MEMORY)) {
-        st = sh_error(SH_EFORMAT, "the importer went over its memory limit of %lld MB (stopped)", job->mem_bytes >> 20);
-    } else if (unfinished || late) {
-        st = sh_error(SH_EFORMAT, "the importer did not finish within %g s (stopped)", job->wall_seconds);
-    } else if (bad) {
-        st = sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr.why);
-    } else if (status >= 0 && WIFSIGNALED(status)) {
-        const int sig = WTERMSIG(status);
-        if (sig == SIGXCPU || (sig == SIGKILL && cpu >= cpu_limit - 0.05))
-            st = sh_error(SH_EFORMAT, "the importer used more than its %g s of CPU time (stopped)", cpu_limit);
-        else
-            st = sh_error(SH_EFORMAT, "the importer (assimp) was killed by signal %d (%s)%s%s", sig, strsignal(sig),
-                          *line ? ": " : "", line);
-    } else if (status < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        st = sh_error(SH_EFORMAT, "the importer exited with status %d%s%s", status < 0 ? -1 : WEXITSTATUS(status),
-                      *line ? ": " : "", line);
-    } else if (!complete) {
-        st = sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr.why);
-    } else if (fr.hdr.kind == SH_FRAME_ERROR) {
-        const int oom = strstr(fr.msg, "bad_alloc") != NULL;
-        if (oom && job->mem_bytes > 0)
-            st = sh_error(fr.hdr.status, "%s (over the importer's memory limit of %lld MB)", fr.msg, job->mem_bytes >> 20);
-        else st = sh_error(fr.hdr.status, "%s", fr.msg);
-    } else {
-        *out = fr.mesh;
-        memset(&fr.mesh, 0, sizeof fr.mesh);
-        rep->submeshes = fr.hdr.submeshes;
-        rep->skipped_primitives = fr.hdr.skipped;
-        st = SH_OK;
-    }
-    sh__mesh_frame_end(&fr);
+    st = import_result(job, &w, unfinished, late, status, &ru, out, rep);
+    sh__mesh_frame_end(&w.fr);
     return st;
 }

@@ -174,12 +174,9 @@ static double sum_norms(const double *T, int nv, int n2)
     return s;
 }
 
-int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_transfer_stats *stats)
+/* The options sh_transfer reads, checked (o->verts against the mesh). */
+static int check_transfer_opts(const sh_scene *s, const sh_transfer_opts *o)
 {
-    sh_transfer_stats st0;
-    if (!stats) stats = &st0;
-    memset(stats, 0, sizeof *stats);
-    if (!s || !o || !T) return sh_error(SH_EINVAL, "sh_transfer: bad arguments");
     int st = sh_check_order(o->order);
     if (st) return st;
     if (o->kind != SH_TRANSFER_UNSHADOWED && o->kind != SH_TRANSFER_SHADOWED && o->kind != SH_TRANSFER_INTERREFLECTED)
@@ -198,6 +195,74 @@ int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_tran
     if (o->verts && (o->nverts < 0 || o->nverts > m->nvert)) return sh_error(SH_EINVAL, "sh_transfer: bad subset size");
     for (int k = 0; o->verts && k < o->nverts; k++)
         if (o->verts[k] < 0 || o->verts[k] >= m->nvert) return sh_error(SH_EINVAL, "sh_transfer: vertex %d out of range", o->verts[k]);
+    return SH_OK;
+}
+
+/* What the passes share, made: the sq×sq cosine-distributed local
+ * directions (dir) and their basis values (Y), a rotation plan and
+ * scratch per thread, and for interreflection the per-vertex hit lists. */
+static int prepare_rays(tctx *c, int sq, int threads, int nv, double *dir, double *Y)
+{
+    const sh_transfer_opts *o = c->o;
+    const int N = c->N, n2 = c->n2;
+    int st = SH_OK;
+    sh__cosine_samples(sq, o->seed, dir);
+    for (int k = 0; k < N && !st; k++) st = sh_eval_dir(o->order, o->conv, dir + 3 * k, Y + (size_t)k * n2);
+    if (st) return st;
+    c->dir = dir;
+    c->Y = Y;
+    for (int t = 0; t < threads && !st; t++) {
+        if (!(c->acc[t] = malloc(sizeof(double) * 2 * n2))) st = sh_error(SH_ENOMEM, "out of memory");
+        else st = sh_rot_plan_create(o->order, SH_ROT_IVANIC, SH_PREC_DOUBLE, o->conv, &c->plans[t]);
+    }
+    if (st) return st;
+    if (o->kind == SH_TRANSFER_INTERREFLECTED) {
+        c->hits = calloc((size_t)nv, sizeof *c->hits);
+        c->nhits = calloc((size_t)nv, sizeof *c->nhits);
+        if (!c->hits || !c->nhits) return sh_error(SH_ENOMEM, "out of memory");
+    }
+    return SH_OK;
+}
+
+/* [1] interreflected: bounces added to T (the first pass's result) until
+ * one adds at most the tolerance of the total (or the bounce limit). */
+static int interreflect(tctx *c, int nv, int threads, double *T, sh_transfer_stats *stats)
+{
+    const sh_transfer_opts *o = c->o;
+    const int n2 = c->n2;
+    const int maxb = o->max_bounces > 0 ? o->max_bounces : 100;
+    const double tol = o->bounce_tol > 0 ? o->bounce_tol : 1e-6;
+    double *prev = malloc(sizeof(double) * (size_t)nv * n2), *next = malloc(sizeof(double) * (size_t)nv * n2);
+    if (!prev || !next) { free(prev); free(next); return sh_error(SH_ENOMEM, "out of memory"); }
+    int st = SH_OK;
+    memcpy(prev, T, sizeof(double) * (size_t)nv * n2);
+    for (int b = 1; b <= maxb; b++) {
+        c->prev = prev;
+        c->next = next;
+        if ((st = sh__parallel_for(threads, nv, 64, bounce_pass, c, NULL, NULL, NULL))) break;
+        for (size_t i = 0; i < (size_t)nv * n2; i++) T[i] += next[i];
+        const double tot = sum_norms(T, nv, n2), add = sum_norms(next, nv, n2);
+        stats->bounces = b;
+        stats->last_bounce_rel = tot > 0 ? add / tot : 0;
+        if (o->progress) o->progress(o->progress_ctx, b, maxb, "bounces");
+        if (stats->last_bounce_rel <= tol) { stats->converged = 1; break; }
+        double *x = prev; prev = next; next = x;
+    }
+    free(prev);
+    free(next);
+    return st;
+}
+
+int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_transfer_stats *stats)
+{
+    sh_transfer_stats st0;
+    if (!stats) stats = &st0;
+    memset(stats, 0, sizeof *stats);
+    if (!s || !o || !T) return sh_error(SH_EINVAL, "sh_transfer: bad arguments");
+    int st = check_transfer_opts(s, o);
+    if (st) return st;
+    const double rho = o->albedo > 0 ? o->albedo : 1.0;
+    const sh_mesh *m = &s->mesh;
     const int n2 = o->order * o->order, nv = o->verts ? o->nverts : m->nvert;
     const int threads = o->threads > 0 ? o->threads : s->threads;
     stats->threads = threads;
@@ -220,21 +285,8 @@ int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_tran
     c.plans = calloc((size_t)threads, sizeof *c.plans);
     c.acc = calloc((size_t)threads, sizeof *c.acc);
     if (!dir || !Y || !c.plans || !c.acc) { st = sh_error(SH_ENOMEM, "out of memory"); goto done; }
-    sh__cosine_samples(sq, o->seed, dir);
-    for (int k = 0; k < N && !st; k++) st = sh_eval_dir(o->order, o->conv, dir + 3 * k, Y + (size_t)k * n2);
-    if (st) goto done;
-    c.dir = dir;
-    c.Y = Y;
-    for (int t = 0; t < threads && !st; t++) {
-        if (!(c.acc[t] = malloc(sizeof(double) * 2 * n2))) st = sh_error(SH_ENOMEM, "out of memory");
-        else st = sh_rot_plan_create(o->order, SH_ROT_IVANIC, SH_PREC_DOUBLE, o->conv, &c.plans[t]);
-    }
-    if (st) goto done;
-    if (o->kind == SH_TRANSFER_INTERREFLECTED) {
-        c.hits = calloc((size_t)nv, sizeof *c.hits);
-        c.nhits = calloc((size_t)nv, sizeof *c.nhits);
-        if (!c.hits || !c.nhits) { st = sh_error(SH_ENOMEM, "out of memory"); goto done; }
-    }
+    if ((st = prepare_rays(&c, sq, threads, nv, dir, Y))) goto done;
+    /* [1] the direct transfer at every vertex (and the hits for the bounces) */
     double t0 = sh__now();
     st = sh__parallel_for(threads, nv, 16, first_pass, &c, o->progress, o->progress_ctx, "vertices");
     stats->seconds = sh__now() - t0;
@@ -243,27 +295,7 @@ int sh_transfer(const sh_scene *s, const sh_transfer_opts *o, double *T, sh_tran
     stats->backface = atomic_load(&c.backface);
     if (o->kind != SH_TRANSFER_UNSHADOWED) stats->rays = (long long)N * nv;
     stats->rays_per_s = stats->seconds > 0 ? (double)stats->rays / stats->seconds : 0;
-    if (o->kind == SH_TRANSFER_INTERREFLECTED) {
-        const int maxb = o->max_bounces > 0 ? o->max_bounces : 100;
-        const double tol = o->bounce_tol > 0 ? o->bounce_tol : 1e-6;
-        double *prev = malloc(sizeof(double) * (size_t)nv * n2), *next = malloc(sizeof(double) * (size_t)nv * n2);
-        if (!prev || !next) { free(prev); free(next); st = sh_error(SH_ENOMEM, "out of memory"); goto done; }
-        memcpy(prev, T, sizeof(double) * (size_t)nv * n2);
-        for (int b = 1; b <= maxb; b++) {
-            c.prev = prev;
-            c.next = next;
-            if ((st = sh__parallel_for(threads, nv, 64, bounce_pass, &c, NULL, NULL, NULL))) break;
-            for (size_t i = 0; i < (size_t)nv * n2; i++) T[i] += next[i];
-            const double tot = sum_norms(T, nv, n2), add = sum_norms(next, nv, n2);
-            stats->bounces = b;
-            stats->last_bounce_rel = tot > 0 ? add / tot : 0;
-            if (o->progress) o->progress(o->progress_ctx, b, maxb, "bounces");
-            if (stats->last_bounce_rel <= tol) { stats->converged = 1; break; }
-            double *x = prev; prev = next; next = x;
-        }
-        free(prev);
-        free(next);
-    }
+    if (o->kind == SH_TRANSFER_INTERREFLECTED) st = interreflect(&c, nv, threads, T, stats);
     for (size_t i = 0; !st && i < (size_t)nv * n2; i++)
         if (!isfinite(T[i])) st = sh_error(SH_ENUM, "sh_transfer: vertex %zu has a non-finite coefficient", i / n2);
 done:
