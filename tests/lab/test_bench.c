@@ -6,6 +6,8 @@
  * and the order-for-image residuals against Parseval's closed form. */
 #include "testutil.h"
 
+#include "lab/lab.h"
+
 #include <gsl/gsl_linalg.h>
 #include <string.h>
 #include <unistd.h>

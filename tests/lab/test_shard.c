@@ -7,6 +7,8 @@
  * items' worth; parse accepts exactly "I/N" with 0 <= I < N. */
 #include "testutil.h"
 
+#include "lab/lab.h"
+
 START_TEST(test_partition)
 {
     for (int N = 1; N <= 9; N++) {
