@@ -13,6 +13,10 @@
  * scenes and Wuson.ply (`make models`), full sizes (CFG_FULL: 150 vertices,
  * references of 16384 blocks × 4 replications, ...); without SCENES=full or
  * its inputs it is kept as it is, naming the revision that computed it.
+ * Every decision (an order, an order under rotation, a largest β) follows
+ * the rule of trusted decisions (scene.h; docs/CONVENTIONS.md): the reference
+ * refined where it is not 10× below what it judges, "undecided" where it still
+ * is not, and the report counts both.
  * Shading: shadowed transfer, 4096 rays per vertex, albedo 1.  Every vertex
  * draws from its own seeded stream, so the results do not depend on the
  * threads. */
@@ -56,25 +60,208 @@ typedef struct {
     sh_env *env;
 } envrec;
 
-static void order_for(const sh_shade_err *err, int N, double budget, int *order)
+/* The budgets of the study (relative L2 shading error). */
+static const double budgets[2] = {0.05, 0.01};
+#define METHODS 4 /* exact, T1, T1.5, T2 */
+static sh_rot_method method_of(int m) { return m ? taylor[m - 1] : SH_ROT_IVANIC; }
+
+/* The decisions made and how many are trusted, for the report (each count
+ * is of decisions; margin: the smallest min(budget, error)/ref_l2 over the
+ * comparisons the decided ones rest on, recomputed from the printed numbers). */
+typedef struct {
+    int orders, orders_undecided; /* the order for a budget (found or none ≤ 16) */
+    int rot, rot_undecided;       /* the order under rotation */
+    int betas, betas_undecided;   /* the largest β of a Taylor method */
+    double margin;
+} tally;
+
+/* A table cell of an order decision */
+static void fmt_order(char *b, size_t n, const sh_order_decision *d)
 {
-    *order = -1;
-    for (int n = 1; n <= N; n++)
-        if (err[n].rel_l2 <= budget) { *order = n; return; }
+    if (d->undecided) snprintf(b, n, "undecided");
+    else if (d->order > 0) snprintf(b, n, "%d", d->order);
+    else snprintf(b, n, "> %d", MAXN);
 }
 
-static void fmt_order(char *b, size_t n, int o) { if (o > 0) snprintf(b, n, "%d", o); else snprintf(b, n, "> %d", MAXN); }
+/* The rotation study of one scene × environment: per β (betas_deg), the
+ * errors of every method at every order against that β's reference, as
+ * refined. */
+typedef struct {
+    double e[METHODS][MAXN][NBETA];
+    double ref[NBETA];
+    int reps[NBETA];
+    int used[2][NBETA]; /* the order under rotation each β was refined for */
+} rotrec;
 
-/* the largest grid β up to which the study's error at `order` stays ≤ budget
- * for method m (errors[j] for betas_deg[j]); −1 when β = 0 already fails */
-static double beta_limit(const double *errors, double budget)
+/* The smallest n whose exact-rotation error is within budget at β_0..β_{nb−1}; 0: none ≤ MAXN */
+static int rot_order(const rotrec *r, int nb, double budget)
 {
-    double lim = -1;
-    for (int j = 0; j < NBETA; j++) {
-        if (errors[j] > budget) break;
-        lim = betas_deg[j];
+    for (int n = 1; n <= MAXN; n++) {
+        int ok = 1;
+        for (int j = 0; j < nb; j++) ok &= r->e[0][n - 1][j] <= budget;
+        if (ok) return n;
     }
-    return lim;
+    return 0;
+}
+
+static void record_beta(sh_study *st, int j, rotrec *r)
+{
+    for (int m = 0; m < METHODS; m++)
+        for (int n = 1; n <= MAXN; n++) {
+            sh_shade_err er;
+            exp_check(sh_study_error(st, method_of(m), n, &er), "rotated error");
+            r->e[m][n - 1][j] = er.rel_l2;
+        }
+    sh_study_info in;
+    sh_study_info_get(st, &in);
+    r->ref[j] = in.ref_l2;
+    r->reps[j] = in.replications;
+}
+
+/* β_j of the rotation study: the reference for that rotation, refined for
+ * the order decisions at β_j and for the walks (exact and Taylor) at the
+ * orders under rotation nstar (NULL: the tentative ones from β_0..β_j). */
+static void measure_beta(sh_study *st, int j, rotrec *r, const int *nstar)
+{
+    sh_rotation rot;
+    exp_check(sh_rotation_from_euler(ALPHA, betas_deg[j] * M_PI / 180, GAMMA, &rot), "rotation");
+    exp_check(sh_study_set_rotation(st, &rot), "set rotation");
+    sh_order_decision od[2];
+    exp_check(sh_study_decide_orders(st, SH_ROT_IVANIC, MAXN, 2, budgets, od, NULL), "orders at β");
+    record_beta(st, j, r);
+    sh_rot_method meth[2 * METHODS];
+    int ord[2 * METHODS], nc = 0;
+    double bud[2 * METHODS], er[2 * METHODS];
+    for (int b = 0; b < 2; b++) {
+        r->used[b][j] = nstar ? nstar[b] : rot_order(r, j + 1, budgets[b]);
+        for (int m = 0; m < METHODS && r->used[b][j] > 0; m++) {
+            meth[nc] = method_of(m);
+            ord[nc] = r->used[b][j];
+            bud[nc++] = budgets[b];
+        }
+    }
+    exp_check(sh_study_compare(st, nc, meth, ord, bud, er), "walks at β");
+    record_beta(st, j, r);
+}
+
+/* The decisions under rotation for one budget, from the record: the order
+ * (its exact-rotation walks at orders 1..n*, or all when none holds, each
+ * trusted) and at that order each Taylor method's largest β. */
+typedef struct {
+    int undecided, order;      /* order 0: none ≤ MAXN */
+    sh_beta_decision walk[METHODS]; /* at the order: exact, T1, T1.5, T2 */
+    sh_beta_decision why;      /* undecided: the walk that broke the rule */
+} rotdec;
+
+static void decide_rot(const rotrec *r, double budget, rotdec *d)
+{
+    memset(d, 0, sizeof *d);
+    d->order = rot_order(r, NBETA, budget);
+    const int last = d->order ? d->order : MAXN;
+    for (int n = 1; n <= last && !d->undecided; n++) {
+        sh_beta_decision w;
+        exp_check(sh_decide_beta(NBETA, r->e[0][n - 1], r->ref, budget, &w), "decide β");
+        if (w.undecided) {
+            d->undecided = 1;
+            d->why = w;
+        }
+    }
+    for (int m = 0; m < METHODS && d->order; m++)
+        exp_check(sh_decide_beta(NBETA, r->e[m][d->order - 1], r->ref, budget, &d->walk[m]), "decide β");
+}
+
+/* min(budget, e)/ref over the comparisons a decided walk rests on */
+static double walk_margin(const double *e, const double *ref, double budget, const sh_beta_decision *w)
+{
+    double m = INFINITY;
+    const int end = w->last + 1 < NBETA ? w->last + 1 : NBETA - 1;
+    for (int j = 0; j <= end; j++) m = fmin(m, ref[j] > 0 ? fmin(budget, e[j]) / ref[j] : INFINITY);
+    return m;
+}
+
+/* The rotation study of one pair: every β measured, then β measured again
+ * where a decision is undecided, the cap could meet the rule and the β was
+ * refined for other orders under rotation (at most twice). */
+static void rotation_study(sh_study *st, rotrec *r, rotdec d[2])
+{
+    for (int j = 0; j < NBETA; j++) measure_beta(st, j, r, NULL);
+    sh_study_info in;
+    sh_study_info_get(st, &in);
+    for (int round = 0; round < 3; round++) {
+        int nstar[2], again[NBETA] = {0}, any = 0;
+        for (int b = 0; b < 2; b++) {
+            decide_rot(r, budgets[b], &d[b]);
+            nstar[b] = d[b].order;
+        }
+        if (round == 2) break;
+        for (int b = 0; b < 2; b++) {
+            const sh_beta_decision *w = d[b].undecided ? &d[b].why : NULL;
+            for (int m = 0; m < METHODS && !w && d[b].order; m++)
+                if (d[b].walk[m].undecided) w = &d[b].walk[m];
+            if (!w || sh_study_replications_for(w->ref_l2, r->reps[w->at], w->ref_needed) > in.max_replications) continue;
+            if (r->used[0][w->at] != nstar[0] || r->used[1][w->at] != nstar[1]) again[w->at] = any = 1;
+        }
+        if (!any) break;
+        for (int j = 0; j < NBETA; j++)
+            if (again[j]) measure_beta(st, j, r, nstar);
+    }
+}
+
+/* A table cell of a Taylor method's largest β */
+static void fmt_beta(char *b, size_t n, const sh_beta_decision *w)
+{
+    if (w->undecided) snprintf(b, n, "undecided");
+    else if (w->last >= 0) snprintf(b, n, "%g°", betas_deg[w->last]);
+    else snprintf(b, n, "–");
+}
+
+/* The row of one pair in the table and the data file, and its decisions in the tally */
+static void plan_row(FILE *fp, char *table, const char *scene, const char *env, const sh_study_info *info,
+                     const sh_order_decision od[2], const sh_shade_err *err, const rotrec *r, const rotdec rd[2], tally *t)
+{
+    char cell[2][16], rot[2][128];
+    double rot_ref = 0;
+    for (int j = 0; j < NBETA; j++) rot_ref = fmax(rot_ref, r->ref[j]);
+    fprintf(fp, "%s %s %.4e %d", scene, env, info->ref_l2, info->replications);
+    for (int b = 0; b < 2; b++) {
+        fmt_order(cell[b], sizeof cell[b], &od[b]);
+        fprintf(fp, " %d", od[b].undecided ? -2 : od[b].order ? od[b].order : -1);
+        t->orders++;
+        t->orders_undecided += od[b].undecided;
+        if (!od[b].undecided)
+            t->margin = fmin(t->margin, (od[b].order ? fmin(budgets[b], err[od[b].order - 1].rel_l2) : budgets[b]) / info->ref_l2);
+    }
+    fprintf(fp, " %.4e", err[MAXN - 1].rel_l2);
+    for (int b = 0; b < 2; b++) {
+        const rotdec *d = &rd[b];
+        t->rot++;
+        t->rot_undecided += d->undecided;
+        fprintf(fp, " %d", d->undecided ? -2 : d->order ? d->order : -1);
+        char l[3][16];
+        for (int m = 1; m < METHODS; m++) {
+            const int applies = !d->undecided && d->order;
+            if (applies) fmt_beta(l[m - 1], sizeof l[m - 1], &d->walk[m]);
+            fprintf(fp, " %g", !applies ? -1 : d->walk[m].undecided ? -2 : d->walk[m].last >= 0 ? betas_deg[d->walk[m].last] : -1);
+            if (!applies) continue;
+            t->betas++;
+            t->betas_undecided += d->walk[m].undecided;
+            if (!d->walk[m].undecided)
+                t->margin = fmin(t->margin, walk_margin(r->e[m][d->order - 1], r->ref, budgets[b], &d->walk[m]));
+        }
+        for (int n = 1; !d->undecided && n <= (d->order ? d->order : MAXN); n++) {
+            sh_beta_decision w;
+            exp_check(sh_decide_beta(NBETA, r->e[0][n - 1], r->ref, budgets[b], &w), "decide β");
+            t->margin = fmin(t->margin, walk_margin(r->e[0][n - 1], r->ref, budgets[b], &w));
+        }
+        if (d->undecided) snprintf(rot[b], sizeof rot[b], "undecided");
+        else if (!d->order) snprintf(rot[b], sizeof rot[b], "> %d: – / – / –", MAXN);
+        else snprintf(rot[b], sizeof rot[b], "%d: %s / %s / %s", d->order, l[0], l[1], l[2]);
+    }
+    fprintf(fp, " %.4e\n", rot_ref);
+    char row[1024];
+    snprintf(row, sizeof row, "| %s | %s | %.2f %% | %s | %s | %.1f %% | %s | %s |\n", scene, env, 100 * info->ref_l2, cell[0],
+             cell[1], 100 * err[MAXN - 1].rel_l2, rot[0], rot[1]);
+    strcat(table, row);
 }
 
 static void render_triplet(const char *tag, sh_scene *s, const sh_mesh *m, sh_env *env, int order, const double view[3], long pic_ref)
@@ -170,15 +357,16 @@ static void study(const config *cf, envrec *envs, int ne, int have_probes, int h
                         "order rel_l2 rel_max ref_l2 (one block per scene x environment, in the order of scene_pairs.txt)");
     FILE *fn = exp_data("scene_pairs.txt", "scene x environment of each block of scene_orders.dat", "scene environment");
     FILE *fp = exp_data("scene_plan.dat", "smallest order for 1 % and 5 % and largest β (degrees) per Taylor method",
-                        "scene environment ref_l2 order_5pct order_1pct err_at_order_16 rot_order_5pct beta_T1_5pct beta_T15_5pct "
-                        "beta_T2_5pct rot_order_1pct beta_T1_1pct beta_T15_1pct beta_T2_1pct rot_ref_l2 (-1: none / not applicable)");
+                        "scene environment ref_l2 replications order_5pct order_1pct err_at_order_16 rot_order_5pct "
+                        "beta_T1_5pct beta_T15_5pct beta_T2_5pct rot_order_1pct beta_T1_1pct beta_T15_1pct beta_T2_1pct "
+                        "rot_ref_l2 (-1: none / not applicable, -2: undecided)");
     char *table = calloc(1, 65536);
     strcat(table, "| scene | environment | reference's own error | order for 5 % | for 1 % | error at order 16 | "
                   "rotating, 5 %: order: largest β of T1 / T1.5 / T2 | rotating, 1 %: order: T1 / T1.5 / T2 |\n"
                   "|---|---|---|---|---|---|---|---|\n");
-    double worst_ratio = 1e300; /* min over pairs of (SH error at the orders judged) / ref_l2 */
-    double worst_budget = 1e300; /* min over pairs of (budget met) / ref_l2 */
-    int ratio_pairs = 0, n_decided = 0, n_adequate = 0;
+    tally tl = {0};
+    tl.margin = INFINITY;
+    int max_reps = 0;
     for (int si = 0; si < nscenes; si++) {
         sh_mesh m;
         if (si < 3) {
@@ -201,88 +389,30 @@ static void study(const config *cf, envrec *envs, int ne, int have_probes, int h
             so.ref.replications = 4;
             sh_study *st;
             exp_check(sh_study_create(s, envs[ei].env, &so, &st), "study");
+            /* the order of each budget, the reference refined where the rule asks */
+            sh_order_decision od[2];
+            sh_shade_err err[MAXN];
+            exp_check(sh_study_decide_orders(st, SH_ROT_IVANIC, MAXN, 2, budgets, od, err), "orders");
             sh_study_info info;
             sh_study_info_get(st, &info);
-            sh_shade_err err[MAXN + 1];
-            for (int n = 1; n <= MAXN; n++) {
-                exp_check(sh_study_error(st, SH_ROT_IVANIC, n, &err[n]), "error");
-                fprintf(fo, "%d %.5e %.5e %.5e\n", n, err[n].rel_l2, err[n].rel_max, info.ref_l2);
-            }
+            max_reps = info.max_replications;
+            for (int n = 1; n <= MAXN; n++)
+                fprintf(fo, "%d %.5e %.5e %.5e\n", n, err[n - 1].rel_l2, err[n - 1].rel_max, info.ref_l2);
             fprintf(fo, "\n\n");
             fprintf(fn, "%s %s\n", scenes[si], envs[ei].name);
-            int o5, o1;
-            order_for(err, MAXN, 0.05, &o5);
-            order_for(err, MAXN, 0.01, &o1);
-            if (o5 > 0) {
-                worst_ratio = fmin(worst_ratio, err[o5].rel_l2 / info.ref_l2);
-                worst_budget = fmin(worst_budget, 0.05 / info.ref_l2);
-                ratio_pairs++;
-                n_decided++;
-                n_adequate += 10 * info.ref_l2 <= 0.05;
-            }
-            if (o1 > 0) {
-                worst_ratio = fmin(worst_ratio, err[o1].rel_l2 / info.ref_l2);
-                worst_budget = fmin(worst_budget, 0.01 / info.ref_l2);
-                n_decided++;
-                n_adequate += 10 * info.ref_l2 <= 0.01;
-            }
             sh_study_free(st);
             /* rotation study: the lighting rotated on the β grid, the reference
-             * recomputed for each rotation (60 vertices).  The order a budget
+             * recomputed for each rotation (fewer vertices).  The order a budget
              * needs under rotation: the smallest n whose exact-rotation error
              * stays within the budget at every β; then, at that order, the
              * largest grid β up to which each Taylor method stays within. */
-            double lim[2][3] = {{-1, -1, -1}, {-1, -1, -1}}, rot_ref = 0;
-            int orot[2] = {-1, -1};
-            {
-                so.nverts = cf->rot_nverts;
-                so.ref.samples = cf->ref;
-                exp_check(sh_study_create(s, envs[ei].env, &so, &st), "study");
-                static double e[4][MAXN + 1][NBETA]; /* method (exact, T1, T1.5, T2) × order × β */
-                for (int j = 0; j < NBETA; j++) {
-                    sh_rotation rot;
-                    exp_check(sh_rotation_from_euler(ALPHA, betas_deg[j] * M_PI / 180, GAMMA, &rot), "rotation");
-                    exp_check(sh_study_set_rotation(st, &rot), "set rotation");
-                    sh_study_info ri;
-                    sh_study_info_get(st, &ri);
-                    rot_ref = fmax(rot_ref, ri.ref_l2);
-                    for (int t = -1; t < 3; t++)
-                        for (int n = 1; n <= MAXN; n++) {
-                            sh_shade_err er;
-                            exp_check(sh_study_error(st, t < 0 ? SH_ROT_IVANIC : taylor[t], n, &er), "rotated error");
-                            e[t + 1][n][j] = er.rel_l2;
-                        }
-                }
-                for (int b = 0; b < 2; b++) {
-                    const double budget = b ? 0.01 : 0.05;
-                    for (int n = 1; n <= MAXN && orot[b] < 0; n++) {
-                        int ok = 1;
-                        for (int j = 0; j < NBETA; j++) ok &= e[0][n][j] <= budget;
-                        if (ok) orot[b] = n;
-                    }
-                    if (orot[b] > 0)
-                        for (int t = 0; t < 3; t++) lim[b][t] = beta_limit(e[t + 1][orot[b]], budget);
-                }
-                sh_study_free(st);
-            }
-            fprintf(fp, "%s %s %.4e %d %d %.4e %d %g %g %g %d %g %g %g %.4e\n", scenes[si], envs[ei].name, info.ref_l2, o5, o1,
-                    err[MAXN].rel_l2, orot[0], lim[0][0], lim[0][1], lim[0][2], orot[1], lim[1][0], lim[1][1], lim[1][2], rot_ref);
-            char a[16], b[16], l5[3][16], l1[3][16], r5[16], r1[16], row[2048];
-            fmt_order(a, sizeof a, o5);
-            fmt_order(b, sizeof b, o1);
-            fmt_order(r5, sizeof r5, orot[0]);
-            fmt_order(r1, sizeof r1, orot[1]);
-            for (int t = 0; t < 3; t++) {
-                if (lim[0][t] >= 0) snprintf(l5[t], sizeof l5[t], "%g°", lim[0][t]); else snprintf(l5[t], sizeof l5[t], "–");
-                if (lim[1][t] >= 0) snprintf(l1[t], sizeof l1[t], "%g°", lim[1][t]); else snprintf(l1[t], sizeof l1[t], "–");
-            }
-            /* † : the reference's own error is more than a tenth of the budget */
-            const char *d5 = 10 * info.ref_l2 > 0.05 ? " †" : "", *d1 = 10 * info.ref_l2 > 0.01 ? " †" : "";
-            const char *q5 = 10 * rot_ref > 0.05 ? " †" : "", *q1 = 10 * rot_ref > 0.01 ? " †" : "";
-            snprintf(row, sizeof row, "| %s | %s | %.2f %% | %s%s | %s%s | %.1f %% | %s%s: %s / %s / %s | %s%s: %s / %s / %s |\n",
-                     scenes[si], envs[ei].name, 100 * info.ref_l2, a, d5, b, d1, 100 * err[MAXN].rel_l2, r5, q5, l5[0], l5[1],
-                     l5[2], r1, q1, l1[0], l1[1], l1[2]);
-            strcat(table, row);
+            static rotrec rr;
+            rotdec rd[2];
+            so.nverts = cf->rot_nverts;
+            exp_check(sh_study_create(s, envs[ei].env, &so, &st), "study");
+            rotation_study(st, &rr, rd);
+            sh_study_free(st);
+            plan_row(fp, table, scenes[si], envs[ei].name, &info, od, err, &rr, rd, &tl);
         }
         sh_scene_free(s);
         sh_mesh_free(&m);
@@ -399,15 +529,24 @@ static void study(const config *cf, envrec *envs, int ne, int have_probes, int h
               "reference recomputed with rays for each rotation at %d vertices): the order whose exact-rotation "
               "error stays within the budget at every β, and at that order the largest grid β up to which each "
               "Taylor approximation (Křivánek et al. 2005) stays within it. – : none (no order ≤ %d, or the "
-              "method fails at the first β). † : the reference's own error exceeds a tenth of the budget, so the "
-              "decision is not trustworthy at that budget. Data: [scene_plan.dat](scene_plan.dat).\n\n%s",
-              MAXN, "0, 5, 10, 20, 30, 45", cf->rot_nverts, MAXN, table);
-    exp_index("**The reference against what it judges.** Of the %d (scene × environment, budget) decisions above, "
-              "%d have a reference whose own error is at most a tenth of the budget; the smallest ratio of budget to "
-              "ref_l2 is %.1f×, and of the SH error at the chosen order to ref_l2 %.1f×. The reference is weakest "
-              "inside the open box and the bowl, where little sky is seen and visibility alone carries the variance "
-              "(its error falls only as the number of blocks to the power −3/4).",
-              n_decided, n_adequate, worst_budget, worst_ratio);
+              "method fails at the first β). **undecided**: the reference's own error breaks the rule of trusted "
+              "decisions (`shlab scene-plan --help`): every comparison \"rel_l2 ≤ budget\" a decision rests on must "
+              "have ref_l2 ≤ min(budget, rel_l2) / 10 — ten times below the budget and below the SH error at the "
+              "decision, each β with its own reference — and where it does not, the reference is first refined "
+              "(replications pooled, as many as ref_l2 ∝ 1/√replications asks, up to %d); a decision still "
+              "breaking it gives no answer rather than a guess. Data: [scene_plan.dat](scene_plan.dat).\n\n%s",
+              MAXN, "0, 5, 10, 20, 30, 45", cf->rot_nverts, MAXN, max_reps, table);
+    const int n_all = tl.orders + tl.rot + tl.betas;
+    const int n_und = tl.orders_undecided + tl.rot_undecided + tl.betas_undecided;
+    exp_index("**The reference against what it judges.** Of the %d decisions above, %d are trusted and %d undecided: "
+              "the order for a budget %d of %d trusted, the order under rotation %d of %d, a Taylor method's largest "
+              "β %d of %d (counted where the order under rotation is trusted and exists). Over the comparisons the "
+              "trusted ones rest on, the smallest ratio of min(budget, SH error) to the reference's own error is "
+              "%.1f×. The reference is weakest inside the open box and the bowl, where little sky is seen and "
+              "visibility alone carries the variance (its error falls only as the number of blocks to the power "
+              "−3/4).",
+              n_all, n_all - n_und, n_und, tl.orders - tl.orders_undecided, tl.orders, tl.rot - tl.rot_undecided, tl.rot,
+              tl.betas - tl.betas_undecided, tl.betas, tl.margin);
     exp_index("![ray count](scene_rays.png)\n\nThe transfer's own Monte Carlo error is the floor: error against order "
               "for 256 … %ld rays per vertex (%s × %s, %d vertices). The lighting's high bands multiply the transfer's noisy "
               "high coefficients, so with few rays the error stops falling, then rises with the order. Data: "
@@ -448,16 +587,16 @@ static void study(const config *cf, envrec *envs, int ne, int have_probes, int h
     }
     sh_scene_free(s);
     sh_mesh_free(&m);
-    char meas[64];
-    snprintf(meas, sizeof meas, "min %.1f; %d of %d decisions >= 10", worst_budget, n_adequate, n_decided);
+    char meas[96];
+    snprintf(meas, sizeof meas, "min %.1f over %d trusted decisions; %d undecided", tl.margin, n_all - n_und, n_und);
     char id[96];
     snprintf(id, sizeof id, "scene-reference-margin%s", sfx);
-    char why[160];
-    snprintf(why, sizeof why, "at %d of %d decisions (marked † in the report's table) the reference's own error "
-             "exceeds a tenth of the budget.", n_decided - n_adequate, n_decided);
-    exp_claim_judged(id, "shlab goal", "the reference's own error is >= 10x below the shading error budgets it decides",
-                     "10", meas, ">= 10", worst_budget >= 10,
-                     have_probes ? "scene_shading/full/scene_plan.dat" : "scene_shading/scene_plan.dat", why);
+    exp_claim_judged(id, "shlab goal",
+                     "the reference's own error is >= 10x below the budget and the SH error of every decision, or the "
+                     "decision says undecided",
+                     "10", meas, ">= 10", tl.margin >= 10,
+                     have_probes ? "scene_shading/full/scene_plan.dat" : "scene_shading/scene_plan.dat",
+                     "a trusted decision rests on a comparison whose reference is less than 10x below what it judges.");
     free(table);
 }
 

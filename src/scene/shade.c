@@ -308,7 +308,7 @@ static int ref_pass(void *vc, int thread, int begin, int end)
         double *w = e->is_image ? c->wbuf[thread] : NULL, *cum = w ? w + (size_t)e->w * e->h : NULL;
         if (w) image_weights(c, nenv, w, cum);
         double sum = 0, sum2 = 0;
-        for (int r = 0; r < c->reps; r++) {
+        for (int r = c->o->first_replication; r < c->o->first_replication + c->reps; r++) {
             uint64_t seed = (uint64_t)c->o->seed * 1000003u + (uint64_t)v * 7919u + (uint64_t)r * 104729u + 1;
             double est = 0;
             if (w) {
@@ -355,8 +355,9 @@ int sh_shade_reference(const sh_scene *s, const sh_env *env, const sh_rotation *
     for (int i = 0; verts && i < nv; i++)
         if (verts[i] < 0 || verts[i] >= s->mesh.nvert) return sh_error(SH_EINVAL, "sh_shade_reference: vertex %d out of range", verts[i]);
     if (o->samples < 0 || o->samples > 1L << 24 || o->replications == 1 || o->replications < 0 || o->replications > 1000 ||
-        o->threads < 0 || o->threads > 256)
-        return sh_error(SH_EINVAL, "sh_shade_reference: samples, replications (>= 2) or threads out of range");
+        o->first_replication < 0 || o->first_replication > 1000 || o->threads < 0 || o->threads > 256)
+        return sh_error(SH_EINVAL,
+                        "sh_shade_reference: samples, replications (>= 2), first_replication or threads out of range");
     const double rho = o->albedo > 0 ? o->albedo : 1.0;
     if (!(rho <= 1)) return sh_error(SH_EINVAL, "albedo %g not in (0, 1]", o->albedo);
     rctx c = {.s = s, .e = env, .verts = verts, .o = o, .rho = rho, .eps = o->ray_eps, .B = B, .se = se};

@@ -285,7 +285,12 @@ int sh_shade(int nvert, int tord, const double *T, int order, const double *L, d
  *   blocks cover the sphere.
  *   An analytic light: `samples` cosine-weighted stratified rays (as
  *   sh_transfer), estimator (ρ/N) Σ V L.
- * rot may be NULL (identity). */
+ * rot may be NULL (identity).
+ *   Replication r of vertex v draws from a stream seeded by (seed, v, r)
+ * alone, so the replications first_replication .. first_replication +
+ * replications − 1 of one call and those of another call with the next
+ * first_replication are the replications 0 .. k+m−1 of a single call:
+ * pooling them (sh_study_refine) is drawing more, not starting again. */
 typedef struct {
     long samples;     /* per replication (0: 8192) */
     int replications; /* ≥ 2 (0: 4) */
@@ -295,6 +300,7 @@ typedef struct {
     int threads;      /* 0: the scene's */
     sh_progress_fn progress;
     void *progress_ctx;
+    int first_replication; /* the index of the first replication drawn (0..1000) */
 } sh_reference_opts;
 int sh_shade_reference(const sh_scene *s, const sh_env *env, const sh_rotation *rot, const int *verts,
                        int nv, const sh_reference_opts *o, double *B, double *se,
@@ -327,11 +333,17 @@ typedef struct {
     int threads;        /* 0: the scene's */
     sh_progress_fn progress;
     void *progress_ctx;
+    int refine;         /* the most sh_study_refine may multiply the reference's
+                           replications by (0: 16; 1: never): the cap on its work,
+                           min(refine × ref.replications, 1000) replications */
 } sh_study_opts;
 typedef struct {
     int nverts, max_order;
-    sh_transfer_stats transfer, reference; /* the last reference computed */
+    sh_transfer_stats transfer, reference; /* the reference at the current rotation
+                                              (its refinements summed in) */
     double ref_l2;      /* the reference's own standard error, rel_l2 measure */
+    int replications;   /* the reference's replications now (refinements included) */
+    int max_replications; /* the cap of sh_study_refine */
 } sh_study_info;
 int sh_study_create(const sh_scene *s, const sh_env *env, const sh_study_opts *o, sh_study **out);
 void sh_study_free(sh_study *st);
@@ -345,6 +357,86 @@ int sh_study_error(sh_study *st, sh_rot_method method, int order, sh_shade_err *
 int sh_study_info_get(const sh_study *st, sh_study_info *info);
 /* The vertices studied (st keeps them). */
 const int *sh_study_vertices(const sh_study *st, int *n);
+/* Refine the reference at the current rotation to `replications` in all, by
+ * drawing the missing ones and pooling them with those drawn (the result is
+ * the reference sh_study_set_rotation would compute with that many; at least
+ * 2 are drawn).  Refused above the cap (sh_study_info.max_replications); a
+ * count not above the current one changes nothing.  A new rotation starts
+ * again from ref.replications. */
+int sh_study_refine(sh_study *st, int replications);
+
+/* ------------------------------------------------- trustworthy decisions
+ * Every decision of the study rests on comparisons "is the shading error e
+ * within the budget E?", e measured against the reference.  The reference's
+ * own error r (ref_l2) enters the measured error in quadrature,
+ * e_measured² ≈ e² + r², so it biases every comparison, and near E a noisy
+ * reference decides instead of the SH error.  The rule (SH_STUDY_MARGIN):
+ *   a comparison is trusted when r ≤ min(E, e) / 10,
+ * the reference at least ten times below both numbers compared: below E, a
+ * failing comparison (e > E) cannot be an artefact of the reference, and a
+ * passing one is decided to within r²/(2E) ≤ E/200; below e, the printed
+ * error is the SH error's, to within r²/(2e) ≤ e/200 (0.5 %), not the
+ * reference's noise.  A decision is trusted when every comparison it rests on
+ * is; otherwise it is undecided: no answer, never a guess.
+ *   sh_study_decide_* refine the reference first (sh_study_refine), to the
+ * replications the 1/√R law of a mean of R replications says brings r to what
+ * the rule needs (× 1.25), the largest that some untrusted decision asks for
+ * within the cap, at most SH_STUDY_ROUNDS times; a decision whose need lies
+ * beyond the cap is not refined for.  All is deterministic given the seed. */
+#define SH_STUDY_MARGIN 10.0
+#define SH_STUDY_ROUNDS 3
+/* What the rule asks of the reference for a comparison of e with E:
+ * min(E, e) / SH_STUDY_MARGIN. */
+double sh_study_ref_needed(double budget, double err);
+/* The replications the 1/√R law says bring ref_l2 (measured with R
+ * replications) down to `needed`: ⌈R (ref_l2/needed)²⌉ (R when already met;
+ * INT_MAX when needed ≤ 0 or the count would overflow). */
+int sh_study_replications_for(double ref_l2, int replications, double needed);
+
+/* The order for a budget: the smallest n ≤ max_order with err(n) ≤ budget,
+ * against one reference (error ref_l2).  It rests on the comparisons at
+ * orders 1..n (n = max_order when none qualifies): trusted when
+ * ref_l2 ≤ min(budget, err(n)) / 10, i.e. below the budget (the failing
+ * orders) and below the error at the order decided. */
+typedef struct {
+    int undecided;     /* 1: the rule fails; order is then 0 and means nothing */
+    int order;         /* decided: the order, 0 when none ≤ max_order qualifies */
+    double rel_l2;     /* decided: err at the order (at max_order when none) */
+    double ref_l2;     /* the reference's error the decision was judged with */
+    double ref_needed; /* what the rule asks of it */
+} sh_order_decision;
+/* err[n − 1] is the error at order n. */
+int sh_decide_order(int max_order, const double *err, double ref_l2, double budget, sh_order_decision *d);
+
+/* The largest β of a grid β_0 < β_1 < ... within a budget: the comparisons
+ * err_j ≤ budget from j = 0 on, until the first that fails (each β with its
+ * own reference, ref_l2[j]).  Trusted when each of these comparisons is
+ * (the rule with err_j); otherwise undecided at the first that is not. */
+typedef struct {
+    int undecided;
+    int last;          /* decided: the index of the largest β within the budget
+                          (−1: β_0 fails; nbeta − 1: none fails on the grid);
+                          undecided: at − 1 (the trusted passes before `at`) */
+    int at;            /* the comparison judged: undecided, the first that fails
+                          the rule; decided, the one nearest to failing it (the
+                          largest ref_l2[j] / needed) */
+    double ref_l2;     /* its reference's error */
+    double ref_needed; /* what the rule asks of it */
+} sh_beta_decision;
+int sh_decide_beta(int nbeta, const double *err, const double *ref_l2, double budget, sh_beta_decision *d);
+
+/* The order decision of each of nb budgets at the study's current rotation,
+ * the lighting rotated by `method`, the reference refined as above.  err
+ * (may be NULL) receives the errors at orders 1..max_order against the final
+ * reference. */
+int sh_study_decide_orders(sh_study *st, sh_rot_method method, int max_order, int nb, const double *budgets,
+                           sh_order_decision *d, sh_shade_err *err);
+/* Comparisons at the study's current rotation: err[k] = rel_l2 of
+ * (method[k], order[k]) against the reference, refined as above until
+ * each comparison with budget[k] is trusted or the cap stops it.  What the
+ * walks of sh_decide_beta measure at each β. */
+int sh_study_compare(sh_study *st, int n, const sh_rot_method *method, const int *order, const double *budget,
+                     double *err);
 
 /* ------------------------------------------------------------------ pictures */
 typedef struct {
