@@ -133,9 +133,9 @@ static int parse_modes(const char *opt, const char *s, void *field)
 /* --input LIST: bit 0 euler, bit 1 matrix */
 static int parse_inputs(const char *opt, const char *s, void *field)
 {
-    static const char *const names[] = {"euler", "matrix"};
-    static const int bits[] = {1, 2};
-    return parse_bits(opt, s, names, bits, 2, "euler or matrix", field);
+    static const char *const names[] = {"euler", "matrix", "quat"};
+    static const int bits[] = {1, 2, 4};
+    return parse_bits(opt, s, names, bits, 3, "euler, matrix or quat", field);
 }
 
 static int parse_baseline(const char *opt, const char *s, void *field)
@@ -161,6 +161,7 @@ static int parse_baseline(const char *opt, const char *s, void *field)
     if (np > 2) {
         if (!strcmp(part[2], "euler")) b->input = 0;
         else if (!strcmp(part[2], "matrix")) b->input = 1;
+        else if (!strcmp(part[2], "quat")) b->input = 2;
         else return cli_fail("%s: input '%s' (euler or matrix)", opt, part[2]);
     }
     for (int md = 0; np > 3 && md < MD_N; md++)
@@ -188,8 +189,10 @@ static const cli_opt bench_opts[] = {
                "euler (default): matrix -> ZYZ angles -> set, vectors as\n"
                "double; matrix: sh_rot_plan_set_matrix (no angles), and for\n"
                "float plans float matrices and vectors (the _f calls);\n"
-               "batched mode then applies the batch in one apply_many.\n"
-               "k-rotations always takes matrices."),
+               "batched mode then applies the batch in one apply_many;\n"
+               "quat: sh_rot_plan_set_quat (w, x, y, z), otherwise as matrix.\n"
+               "k-rotations takes matrices, or quaternions with quat\n"
+               "(rotate_many_quat); oneshot takes euler or matrix."),
     CLI_CUSTOM(bench_args, base, "baseline", "SPEC", parse_baseline, NULL,
                "the entry the ratios divide by: METHOD[/KERNEL[/INPUT[/MODE]]];\n"
                "a part left out is the row's own (default: the first\n"
@@ -558,7 +561,8 @@ static int validate(bench_args *a, const cli_parsed *seen, sh_bench_opts *bo)
         bo->max_beta = fmin(b, M_PI);
     }
     bench_methods *ms = &a->methods;
-    for (int m = 0; !ms->n && m < SH_ROT_NMETHODS; m++)
+    const int by_default = ms->n == 0; /* every method built in but the MPFR reference */
+    for (int m = 0; by_default && m < SH_ROT_NMETHODS; m++)
         if (m != SH_ROT_REFERENCE && sh_rot_method_max_order((sh_rot_method)m) > 0) ms->v[ms->n++] = (sh_rot_method)m;
     for (int k = 0; k < ms->n; k++)
         for (int q = 0; q < a->orders.n; q++)
@@ -573,7 +577,7 @@ static int validate(bench_args *a, const cli_parsed *seen, sh_bench_opts *bo)
 static void slot_name(const bench_run *R, const bench_slot *s, sh_rot_kernel kernel, char *buf, size_t n)
 {
     snprintf(buf, n, "%s/%s/%s/%s", sh_rot_method_name(R->a->methods.v[s->k]), sh_rot_kernel_name(kernel),
-             s->in ? "matrix" : "euler", mode_name[s->md]);
+             sh_bench_input_name((sh_bench_input)s->in), mode_name[s->md]);
 }
 
 /* The baseline of every slot: the spec's parts, the row's own elsewhere. */
@@ -594,7 +598,7 @@ static int find_baselines(bench_run *R)
                             "--input, --mode)",
                             sh_rot_method_name(b->m), b->kernel >= 0 ? "/" : "",
                             b->kernel >= 0 ? sh_rot_kernel_name((sh_rot_kernel)b->kernel) : "",
-                            b->input >= 0 ? "/" : "", b->input >= 0 ? (b->input ? "matrix" : "euler") : "",
+                            b->input >= 0 ? "/" : "", b->input >= 0 ? sh_bench_input_name((sh_bench_input)b->input) : "",
                             b->mode >= 0 ? "/" : "", b->mode >= 0 ? mode_name[b->mode] : "");
     }
     return 0;
@@ -606,15 +610,16 @@ static int make_slots(bench_run *R)
 {
     const bench_args *a = R->a;
     const int modes = a->modes, nm = a->methods.n, nk = a->kernels.n;
-    R->slot = calloc((size_t)nm * nk * 2 * MD_N, sizeof *R->slot);
+    R->slot = calloc((size_t)nm * nk * SH_BENCH_NINPUTS * MD_N, sizeof *R->slot);
     if (!R->slot) return cli_fail("out of memory");
     for (int k = 0; k < nm; k++)
         for (int kk = 0; kk < nk; kk++)
-            for (int in = 0; in < 2; in++)
+            for (int in = 0; in < SH_BENCH_NINPUTS; in++)
                 for (int md = 0; md < MD_N; md++) {
                     if (!(modes & (1 << md)) || !(a->inputs & (1 << in))) continue;
                     if (md == MD_KROT && in == 1 && (a->inputs & 1)) continue;
-                    R->slot[R->ne++] = (bench_slot){k, kk, md == MD_KROT ? 1 : in, md, -1};
+                    if (md == MD_ONESHOT && in == SH_BENCH_INPUT_QUAT) continue; /* the rotator takes no quaternion */
+                    R->slot[R->ne++] = (bench_slot){k, kk, md == MD_KROT && in == 0 ? 1 : in, md, -1};
                 }
     return find_baselines(R);
 }
@@ -623,7 +628,7 @@ static sh_bench_opts entry_opts(const bench_run *R, const bench_slot *s)
 {
     sh_bench_opts eo = R->bo;
     eo.kernel = R->a->kernels.v[s->kk];
-    eo.input = s->in ? SH_BENCH_INPUT_MATRIX : SH_BENCH_INPUT_EULER;
+    eo.input = (sh_bench_input)s->in;
     return eo;
 }
 
@@ -775,7 +780,7 @@ static json_t *row_json(const bench_run *R, int q, int i)
     row = cli_put(row, "mode", json_string(mode_name[s->md]));
     if (a->instructions) {
         row = cli_put(row, "kernel", json_string(sh_rot_kernel_name(R->used[x])));
-        row = cli_put(row, "input", json_string(s->in ? "matrix" : "euler"));
+        row = cli_put(row, "input", json_string(sh_bench_input_name((sh_bench_input)s->in)));
         row = cli_put(row, "instructions", json_real(R->ins[x]));
         row = cli_put(row, "mults", json_real(R->mults[x]));
         return cli_put(row, "batch", json_integer(batch));
@@ -792,7 +797,7 @@ static json_t *row_json(const bench_run *R, int q, int i)
     row = cli_put(row, "count", json_integer(t->count));
     row = cli_put(row, "batch", json_integer(batch));
     row = cli_put(row, "kernel", json_string(sh_rot_kernel_name(R->used[x])));
-    row = cli_put(row, "input", json_string(s->in ? "matrix" : "euler"));
+    row = cli_put(row, "input", json_string(sh_bench_input_name((sh_bench_input)s->in)));
     row = cli_put(row, "ns_q1", json_real(t->ns_q1));
     row = cli_put(row, "ns_q3", json_real(t->ns_q3));
     row = cli_put(row, "spread", json_real(t->spread));
