@@ -149,7 +149,7 @@ bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
 
-.PHONY: all deps deps-quiet check report plots list-experiments experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
+.PHONY: all deps deps-quiet check report examples plots list-experiments experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
 # ---- dependencies ---------------------------------------------------------
@@ -190,6 +190,14 @@ $(BUILD)/libshlab.a: $(LIB_OBJ)
 
 $(BUILD)/libshlab.so: $(LIB_OBJ)
 	$(CC) -shared $(SANFLAGS) -Wl,-soname,libshlab.so.0 -o $@ $^ $(LDLIBS)
+
+# the cost model's committed calibration as C (src/lab/cost_model.c)
+COST_INC := $(BUILD)/gen/cost_table.inc
+$(COST_INC): $(wildcard data/cost_model.tsv) tools/cost_table.awk
+	@mkdir -p $(@D)
+	@if [ -f data/cost_model.tsv ]; then awk -f tools/cost_table.awk data/cost_model.tsv; fi > $@.tmp && mv $@.tmp $@
+$(BUILD)/obj/lab/cost_model.o: $(COST_INC)
+$(BUILD)/obj/lab/cost_model.o: CFLAGS += -I$(BUILD)/gen
 
 $(LAB_LIB): $(LAB_OBJ)
 	@rm -f $@
@@ -276,7 +284,7 @@ ALL_EXPERIMENTS := legendre_stability green_vector projection_convergence orthon
                probe_bands ringing scale_sparsity scale_smoothness scale_scenes taylor_deriv taylor_error \
                rotation_speed rotation_frontier rotation_stability rotation_conventions \
                rotation_extremes rotation_cost rotation_kernels \
-               highband_peers sht_accuracy
+               highband_peers sht_accuracy cost_model trade_atlas
 # ---- scenes: experiments of src/scene/ -------------------
 ALL_EXPERIMENTS += scene_transfer scene_shading
 # ---- end scenes ---------------------------------------------------------------
@@ -307,9 +315,21 @@ experiments: $(EXP_BIN)
 # last commit that changed code or data (experiments/common/code_rev.sh).
 # SCENES=full: the scene experiments' full study too (their kept parts full/;
 # needs `make probes` and `make models`; about an hour on 2 cores).
+# cost_model writes the planner's calibration (data/cost_model.tsv), which
+# is compiled in: it runs first, then everything is rebuilt with it.
+REPORT_ENV = SCENES=$(SCENES) SHLAB=$(BUILD)/shlab BUILD=$(BUILD) ALL_EXPERIMENTS="$(ALL_EXPERIMENTS)" \
+	  REV=$$(experiments/common/code_rev.sh)
 report: all $(EXP_BIN)
-	@SCENES=$(SCENES) SHLAB=$(BUILD)/shlab BUILD=$(BUILD) ALL_EXPERIMENTS="$(ALL_EXPERIMENTS)" \
-	  REV=$$(experiments/common/code_rev.sh) experiments/run_all.sh $(EXPERIMENTS)
+	@if [ -n "$(filter cost_model,$(EXPERIMENTS))" ]; then \
+	  $(REPORT_ENV) experiments/run_all.sh cost_model && \
+	  $(MAKE) --no-print-directory all $(EXP_BIN); fi
+	@$(REPORT_ENV) experiments/run_all.sh $(filter-out cost_model,$(EXPERIMENTS))
+	@if [ -n "$(filter cost_model,$(EXPERIMENTS))" ]; then SHLAB=$(BUILD)/shlab tools/refresh_examples.sh docs/choosing.md; fi
+
+# docs/choosing.md's console examples rewritten from their commands (checked
+# by tests/cli/test_choosing_examples.sh)
+examples: all
+	@SHLAB=$(BUILD)/shlab tools/refresh_examples.sh docs/choosing.md
 
 # Re-render the PNGs of EXPERIMENTS (default: all) from their committed data
 # with gnuplot alone (no experiment runs), and reassemble the report.

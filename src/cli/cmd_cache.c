@@ -140,6 +140,8 @@ static const cli_cmd cache_decl = {
              "of three channels each; Křivánek's TPR), ratio_zxzxz the median of the\n"
              "per-round ratios T_zxzxz / T (both loops) with their range.  The machine's\n"
              "load shows in the ranges, not in the ratios' medians.\n"
+             "model_ns_per_rotation: the cost model's figure for the method (one\n"
+             "rotation from a matrix, set + one apply, double; as `shlab plan` costs it).\n"
              "\n"
              "--view is the camera: Phong's eye and the pictures'.  --seed seeds the\n"
              "placement and the rays.\n",
@@ -152,7 +154,7 @@ static const cli_cmd cache_decl = {
              "       [\"noise_l2\"],[\"reference\":{\"vertices\",\"ref_l2\",\"direct_rel_l2\"}],\n"
              "       \"methods\":[{\"method\",\"beta_lim\",\"rotations\",\"fallbacks\",\"rel_l2\",\n"
              "       \"rel_max\",\"rot_rel_l2\",\"rot_rel_max\",[\"ref_rel_l2\"],\"ns_per_point\",\n"
-             "       \"ns_per_point_min\",\"ns_per_point_max\",\"ns_per_use\",\"ratio_zxzxz\",\n"
+             "       \"ns_per_point_min\",\"ns_per_point_max\",\"ns_per_use\",\"model_ns_per_rotation\",\"ratio_zxzxz\",\n"
              "       \"ratio_zxzxz_min\",\"ratio_zxzxz_max\"}]}\n",
 };
 
@@ -414,6 +416,12 @@ static int method_row(cache_work *w, int k, double tig, json_t **row)
     r = cli_put(r, "ns_per_use", tig >= 0 && w->info.uses > 0 && !m->rot.ignore
                                      ? json_real(1e9 * (tm - tig) / (double)w->info.uses)
                                      : json_null());
+    /* the cost model's figure for one rotation on this path (matrix, double,
+     * set + one apply; the cache applies three channels): the planner's costs */
+    sh_cost mc;
+    const int have_model = !m->rot.ignore && sh_cost_model(w->a->order, m->rot.method, SH_PREC_DOUBLE,
+                                                           SH_BENCH_INPUT_MATRIX, SH_BENCH_PER_ROTATION, &mc) == SH_OK;
+    r = cli_put(r, "model_ns_per_rotation", have_model ? json_real(mc.ns) : json_null());
     r = cli_put(r, "ratio_zxzxz", json_real(rmed));
     r = cli_put(r, "ratio_zxzxz_min", json_real(w->ratio[0]));
     r = cli_put(r, "ratio_zxzxz_max", json_real(w->ratio[repeat - 1]));

@@ -23,6 +23,7 @@ typedef struct {
     sh_error_measure measure;
     sh_precision prec;
     int conv, degrees, max_order;
+    int input, mode, batch, live, brief;
     const char *exr;
     sh_layout layout;
     cli_sweep_args sweep;
@@ -40,6 +41,10 @@ static int measure_value(const char *opt, const char *s, void *field)
 {
     return sh_error_measure_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
 }
+/* the paths users run (lab.h: sh_bench_input, sh_bench_mode) */
+static const char *const input_names[] = {"euler", "matrix", "quat", NULL};
+static const char *const mode_names[] = {"per-rotation", "batched", "k-rotations", NULL};
+
 static int layout_value(const char *opt, const char *s, void *field)
 {
     return sh_layout_parse(s, field) ? cli_fail("%s: %s", opt, sh_last_error()) : 0;
@@ -51,13 +56,26 @@ static const cli_opt plan_opts[] = {
     CLI_REAL(plan_args, tolerance, "tolerance", "E", 0, INFINITY, CLI_LO_OPEN, NULL, "error budget"),
     CLI_REAL(plan_args, rot_tol, "rot-tolerance", "E2", 0, INFINITY, CLI_LO_OPEN, NULL,
              "rotation budget when it should differ from E (auto)"),
-    CLI_CUSTOM(plan_args, measure, "measure", "lobe|max", measure_value, "lobe", "error measure"),
+    CLI_CUSTOM(plan_args, measure, "error", "lobe|max|coeff", measure_value, "lobe",
+               "the unit of E (below: Units)"),
     CLI_REAL(plan_args, lobe_exp, "lobe-exp", "E2", 0, 1e6, 0, "7", "exponent of the lobe"),
     CLI_REAL(plan_args, beta_step, "beta-step", "S", 0, INFINITY, CLI_LO_OPEN, NULL,
              "largest grid step (default 0.25°)"),
     CLI_DEGREES(plan_args, degrees, "angles in degrees: --max-beta and --beta-step, and the\n"
                                     "printed max_beta and worst_beta (\"unit\" says which)"),
     CLI_CUSTOM(plan_args, prec, "precision", "P", cli_parse_precision, "double", "double | float"),
+    CLI_CHOICE(plan_args, input, "input", "I", input_names, "matrix",
+               "how the rotation arrives: matrix | quat | euler (ZYZ angles\n"
+               "taken from a matrix)"),
+    CLI_CHOICE(plan_args, mode, "mode", "M", mode_names, "per-rotation",
+               "per-rotation (one vector per rotation) | batched (one\n"
+               "rotation, --batch vectors) | k-rotations (--batch rotations\n"
+               "in one call)"),
+    CLI_INT(plan_args, batch, "batch", "K", 1, 1 << 20, "256", "vectors per call with --mode batched or k-rotations"),
+    CLI_FLAG(plan_args, live, "measure",
+             "also time the candidates now (interleaved, noise rule) and say\n"
+             "where the live time is more than 1.5x from the model's"),
+    CLI_FLAG(plan_args, brief, "brief", "print the answer only (choice and runner-up), not every candidate"),
     CLI_CHOICE(plan_args, conv, "convention", "C", cli_convention_names, "cs",
                "cs | nocs: convention of the plans measured and timed"),
     CLI_STRING(plan_args, exr, "exr", "FILE", "environment image (with --order auto)"),
@@ -72,15 +90,25 @@ static const cli_cmd plan_decl = {
     .name = "plan",
     .usage = "plan --order N --max-beta B --tolerance E [OPTIONS]\n"
              "       shlab plan --order auto --exr FILE --tolerance E --max-beta B [OPTIONS]",
-    .about = "Choose the cheapest rotation method for a scene: every method built in\n"
-             "(exact ones and the Taylor approximations once available; not the MPFR\n"
-             "reference; z only when B = 0) is measured against the exact rotation on a\n"
-             "β grid 0..B (step <= --beta-step, seeded α, γ) and timed now (per rotation\n"
-             "from a 3×3 matrix, as `shlab bench`).  The choice is the fastest method whose\n"
-             "largest error over the grid is <= E; the runner-up the next fastest.\n"
-             "Errors (docs/CONVENTIONS.md): lobe = ‖(R_method − R_exact) c‖₂ with c the unit\n"
-             "coefficient vector of max(0,cosθ)^e about +z; max = the largest singular\n"
-             "value of R_method − R_exact.\n"
+    .about = "Choose the cheapest rotation method for a budget: every method built in\n"
+             "(the exact ones and the Taylor approximations; not the MPFR reference; z\n"
+             "only when B = 0) is measured against the exact rotation on a β grid 0..B\n"
+             "(step <= --beta-step, seeded α, γ) and costed on the path you run (--input,\n"
+             "--mode, --batch) by the cost model: instructions counted under callgrind\n"
+             "times a committed calibration (data/cost_model.tsv, written by `make\n"
+             "report`), so the same question gets the same answer on every run; a path\n"
+             "or order the model lacks is timed now.  The choice is the cheapest method\n"
+             "whose largest error over the grid is <= E; the runner-up the next.  For\n"
+             "both it prints the worst error in every unit and holds_to_beta, the largest\n"
+             "β (the grid continued to π) up to which it stays within E.\n"
+             "Units (docs/CONVENTIONS.md), D = R_method − R_exact, c a coefficient vector:\n"
+             "  max    the largest singular value of D = the worst ‖D c‖₂ for ‖c‖₂ = 1 =\n"
+             "         the worst relative L2 error of the rotated function on the sphere\n"
+             "         (Parseval); a bound for every other unit;\n"
+             "  coeff  the worst error of one coefficient, max |(D c)_i| for ‖c‖₂ = 1 (the\n"
+             "         largest row norm of D; <= max);\n"
+             "  lobe   ‖D c‖₂ for c the unit-norm coefficients of max(0,cosθ)^e about +z\n"
+             "         (--lobe-exp e), the measure of Křivánek et al.\n"
              "With --order auto the order is first chosen as the smallest n <= --max-order\n"
              "whose projection of the image has relative L2 residual <= E on the sphere\n"
              "(Parseval: ε² = (‖f‖² − Σc²)/‖f‖², colour channels together, ‖f‖² by the\n"
@@ -89,11 +117,17 @@ static const cli_cmd plan_decl = {
              "With --shard the shards measure the β grid; the merge times the methods.\n",
     .opts = plan_opts,
     .notes = "JSON: {\"order\",\"convention\",\"max_beta\",\"unit\" (of max_beta and worst_beta),\n"
-             "       \"tolerance\",\"measure\",\"lobe_exp\",\"precision\",\n"
-             "       \"choice\":{\"method\",\"ns_per_rotation\",\"max_error\"} (null if none qualifies),\n"
-             "       \"runner_up\":{...} (or null),\n"
+             "       \"tolerance\",\"measure\" (the unit of tolerance),\"lobe_exp\",\"precision\",\n"
+             "       \"input\",\"mode\",\"batch\",\"cost_model\" (where its calibration comes from),\n"
+             "       \"choice\":{\"method\",\"kernel\",\"ns_per_rotation\",\"instructions\",\"cost_source\" (model, or\n"
+             "                 model-per-rotation: the method's one-at-a-time cost where the\n"
+             "                 calibration did not batch it, or live),\n"
+             "                 \"max_error\",\"error_lobe\",\"error_max\",\"error_coeff\",\"holds_to_beta\",\n"
+             "                 with --measure \"live_ns\",\"live_q1\",\"live_q3\",\"live_disagrees\"}\n"
+             "       (null if none qualifies), \"runner_up\":{...} (or null),\n"
              "       \"candidates\":[{\"method\",\"exact\",\"ok\",\"max_error\",\"worst_beta\",\n"
-             "                      \"ns_per_rotation\",\"mults\"}],\n"
+             "                      \"ns_per_rotation\",\"mults\",\"kernel\",\"instructions\",\n"
+             "                      \"cost_source\"[,\"live_ns\",...]}], with --measure \"noisy\",\"noise\".\n"
              "       with --order auto also \"order_residual\" (relative L2 at the chosen order)\n"
              "       and \"image\":{\"path\",\"width\",\"height\",\"layout\"}}.  Exit 0 if a method\n"
              "       qualifies, 1 if none does (the candidates still printed), also 1 with\n"
@@ -110,20 +144,63 @@ static json_t *cand_json(const sh_rot_candidate *c, int full, int degrees)
         o = cli_put(o, "exact", json_boolean(c->exact));
         o = cli_put(o, "ok", json_boolean(c->ok));
     }
+    o = cli_put(o, "kernel", json_string(sh_rot_kernel_name(c->kernel)));
     o = cli_put(o, "ns_per_rotation", json_real(c->ns_per_rotation));
+    o = cli_put(o, "instructions", c->instructions > 0 ? json_real(c->instructions) : json_null());
+    o = cli_put(o, "cost_source", json_string(c->from_model == 2 ? "model-per-rotation" : c->from_model ? "model" : "live"));
     o = cli_put(o, "max_error", json_real(c->max_error));
     if (full) {
         o = cli_put(o, "worst_beta", json_real(cli_angle_out(c->worst_beta, degrees)));
         o = cli_put(o, "mults", json_real(c->mults));
     }
+    if (c->live_ns > 0) {
+        o = cli_put(o, "live_ns", json_real(c->live_ns));
+        o = cli_put(o, "live_q1", json_real(c->live_q1));
+        o = cli_put(o, "live_q3", json_real(c->live_q3));
+        if (c->from_model) o = cli_put(o, "live_disagrees", json_boolean(c->live_disagrees));
+    }
     return o;
 }
 
+/* The choice or the runner-up as the answer (its path: the result's
+ * precision, input, mode, batch): the candidate, its worst error in every
+ * unit and how far in β it holds. */
+static json_t *answer_json(const sh_rot_choose_opts *co, const sh_rot_candidate *c, int degrees)
+{
+    sh_rot_error w;
+    double holds;
+    if (sh_rot_choose_extent(co, c->method, &w, &holds)) return NULL;
+    json_t *o = cand_json(c, 0, degrees);
+    for (int m = 0; m < SH_NMEASURES; m++) {
+        char key[32];
+        snprintf(key, sizeof key, "error_%s", sh_error_measure_name((sh_error_measure)m));
+        o = cli_put(o, key, json_real(sh_rot_error_in(&w, (sh_error_measure)m)));
+    }
+    return cli_put(o, "holds_to_beta", json_real(cli_angle_out(holds, degrees)));
+}
+
+/* The rotation path of the parameters (input, mode, batch, live). */
+static int path_of(const json_t *params, sh_rot_path *p)
+{
+    const char *in = json_string_value(json_object_get(params, "input"));
+    const char *md = json_string_value(json_object_get(params, "mode"));
+    *p = (sh_rot_path)SH_ROT_PATH_DEFAULT;
+    int ok_in = 0, ok_md = 0;
+    for (int k = 0; in && input_names[k]; k++)
+        if (!strcmp(in, input_names[k])) p->input = (sh_bench_input)k, ok_in = 1;
+    for (int k = 0; md && mode_names[k]; k++)
+        if (!strcmp(md, mode_names[k])) p->mode = (sh_bench_mode)k, ok_md = 1;
+    p->batch = (int)json_integer_value(json_object_get(params, "batch"));
+    p->live = json_is_true(json_object_get(params, "live"));
+    return ok_in && ok_md && p->batch >= 1 ? 0 : -1;
+}
+
 /* The choice from the errors on the β grid (rows in step order); the
- * methods are timed here, by the process that prints the result. */
+ * methods are costed here, by the process that prints the result. */
 static json_t *finish(const json_t *params, json_t *rows)
 {
     sh_rot_choose_opts co = {0};
+    sh_rot_path path;
     const json_t *mj = json_object_get(params, "methods");
     const int degrees = json_is_true(json_object_get(params, "degrees"));
     co.order = (int)json_integer_value(json_object_get(params, "order"));
@@ -132,7 +209,7 @@ static json_t *finish(const json_t *params, json_t *rows)
     co.lobe_exp = json_real_value(json_object_get(params, "lobe_exp"));
     co.beta_step = json_real_value(json_object_get(params, "beta_step"));
     sh_rot_method ms[SH_ROT_NMETHODS];
-    int nm = 0, nsteps = 0, bad = 0;
+    int nm = 0, nsteps = 0, bad = path_of(params, &path) != 0;
     bad |= sh_error_measure_parse(json_string_value(json_object_get(params, "measure")), &co.measure) != SH_OK;
     bad |= sh_precision_parse(json_string_value(json_object_get(params, "precision")), &co.prec) != SH_OK;
     bad |= sh_convention_parse(json_string_value(json_object_get(params, "convention")), &co.conv) != SH_OK;
@@ -150,7 +227,8 @@ static json_t *finish(const json_t *params, json_t *rows)
     co.grid_errors = err;
     sh_rot_candidate cand[SH_ROT_NMETHODS];
     int nc = 0, choice = -1, runner = -1;
-    const int st = sh_rot_choose(&co, cand, &nc, &choice, &runner);
+    sh_bench_noise noise;
+    const int st = sh_rot_choose(&co, &path, cand, &nc, &choice, &runner, &noise);
     free(err);
     if (st) return NULL;
     json_t *cj = json_array();
@@ -158,14 +236,28 @@ static json_t *finish(const json_t *params, json_t *rows)
         if (json_array_append_new(cj, cand_json(&cand[k], 1, degrees))) { json_decref(cj); cj = NULL; }
     json_t *root = json_object();
     static const char *const keys[] = {"order", "convention", "max_beta", "tolerance", "measure", "lobe_exp",
-                                       "precision", "image_tolerance", "order_residual", "image"};
+                                       "precision", "input", "mode", "batch", "image_tolerance",
+                                       "order_residual", "image"};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++) {
         const char *from = strcmp(keys[k], "max_beta") ? keys[k] : "max_beta_shown";
         if (json_object_get(params, from)) root = cli_put(root, keys[k], json_deep_copy(json_object_get(params, from)));
         if (!strcmp(keys[k], "max_beta")) root = cli_put(root, "unit", json_string(cli_angle_unit(degrees)));
     }
-    root = cli_put(root, "choice", choice >= 0 ? cand_json(&cand[choice], 0, degrees) : json_null());
-    root = cli_put(root, "runner_up", runner >= 0 ? cand_json(&cand[runner], 0, degrees) : json_null());
+    root = cli_put(root, "cost_model", json_string(sh_cost_model_source()[0] ? sh_cost_model_source() : "none"));
+    if (path.live) {
+        root = cli_put(root, "noisy", json_boolean(noise.noisy));
+        root = cli_put(root, "noise", json_string(noise.why));
+        if (noise.noisy) cli_warn("plan: noisy live timing (%s); the choice uses the model", noise.why);
+    }
+    json_t *cjs = choice >= 0 ? answer_json(&co, &cand[choice], degrees) : json_null();
+    json_t *rjs = runner >= 0 ? answer_json(&co, &cand[runner], degrees) : json_null();
+    if (!cjs || !rjs) { json_decref(cjs); json_decref(rjs); json_decref(root); json_decref(cj); return NULL; }
+    root = cli_put(root, "choice", cjs);
+    root = cli_put(root, "runner_up", rjs);
+    if (json_is_true(json_object_get(params, "brief"))) {
+        json_decref(cj);
+        return root;
+    }
     return cli_put(root, "candidates", cj);
 }
 
@@ -186,6 +278,9 @@ static const cli_sweep_field params_fields[] = {
     {"precision", CLI_FIELD_STRING, 0, 0, 0},       {"image_tolerance", CLI_FIELD_REAL, 1, 0, 0},
     {"order_residual", CLI_FIELD_REAL, 1, 0, 0},    {"image", CLI_FIELD_OBJECT, 1, 0, 0},
     {"beta_step", CLI_FIELD_REAL, 0, 0, 0},         {"methods", CLI_FIELD_STRINGS, 0, 0, 0},
+    {"input", CLI_FIELD_STRING, 0, 0, 0},           {"mode", CLI_FIELD_STRING, 0, 0, 0},
+    {"batch", CLI_FIELD_INT, 0, 1, 1 << 20},        {"live", CLI_FIELD_BOOL, 0, 0, 0},
+    {"brief", CLI_FIELD_BOOL, 1, 0, 0},
     {NULL, 0, 0, 0, 0}};
 static const cli_sweep_field row_fields[] = {{"beta", CLI_FIELD_REAL, 0, 0, 0}, {"errors", CLI_FIELD_REALS, 0, 0, 0},
                                              {NULL, 0, 0, 0, 0}};
@@ -217,7 +312,9 @@ static int validate(const plan_args *a, const cli_parsed *seen, sh_rot_choose_op
     if (cli_applies("plan", a->exr != NULL, "--exr", order_auto, "--order auto") ||
         cli_applies("plan", cli_given(seen, "layout"), "--layout", order_auto, "--order auto") ||
         cli_applies("plan", cli_given(seen, "max-order"), "--max-order", order_auto, "--order auto") ||
-        cli_applies("plan", cli_given(seen, "rot-tolerance"), "--rot-tolerance", order_auto, "--order auto"))
+        cli_applies("plan", cli_given(seen, "rot-tolerance"), "--rot-tolerance", order_auto, "--order auto") ||
+        cli_applies("plan", cli_given(seen, "batch"), "--batch", a->mode != SH_BENCH_PER_ROTATION,
+                    "--mode batched or k-rotations"))
         return CLI_EXIT_USAGE;
     *co = (sh_rot_choose_opts){.order = order_auto ? 0 : a->order, .tolerance = a->tolerance,
                                .lobe_exp = a->lobe_exp, .measure = a->measure, .prec = a->prec,
@@ -316,6 +413,11 @@ static json_t *sweep_params(const plan_args *a, const sh_rot_choose_opts *co, co
     params = cli_put(params, "measure", json_string(sh_error_measure_name(co->measure)));
     params = cli_put(params, "lobe_exp", json_real(co->lobe_exp));
     params = cli_put(params, "precision", json_string(sh_precision_name(co->prec)));
+    params = cli_put(params, "input", json_string(input_names[a->input]));
+    params = cli_put(params, "mode", json_string(mode_names[a->mode]));
+    params = cli_put(params, "batch", json_integer(a->mode == SH_BENCH_PER_ROTATION ? 1 : a->batch));
+    params = cli_put(params, "live", json_boolean(a->live));
+    if (a->brief) params = cli_put(params, "brief", json_true());
     if (a->order == PLAN_ORDER_AUTO) {
         params = cli_put(params, "image_tolerance", json_real(a->tolerance));
         params = cli_put(params, "order_residual", json_real(resid));
@@ -362,7 +464,7 @@ static int run(int argc, char **argv)
     int nm = 0, nsteps = 0;
     const int st = sh_rot_choose_grid(&co, ms, &nm, &nsteps);
     if (st) { json_decref(image); return cli_fail_status(st); }
-    if (!a.sweep.quiet) fprintf(stderr, "plan: measuring and timing the methods at order %d\n", co.order);
+    if (!a.sweep.quiet) fprintf(stderr, "plan: measuring and costing the methods at order %d\n", co.order);
     cli_sweep sw;
     cli_sweep_begin(&sw, &sweep_plan, sweep_params(&a, &co, ms, nm, image, resid), nsteps, &a.sweep, "steps");
     return cli_sweep_close(&sw, measure(&co, nm, nsteps, &sw));

@@ -118,7 +118,10 @@ static const cli_cmd plan_decl = {
              "                      \"max_beta\" (null: fails at β = 0, or undecided),\"at_beta\" (the β\n"
              "                      judged: undecided, where the rule fails; else the nearest to\n"
              "                      failing it),\"ref_l2\",\"ref_needed\",\"replications\",\n"
-             "                      \"replications_needed\"}} (null without a decided order)]}],\n"
+             "                      \"replications_needed\",\"model_ns_per_rotation\"}} (null without a\n"
+             "                      decided order), \"exact_method\",\"exact_model_ns_per_rotation\"\n"
+             "                      (the cost model's cheapest exact method at the order; costs of one\n"
+             "                      rotation from a matrix in double, as `shlab plan` costs it)]}],\n"
              "       [\"rotation\":{\"units\",\"alpha\",\"gamma\",\"rows\":[{\"beta\",\"method\",\"order\",\"rel_l2\",\n"
              "                    \"ref_l2\",\"replications\"}]}]}\n"
              "Angles (alpha, gamma, beta, max_beta, at_beta) are in degrees with --degrees,\n"
@@ -291,9 +294,34 @@ static const char *reps_words(double ref_l2, int reps, double needed, char *buf,
     return buf;
 }
 
+/* The cost model's ns for one rotation by m at the order (from a matrix,
+ * double: set + apply), as `shlab plan` costs it; null outside the model. */
+static json_t *model_ns(int order, sh_rot_method m)
+{
+    sh_cost c;
+    return sh_cost_model(order, m, SH_PREC_DOUBLE, SH_BENCH_INPUT_MATRIX, SH_BENCH_PER_ROTATION, &c) == SH_OK
+               ? json_real(c.ns) : json_null();
+}
+
+/* The exact method the cost model finds cheapest at the order, and its ns. */
+static void cheapest_exact(int order, json_t **name, json_t **ns)
+{
+    double best = INFINITY;
+    int bm = -1;
+    for (int m = 0; m < SH_ROT_NMETHODS; m++) {
+        sh_cost c;
+        if (m == SH_ROT_REFERENCE || m == SH_ROT_Z || !sh_rot_method_is_exact((sh_rot_method)m) ||
+            sh_cost_model(order, (sh_rot_method)m, SH_PREC_DOUBLE, SH_BENCH_INPUT_MATRIX, SH_BENCH_PER_ROTATION, &c))
+            continue;
+        if (c.ns < best) best = c.ns, bm = m;
+    }
+    *name = bm >= 0 ? json_string(sh_rot_method_name((sh_rot_method)bm)) : json_null();
+    *ns = bm >= 0 ? json_real(best) : json_null();
+}
+
 /* A walk's decision: {"decision","max_beta","at_beta","ref_l2","ref_needed",
- * "replications","replications_needed"}. */
-static json_t *walk_json(const plan_work *w, const walk *wk)
+ * "replications","replications_needed","model_ns_per_rotation"}. */
+static json_t *walk_json(const plan_work *w, const walk *wk, int order, sh_rot_method m)
 {
     const sh_beta_decision *d = &wk->d;
     const int undecided = d->undecided, reps = wk->reps[d->at];
@@ -305,7 +333,7 @@ static json_t *walk_json(const plan_work *w, const walk *wk)
     o = cli_put(o, "ref_needed", json_real(d->ref_needed));
     o = cli_put(o, "replications", json_integer(reps));
     o = cli_put(o, "replications_needed", undecided ? reps_json(d->ref_l2, reps, d->ref_needed) : json_null());
-    return o;
+    return cli_put(o, "model_ns_per_rotation", model_ns(order, m));
 }
 
 static json_t *budget_json(const plan_work *w, int k)
@@ -324,8 +352,13 @@ static json_t *budget_json(const plan_work *w, int k)
     r = cli_put(r, "replications_needed", d->undecided ? reps_json(d->ref_l2, reps, d->ref_needed) : json_null());
     if (w->max_beta > 0) {
         json_t *mb = has_order(w, k) ? json_object() : json_null();
-        for (int t = 0; t < 3 && has_order(w, k); t++) mb = cli_put(mb, sh_rot_method_name(taylor[t]), walk_json(w, &w->w[k][t]));
+        for (int t = 0; t < 3 && has_order(w, k); t++)
+            mb = cli_put(mb, sh_rot_method_name(taylor[t]), walk_json(w, &w->w[k][t], d->order, taylor[t]));
         r = cli_put(r, "max_beta", mb);
+        json_t *en = json_null(), *ens = json_null();
+        if (has_order(w, k)) cheapest_exact(d->order, &en, &ens);
+        r = cli_put(r, "exact_method", en);
+        r = cli_put(r, "exact_model_ns_per_rotation", ens);
     }
     return r;
 }

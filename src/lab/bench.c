@@ -62,7 +62,7 @@ const char *sh_bench_mode_name(sh_bench_mode m)
 
 const char *sh_bench_input_name(sh_bench_input i)
 {
-    return i == SH_BENCH_INPUT_MATRIX ? "matrix" : "euler";
+    return i == SH_BENCH_INPUT_MATRIX ? "matrix" : i == SH_BENCH_INPUT_QUAT ? "quat" : "euler";
 }
 
 static double clock_ns(clockid_t id)
@@ -368,6 +368,10 @@ typedef struct {
     float (*Rf)[9];
     float *vinf, *voutf;
     void *Rs, *xs, *ys;
+    /* quaternion input: the pool's rotations as (w, x, y, z), double and
+     * float, and the batch's as structure of arrays (q[j·K + k]) in Rs */
+    double (*Q)[4];
+    float (*Qf)[4];
 } bench_ctx;
 
 static void bench_ctx_free(void *v)
@@ -379,6 +383,7 @@ static void bench_ctx_free(void *v)
     free(b->vin);
     free(b->vout);
     free(b->Rf), free(b->vinf), free(b->voutf), free(b->Rs), free(b->xs), free(b->ys);
+    free(b->Q), free(b->Qf);
     free(b);
 }
 
@@ -413,14 +418,23 @@ static int bench_pool_matrix(bench_ctx *b)
     b->xs = malloc(nc * K * es);
     b->ys = malloc(nc * K * es);
     if (!b->Rf || !b->vinf || !b->voutf || !b->Rs || !b->xs || !b->ys) return sh_error(SH_ENOMEM, "bench: out of memory");
-    for (int k = 0; k < SH_BENCH_POOL; k++)
+    const int quat = b->input == SH_BENCH_INPUT_QUAT;
+    if (quat && (!(b->Q = malloc(SH_BENCH_POOL * sizeof *b->Q)) || !(b->Qf = malloc(SH_BENCH_POOL * sizeof *b->Qf))))
+        return sh_error(SH_ENOMEM, "bench: out of memory");
+    for (int k = 0; k < SH_BENCH_POOL; k++) {
         for (int j = 0; j < 9; j++) b->Rf[k][j] = (float)b->R[k][j];
+        if (!quat) continue;
+        sh_rotation r;
+        memcpy(r.R, b->R[k], sizeof r.R);
+        sh_rotation_to_quat(&r, b->Q[k]);
+        for (int j = 0; j < 4; j++) b->Qf[k][j] = (float)b->Q[k][j];
+    }
     for (size_t i = 0; i < (size_t)SH_BENCH_POOL * nc; i++) b->vinf[i] = (float)b->vin[i];
     for (size_t k = 0; k < K; k++) {
         const size_t q = k & (SH_BENCH_POOL - 1);
-        for (int j = 0; j < 9; j++) {
-            if (b->fl) ((float *)b->Rs)[(size_t)j * K + k] = b->Rf[q][j];
-            else ((double *)b->Rs)[(size_t)j * K + k] = b->R[q][j];
+        for (int j = 0; j < (quat ? 4 : 9); j++) {
+            if (b->fl) ((float *)b->Rs)[(size_t)j * K + k] = quat ? b->Qf[q][j] : b->Rf[q][j];
+            else ((double *)b->Rs)[(size_t)j * K + k] = quat ? b->Q[q][j] : b->R[q][j];
         }
         for (size_t i = 0; i < nc; i++) {
             if (b->fl) ((float *)b->xs)[i * K + k] = b->vinf[q * nc + i];
@@ -439,15 +453,19 @@ static int bench_run_matrix(bench_ctx *b, long count)
     const size_t nc = (size_t)b->nc, K = (size_t)b->batch;
     for (long it = 0; it < count; it++) {
         const long k = it & (SH_BENCH_POOL - 1);
-        if (b->mode == SH_BENCH_KROT) {
+        const int quat = b->input == SH_BENCH_INPUT_QUAT;
+        if (b->mode == SH_BENCH_KROT && quat) {
+            if (b->fl) st |= sh_rot_plan_rotate_many_quat_f(b->p, K, b->Rs, b->xs, b->ys);
+            else st |= sh_rot_plan_rotate_many_quat(b->p, K, b->Rs, b->xs, b->ys);
+        } else if (b->mode == SH_BENCH_KROT) {
             if (b->fl) st |= sh_rot_plan_rotate_many_f(b->p, K, b->Rs, b->xs, b->ys);
             else st |= sh_rot_plan_rotate_many(b->p, K, b->Rs, b->xs, b->ys);
         } else if (b->fl) {
-            st |= sh_rot_plan_set_matrix_f(b->p, b->Rf[k]);
+            st |= quat ? sh_rot_plan_set_quat_f(b->p, b->Qf[k]) : sh_rot_plan_set_matrix_f(b->p, b->Rf[k]);
             if (b->mode == SH_BENCH_BATCHED) st |= sh_rot_plan_apply_many_f(b->p, K, b->xs, b->ys);
             else st |= sh_rot_plan_apply_f(b->p, b->vinf + k * nc, b->voutf);
         } else {
-            st |= sh_rot_plan_set_matrix(b->p, b->R[k]);
+            st |= quat ? sh_rot_plan_set_quat(b->p, b->Q[k]) : sh_rot_plan_set_matrix(b->p, b->R[k]);
             if (b->mode == SH_BENCH_BATCHED) st |= sh_rot_plan_apply_many(b->p, K, b->xs, b->ys);
             else st |= sh_rot_plan_apply(b->p, b->vin + k * nc, b->vout);
         }
@@ -472,7 +490,7 @@ static int bench_run(void *v, long count)
     sh_rotation r;
     int st = SH_OK;
     const size_t nc = (size_t)b->nc;
-    if ((int)b->mode >= 0 && (b->input == SH_BENCH_INPUT_MATRIX || b->mode == SH_BENCH_KROT)) {
+    if ((int)b->mode >= 0 && (b->input != SH_BENCH_INPUT_EULER || b->mode == SH_BENCH_KROT)) {
         st = bench_run_matrix(b, count);
     } else if ((int)b->mode < 0) {
         for (long it = 0; it < count; it++) {
@@ -520,7 +538,7 @@ int sh_rot_bench_entry(int order, sh_rot_method method, sh_precision prec, sh_be
     if (st) return st;
     if (mode != SH_BENCH_PER_ROTATION && mode != SH_BENCH_BATCHED && mode != SH_BENCH_KROT)
         return sh_error(SH_EINVAL, "bench: unknown mode");
-    if (o->input != SH_BENCH_INPUT_EULER && o->input != SH_BENCH_INPUT_MATRIX)
+    if (o->input != SH_BENCH_INPUT_EULER && o->input != SH_BENCH_INPUT_MATRIX && o->input != SH_BENCH_INPUT_QUAT)
         return sh_error(SH_EINVAL, "bench: unknown input");
     bench_ctx *b = calloc(1, sizeof *b);
     if (!b) return sh_error(SH_ENOMEM, "bench: out of memory");
@@ -532,10 +550,11 @@ int sh_rot_bench_entry(int order, sh_rot_method method, sh_precision prec, sh_be
     b->fl = prec == SH_PREC_FLOAT;
     if (!(st = sh_rot_plan_create_kernel(order, method, prec, o->conv, o->kernel, &b->p)))
         snprintf(b->name, sizeof b->name, "%s order %d %s%s%s %s", sh_rot_method_name(method), order,
-                 sh_bench_mode_name(mode), o->input == SH_BENCH_INPUT_MATRIX ? " from a matrix" : "",
+                 sh_bench_mode_name(mode), o->input == SH_BENCH_INPUT_MATRIX ? " from a matrix"
+                                          : o->input == SH_BENCH_INPUT_QUAT ? " from a quaternion" : "",
                  prec == SH_PREC_FLOAT ? " float" : "", sh_rot_kernel_name(sh_rot_plan_kernel(b->p)));
     if (st || (st = bench_pool(b, o, method == SH_ROT_Z)) ||
-        ((b->input == SH_BENCH_INPUT_MATRIX || mode == SH_BENCH_KROT) && (st = bench_pool_matrix(b))) ||
+        ((b->input != SH_BENCH_INPUT_EULER || mode == SH_BENCH_KROT) && (st = bench_pool_matrix(b))) ||
         (st = bench_run(b, 1))) {
         bench_ctx_free(b);
         return st;
@@ -558,8 +577,9 @@ double sh_rot_bench_entry_bytes(int order, sh_rot_method method, sh_precision pr
     /* bench_ctx_new's pieces: the plan, bench_pool, bench_pool_matrix */
     double b = sizeof(bench_ctx) + (double)sh_rot_plan_bytes(order, method, prec);
     b += SH_BENCH_POOL * (9 + nc) * sizeof(double) + nc * sizeof(double);
-    if (o->input == SH_BENCH_INPUT_MATRIX || mode == SH_BENCH_KROT)
+    if (o->input != SH_BENCH_INPUT_EULER || mode == SH_BENCH_KROT)
         b += SH_BENCH_POOL * (9 + nc) * sizeof(float) + nc * sizeof(float) + K * (9 + 2 * nc) * es;
+    if (o->input == SH_BENCH_INPUT_QUAT) b += SH_BENCH_POOL * 4 * (sizeof(double) + sizeof(float));
     return b;
 }
 

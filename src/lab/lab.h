@@ -43,8 +43,8 @@ typedef enum {
     SH_BENCH_PER_ROTATION = 0, /* per vector: matrix → sh_rotation → plan_set → apply */
     SH_BENCH_BATCHED,          /* one set, then `batch` vectors applied; per vector */
     SH_BENCH_KROT              /* `batch` rotations applied to `batch` vectors in one
-                                  sh_rot_plan_rotate_many call (structure of arrays);
-                                  per vector */
+                                  sh_rot_plan_rotate_many(_quat) call (structure of
+                                  arrays); per vector */
 } sh_bench_mode;
 /* How the rotation reaches the plan:
  *   EULER   the user's 3×3 matrix → ZYZ angles (sh_euler_from_matrix) →
@@ -54,8 +54,12 @@ typedef enum {
  *           precision: float plans take float matrices and vectors
  *           (sh_rot_plan_set_matrix_f, sh_rot_plan_apply_f); batched mode
  *           applies the batch as one sh_rot_plan_apply_many call.
- * SH_BENCH_KROT always takes matrices (structure of arrays). */
-typedef enum { SH_BENCH_INPUT_EULER = 0, SH_BENCH_INPUT_MATRIX } sh_bench_input;
+ *   QUAT    sh_rot_plan_set_quat(_f) (w, x, y, z) in the plan's precision,
+ *           like MATRIX otherwise; k-rotations then take quaternions
+ *           (sh_rot_plan_rotate_many_quat(_f)).
+ * SH_BENCH_KROT with EULER takes matrices. */
+typedef enum { SH_BENCH_INPUT_EULER = 0, SH_BENCH_INPUT_MATRIX, SH_BENCH_INPUT_QUAT } sh_bench_input;
+#define SH_BENCH_NINPUTS 3
 const char *sh_bench_input_name(sh_bench_input i);
 const char *sh_bench_mode_name(sh_bench_mode m);
 typedef struct {
@@ -192,20 +196,68 @@ int sh_bench_instructions(const sh_bench_entry *e, int ne, long n, const char *c
                           double *ins);
 
 
-/* ---- the planner's timed choice (planner.c) ----------------------------------- */
+/* ---- the planner's choice (planner.c) ----------------------------------------
+ * The path a user runs: how the rotation arrives (matrix, quaternion or
+ * Euler angles) and how many vectors one call rotates. */
+typedef struct {
+    sh_bench_input input; /* default SH_BENCH_INPUT_MATRIX */
+    sh_bench_mode mode;   /* per-rotation, batched (one rotation, `batch`
+                             vectors) or k-rotations (`batch` rotations) */
+    int batch;            /* vectors per call beyond per-rotation (≥ 1) */
+    int live;             /* also time the candidates now (interleaved) */
+} sh_rot_path;
+#define SH_ROT_PATH_DEFAULT {SH_BENCH_INPUT_MATRIX, SH_BENCH_PER_ROTATION, 1, 0}
 typedef struct {
     sh_rot_method method;
     int exact;
     double max_error;  /* largest error over the β grid (the chosen measure) */
     double worst_beta; /* where */
-    double ns_per_rotation, mults;
+    double ns_per_rotation; /* the ranking cost: the model's (sh_cost_model),
+                               or the live time where the model has none */
+    double mults;
     int ok;            /* max_error ≤ tolerance */
+    int from_model;    /* ns_per_rotation is the model's: 1 on the path asked
+                          for, 2 its one-at-a-time cost from a matrix (the
+                          calibration has no row of the method on that path);
+                          0: timed live */
+    sh_rot_kernel kernel;  /* the kernel auto picks */
+    double instructions;   /* per rotated vector (model; 0 if none) */
+    /* path.live: the interleaved timing now (ns per rotated vector) */
+    double live_ns, live_q1, live_q3;
+    int live_disagrees; /* the live median is outside [model/1.5, model·1.5] */
 } sh_rot_candidate;
 /* cand receives up to SH_ROT_NMETHODS candidates (sorted: admissible ones by
- * time first, then the others by error); *ncand their count; *choice and
- * *runner_up index cand (−1 when none). */
-int sh_rot_choose(const sh_rot_choose_opts *o, sh_rot_candidate *cand, int *ncand, int *choice,
-                  int *runner_up);
+ * cost first, then the others by error); *ncand their count; *choice and
+ * *runner_up index cand (−1 when none).  path NULL: the default path.  The
+ * cost is the model's unless o->cost is given (tests); a method the model
+ * does not cover at the order is timed live.  *noisy (may be NULL) is set
+ * when a live timing broke the noise rule. */
+int sh_rot_choose(const sh_rot_choose_opts *o, const sh_rot_path *path, sh_rot_candidate *cand, int *ncand,
+                  int *choice, int *runner_up, sh_bench_noise *noise);
+
+/* ---- the cost model (cost_model.c) -------------------------------------------
+ * The cost of a rotation on a path users run, from instructions counted
+ * under callgrind and a committed calibration (data/cost_model.tsv, written
+ * by `make report`): deterministic, the same on every run. */
+typedef struct {
+    int order, batch;     /* batch: vectors per call in the calibration run */
+    sh_rot_kernel kernel; /* the kernel auto picks for it */
+    double instructions;  /* per rotated vector */
+    double mults;         /* counted multiplications per rotated vector */
+    double ns_per_instruction; /* the calibration used */
+    double ns;            /* the model's ns per rotated vector */
+    int interpolated;     /* the order lies between two measured ones */
+} sh_cost;
+/* The cost of (order, method, precision, input, mode).  SH_ENOTSUP outside
+ * the orders the table covers for that path (sh_cost_model_range). */
+int sh_cost_model(int order, sh_rot_method m, sh_precision p, sh_bench_input in, sh_bench_mode md,
+                  sh_cost *out);
+/* The smallest and largest order measured for the path; 0 if none. */
+int sh_cost_model_range(sh_rot_method m, sh_precision p, sh_bench_input in, sh_bench_mode md, int *lo,
+                        int *hi);
+/* Where the calibration comes from (revision, date, machine), "" if the
+ * build has no table. */
+const char *sh_cost_model_source(void);
 
 /* ---- temporary files (io/tempfile.c) ------------------------------------------- */
 /* Remove every temporary file that a writer of this library (sh_exr_write,

@@ -118,7 +118,7 @@ int sh_rot_errws_eval_sv(sh_rot_errws *w, sh_rot_method method, sh_precision pre
     int st;
     if (!*pp && (st = sh_rot_plan_create(w->order, method, prec, w->conv, pp))) return st;
     if ((st = sh_rot_plan_set(*pp, &w->rot)) || (st = sh_rot_plan_blocks(*pp, w->blocks))) return st;
-    double smax = 0, ssum = 0, lobe2 = 0;
+    double smax = 0, ssum = 0, lobe2 = 0, row2 = 0;
     for (int l = 0; l < w->order; l++) {
         const int n = 2 * l + 1;
         const double *B = w->blocks + sh_rot_block_offset(l), *E = w->exact + sh_rot_block_offset(l);
@@ -129,7 +129,12 @@ int sh_rot_errws_eval_sv(sh_rot_errws *w, sh_rot_method method, sh_precision pre
                                               sh_rot_method_name(method));
             w->A[i] = d;
         }
-        for (int r = 0; r < n; r++) col2 += w->A[(size_t)r * n + l] * w->A[(size_t)r * n + l];
+        for (int r = 0; r < n; r++) {
+            col2 += w->A[(size_t)r * n + l] * w->A[(size_t)r * n + l];
+            double rr = 0;
+            for (int c = 0; c < n; c++) rr += w->A[(size_t)r * n + c] * w->A[(size_t)r * n + c];
+            row2 = fmax(row2, rr);
+        }
         lobe2 += w->c[l] * w->c[l] * col2;
         /* singular values of D_l (one-sided Jacobi, [3]) */
         gsl_matrix_view A = gsl_matrix_view_array(w->A, (size_t)n, (size_t)n);
@@ -148,20 +153,28 @@ int sh_rot_errws_eval_sv(sh_rot_errws *w, sh_rot_method method, sh_precision pre
     err->max = smax;
     err->mean = ssum / ((double)w->order * w->order);
     err->lobe = sqrt(lobe2);
+    err->coeff = sqrt(row2);
     return SH_OK;
 }
 
 /* ---------------------------------------------------------------- choose */
-static const char *const measure_names[] = {"lobe", "max"};
-const char *sh_error_measure_name(sh_error_measure m) { return m == SH_MEASURE_MAX ? "max" : "lobe"; }
+static const char *const measure_names[SH_NMEASURES] = {"lobe", "max", "coeff"};
+const char *sh_error_measure_name(sh_error_measure m)
+{
+    return (int)m >= 0 && m < SH_NMEASURES ? measure_names[m] : "lobe";
+}
 int sh_error_measure_parse(const char *s, sh_error_measure *out)
 {
-    for (int k = 0; k < 2; k++)
+    for (int k = 0; k < SH_NMEASURES; k++)
         if (s && !strcmp(s, measure_names[k])) {
             *out = (sh_error_measure)k;
             return SH_OK;
         }
-    return sh_error(SH_EINVAL, "unknown error measure '%s' (lobe or max)", s ? s : "");
+    return sh_error(SH_EINVAL, "unknown error measure '%s' (lobe, max or coeff)", s ? s : "");
+}
+double sh_rot_error_in(const sh_rot_error *e, sh_error_measure m)
+{
+    return m == SH_MEASURE_MAX ? e->max : m == SH_MEASURE_COEFF ? e->coeff : e->lobe;
 }
 
 static uint64_t rng_next(uint64_t *s)
@@ -198,6 +211,20 @@ int sh_rot_choose_grid(const sh_rot_choose_opts *o, sh_rot_method ms[SH_ROT_NMET
     return SH_OK;
 }
 
+/* The rotation of step j of the β grid: β_j = j·h with h = max_beta / nbeta
+ * (the grid's step; steps past nbeta continue it), α and γ seeded by j, so
+ * a step's errors do not depend on which other steps are measured. */
+static int step_rotation(const sh_rot_choose_opts *o, int nbeta, int j, sh_rotation *rot, double *beta_out)
+{
+    uint64_t seed = 0x9E3779B97F4A7C15ULL * (uint64_t)(j + 1);
+    const double h = nbeta ? o->max_beta / nbeta : o->beta_step;
+    const double beta = j <= nbeta ? (nbeta ? o->max_beta * j / nbeta : 0) : fmin(M_PI, o->max_beta + (j - nbeta) * h);
+    const double a = M_PI * ((double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 2 - 1);
+    const double g = M_PI * ((double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 2 - 1);
+    if (beta_out) *beta_out = beta;
+    return sh_rotation_from_euler(a, beta, g, rot);
+}
+
 int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_items *items, double *err)
 {
     sh_rot_method ms[SH_ROT_NMETHODS];
@@ -213,22 +240,55 @@ int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_items *items, dou
     if ((st = sh_rot_errws_create_conv(o->order, o->lobe_exp, o->order <= 32, o->conv, &w))) return st;
     for (int j = 0; j < nsteps && !st; j++) {
         if (!sh_items_own(items, j)) continue;
-        /* α, γ seeded by the step, so a step's errors do not depend on
-         * which other steps are measured (shards) */
-        uint64_t seed = 0x9E3779B97F4A7C15ULL * (uint64_t)(j + 1);
-        const double beta = nbeta ? o->max_beta * j / nbeta : 0;
-        const double a = M_PI * ((double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 2 - 1);
-        const double g = M_PI * ((double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 2 - 1);
         sh_rotation rot;
-        if ((st = sh_rotation_from_euler(a, beta, g, &rot)) || (st = sh_rot_errws_set(w, &rot))) break;
+        if ((st = step_rotation(o, nbeta, j, &rot, NULL)) || (st = sh_rot_errws_set(w, &rot))) break;
         for (int k = 0; k < nm && !st; k++) {
             sh_rot_error e;
             if ((st = sh_rot_errws_eval(w, ms[k], o->prec, &e))) break;
-            err[(size_t)j * nm + k] = o->measure == SH_MEASURE_MAX ? e.max : e.lobe;
+            err[(size_t)j * nm + k] = sh_rot_error_in(&e, o->measure);
         }
         /* unsharded, the steps count on into sh_rot_choose's timing */
         if (o->progress && !st)
             o->progress(o->progress_ctx, ++done, items ? mine : nsteps + nm, "steps (measuring on the β grid)");
+    }
+    sh_rot_errws_free(w);
+    return st;
+}
+
+int sh_rot_choose_extent(const sh_rot_choose_opts *o, sh_rot_method method, sh_rot_error *worst,
+                         double *holds_to)
+{
+    sh_rot_method ms[SH_ROT_NMETHODS];
+    int nm, nsteps;
+    int st = sh_rot_choose_grid(o, ms, &nm, &nsteps);
+    if (st) return st;
+    const int nbeta = nsteps - 1;
+    const double h = nbeta ? o->max_beta / nbeta : o->beta_step;
+    /* the grid, then its continuation to π */
+    const int nall = nsteps + (o->max_beta < M_PI ? (int)ceil((M_PI - o->max_beta) / h - 1e-9) : 0);
+    sh_rot_errws *w;
+    if ((st = sh_rot_errws_create_conv(o->order, o->lobe_exp, o->order <= 32, o->conv, &w))) return st;
+    *worst = (sh_rot_error){0, 0, 0, 0};
+    *holds_to = -1;
+    int failed = 0; /* within the grid */
+    for (int j = 0; j < nall && !st; j++) {
+        sh_rotation rot;
+        sh_rot_error e;
+        double beta;
+        if ((st = step_rotation(o, nbeta, j, &rot, &beta)) || (st = sh_rot_errws_set(w, &rot)) ||
+            (st = sh_rot_errws_eval(w, method, o->prec, &e)))
+            break;
+        const int ok = sh_rot_error_in(&e, o->measure) <= o->tolerance;
+        if (j < nsteps) {
+            worst->max = fmax(worst->max, e.max);
+            worst->mean = fmax(worst->mean, e.mean);
+            worst->lobe = fmax(worst->lobe, e.lobe);
+            worst->coeff = fmax(worst->coeff, e.coeff);
+            if (!ok) failed = 1, *holds_to = -1;
+        } else if (failed || !ok) {
+            break; /* the grid's worst is known; the answer holds up to the previous step */
+        }
+        if (!failed) *holds_to = beta;
     }
     sh_rot_errws_free(w);
     return st;

@@ -22,7 +22,13 @@ extern "C" {
  * band), lobe = ‖D c‖₂, c the unit coefficient vector of max(0, cosθ)^e
  * about +z (sh_lobe_zonal).  Since Z(α), Z(γ) are orthogonal and c is
  * zonal, these equal the measures of R_Y(β) − approx(R_Y(β)). */
-typedef struct { double max, mean, lobe; } sh_rot_error;
+/* max: the largest singular value of R_method − R_exact, i.e. the largest
+ * L2 error of the coefficients of a unit-norm input, which by Parseval is
+ * also the largest relative L2 error of the rotated function on the sphere;
+ * mean: the mean singular value; lobe: ‖(R_method − R_exact) c‖₂ for the
+ * unit lobe c; coeff: the largest error of one coefficient for a unit-norm
+ * input (the largest row norm of R_method − R_exact, ≤ max). */
+typedef struct { double max, mean, lobe, coeff; } sh_rot_error;
 typedef struct sh_rot_errws sh_rot_errws;
 int sh_rot_errws_create(int order, double lobe_exp, int use_reference, sh_rot_errws **out);
 /* The same with every plan (truth and methods) in convention conv (the
@@ -45,7 +51,10 @@ void sh_rot_errws_free(sh_rot_errws *w);
  * 32, zxzxz above) over the β grid 0, h, 2h, …, max_beta (h ≤ beta_step) at
  * seeded α, γ; the lab's sh_rot_choose (src/lab/lab.h) then times them and
  * ranks those whose largest error stays ≤ tolerance. */
-typedef enum { SH_MEASURE_LOBE = 0, SH_MEASURE_MAX } sh_error_measure;
+typedef enum { SH_MEASURE_LOBE = 0, SH_MEASURE_MAX, SH_MEASURE_COEFF } sh_error_measure;
+#define SH_NMEASURES 3
+/* The measure m of an error. */
+double sh_rot_error_in(const sh_rot_error *e, sh_error_measure m);
 const char *sh_error_measure_name(sh_error_measure m);
 int sh_error_measure_parse(const char *s, sh_error_measure *out);
 typedef struct {
@@ -66,6 +75,12 @@ typedef struct {
      * for every step (measured by shards of a sweep), instead of measuring */
     const double *grid_errors;
 } sh_rot_choose_opts;
+/* For one method: its worst error over the β grid in every measure, and the
+ * largest β up to which the chosen measure stays ≤ tolerance — the grid
+ * continued past max_beta with the same step up to π (π when it never
+ * fails; −1 when it fails within the grid already). */
+int sh_rot_choose_extent(const sh_rot_choose_opts *o, sh_rot_method method, sh_rot_error *worst,
+                         double *holds_to);
 /* The β grid of sh_rot_choose as a sweep: the candidate methods (ms, *nm)
  * and the steps j = 0..nsteps−1 (β_j = max_beta·j/(nsteps−1); α, γ seeded by
  * j).  sh_rot_choose_errors writes err[j·nm + k], the error of ms[k] at step

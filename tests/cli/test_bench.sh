@@ -113,24 +113,59 @@ expect_usage_error "plan no max-beta" plan --order 4 --tolerance 1e-3
 expect_usage_error "plan no order" plan --max-beta 0.1 --tolerance 1e-3
 expect_usage_error "plan auto without exr" plan --order auto --max-beta 0.1 --tolerance 1e-3
 expect_usage_error "plan exr without auto" plan --order 4 --exr x.exr --max-beta 0.1 --tolerance 1e-3
-expect_usage_error "plan bad measure" plan --order 4 --max-beta 0.1 --tolerance 1e-3 --measure rms
+expect_usage_error "plan bad error unit" plan --order 4 --max-beta 0.1 --tolerance 1e-3 --error rms
 expect_usage_error "plan negative tolerance" plan --order 4 --max-beta 0.1 --tolerance -1
 expect_usage_error "plan beta > pi" plan --order 4 --max-beta 200 --degrees --tolerance 1e-3
 expect_usage_error "plan missing exr" plan --order auto --exr "$TMP/none.exr" --max-beta 0.1 --tolerance 1e-3
-expect_success "plan order 4" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --format json --quiet
+expect_success "plan order 4" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --error max --beta-step 2 --format json --quiet
 grep -q '"order":4' "$TMP/out" && grep -q '"convention":"cs"' "$TMP/out" && grep -q '"choice":{"method"' "$TMP/out" \
     && grep -q '"runner_up":{"method"' "$TMP/out" && ok "plan json: order, convention, choice, runner_up" || notok "plan json: $(head -c 300 "$TMP/out")"
 # table and csv show the nested choice / runner_up objects under dotted keys;
 # the chosen method must be one of the candidates marked ok (structure only, no timing)
-expect_success "plan order 4 table" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --quiet
+expect_success "plan order 4 table" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --error max --beta-step 2 --quiet
 cm=$(sed -n 's/^choice\.method: //p' "$TMP/out"); rm_=$(sed -n 's/^runner_up\.method: //p' "$TMP/out")
 [ -n "$cm" ] && [ -n "$rm_" ] && [ "$cm" != "$rm_" ] && grep -q "^choice\.max_error: " "$TMP/out" \
     && awk -v m="$cm" -F'\t' '$1 == m && $3 == "true" { f = 1 } END { exit !f }' "$TMP/out" \
     && ok "plan table: choice.method $cm (ok candidate), runner_up.method $rm_" || notok "plan table: $(head -c 600 "$TMP/out")"
-expect_success "plan order 4 csv" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --quiet --format csv
-head -1 "$TMP/out" | grep -q ',precision,choice\.method,choice\.ns_per_rotation,choice\.max_error,runner_up\.method,.*,method,exact,ok,' \
+expect_success "plan order 4 csv" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --error max --beta-step 2 --quiet --format csv
+head -1 "$TMP/out" | grep -q ',precision,input,mode,batch,cost_model,choice\.method,choice\.kernel,choice\.ns_per_rotation,.*,runner_up\.method,.*,method,exact,ok,' \
     && [ "$(awk -F, 'NR > 1 { print NF }' "$TMP/out" | sort -u)" = "$(head -1 "$TMP/out" | awk -F, '{ print NF }')" ] \
     && ok "plan csv: choice.* and runner_up.* columns on every row" || notok "plan csv: $(head -c 400 "$TMP/out")"
+# the cost model: the same question, the same answer (choice and costs) on every run
+for k in 1 2 3; do
+    "$SHLAB" plan --order 6 --max-beta 20 --degrees --tolerance 1e-3 --precision float --beta-step 2 --format json \
+        --quiet >"$TMP/plan$k" 2>/dev/null || notok "plan run $k failed"
+done
+cmp -s "$TMP/plan1" "$TMP/plan2" && cmp -s "$TMP/plan1" "$TMP/plan3" \
+    && grep -q '"cost_source":"model"' "$TMP/plan1" && ok "plan: three runs print the same choice and costs, from the model" \
+    || notok "plan: runs differ or no model: $(head -c 400 "$TMP/plan1")"
+# the answer names its path, kernel and cost, its errors in every unit (max
+# bounds the others) and how far in β it holds (table format: "key: value")
+val() { sed -n "s/^$1: //p" "$2"; }
+"$SHLAB" plan --order 6 --max-beta 20 --degrees --tolerance 1e-3 --precision float --beta-step 2 --brief \
+    --quiet >"$TMP/brief" 2>/dev/null
+em=$(val choice.error_max "$TMP/brief"); ec=$(val choice.error_coeff "$TMP/brief"); el=$(val choice.error_lobe "$TMP/brief")
+[ "$(val input "$TMP/brief")" = matrix ] && [ "$(val mode "$TMP/brief")" = per-rotation ] && [ "$(val batch "$TMP/brief")" = 1 ] \
+    && [ "$(val precision "$TMP/brief")" = float ] && [ -n "$(val choice.kernel "$TMP/brief")" ] \
+    && awk -v i="$(val choice.instructions "$TMP/brief")" 'BEGIN { exit !(i > 0) }' \
+    && awk -v m="$em" -v c="$ec" -v l="$el" -v e="$(val choice.max_error "$TMP/brief")" \
+        -v h="$(val choice.holds_to_beta "$TMP/brief")" \
+        'BEGIN { exit !(c <= m * (1 + 1e-12) && l <= m * (1 + 1e-12) && l == e && e <= 1e-3 && h >= 20) }' \
+    && ! grep -q '^candidates' "$TMP/brief" \
+    && ok "plan --brief: path, kernel, instructions, errors lobe/coeff <= max, holds_to_beta >= 20, no candidates" \
+    || notok "plan --brief: $(head -c 600 "$TMP/brief")"
+expect_success "plan k-rotations from quaternions" plan --order 6 --max-beta 20 --degrees --tolerance 1e-3 \
+    --mode k-rotations --batch 64 --input quat --error coeff --beta-step 5 --format json --quiet
+grep -q '"input":"quat","mode":"k-rotations","batch":64' "$TMP/out" && grep -q '"measure":"coeff"' "$TMP/out" \
+    && ok "plan k-rotations: path and unit echoed" || notok "plan k-rotations: $(head -c 300 "$TMP/out")"
+expect_usage_error "plan --batch without a batched mode" plan --order 4 --max-beta 0.1 --tolerance 1e-3 --batch 8
+# the answer holds at least over the grid asked for (the library's test_cost_model
+# checks where an approximation stops)
+"$SHLAB" plan --order 6 --max-beta 2 --degrees --tolerance 1e-2 --error max --beta-step 1 --brief --quiet \
+    >"$TMP/out" 2>/dev/null
+awk -v h="$(val choice.holds_to_beta "$TMP/out")" -v r="$(val runner_up.holds_to_beta "$TMP/out")" \
+    'BEGIN { exit !(h >= 2 && h <= 180 && r >= 2 && r <= 180) }' \
+    && ok "plan: holds_to_beta of choice and runner-up in [2, 180]" || notok "plan holds_to: $(cat "$TMP/out")"
 "$SHLAB" plan --order 4 --max-beta 0.1 --tolerance 1e-30 --beta-step 0.05 --format json --quiet >"$TMP/out" 2>"$TMP/err"; rc=$?
 [ $rc = 1 ] && grep -q '"choice":null' "$TMP/out" && ok "plan: nothing meets 1e-30 -> exit 1, choice null" || notok "plan 1e-30 exit $rc"
 

@@ -18,7 +18,7 @@ expect_usage_error "bench bad convention" bench --order 3 --methods zxzxz --conv
 
 # plan in nocs: methods and the MPFR truth both in nocs, so the exact ones
 # still agree to rounding (a convention mix-up would give errors of order 1)
-expect_success "plan --convention nocs" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --measure max --beta-step 2 --convention nocs --quiet --format json
+expect_success "plan --convention nocs" plan --order 4 --max-beta 10 --degrees --tolerance 1e-12 --error max --beta-step 2 --convention nocs --quiet --format json
 grep -q '"convention":"nocs"' "$TMP/out" && grep -q '"choice":{"method"' "$TMP/out" \
     && ok "plan json: convention nocs, an exact method qualifies at 1e-12" || notok "plan nocs: $(head -c 300 "$TMP/out")"
 expect_usage_error "plan bad convention" plan --order 4 --max-beta 0.1 --tolerance 1e-3 --convention xyz

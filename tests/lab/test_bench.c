@@ -190,7 +190,7 @@ START_TEST(test_choose)
     o.progress_ctx = &pc;
     sh_rot_candidate c[SH_ROT_NMETHODS];
     int nc, ch, ru;
-    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(sh_rot_choose(&o, NULL, c, &nc, &ch, &ru, NULL), SH_OK);
     ck_assert_int_eq(ch, 0);
     ck_assert_int_eq(ru, 1);
     ck_assert_int_eq(c[ch].method, SH_ROT_WIGNER);
@@ -213,17 +213,17 @@ START_TEST(test_choose)
     /* a loose budget admits the approximation, which is then the cheapest */
     o.tolerance = 0.5;
     o.progress = NULL;
-    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(sh_rot_choose(&o, NULL, c, &nc, &ch, &ru, NULL), SH_OK);
     ck_assert_int_eq(c[ch].method, SH_ROT_TAYLOR15);
     /* nothing meets 1e-30 */
     o.tolerance = 1e-30;
-    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(sh_rot_choose(&o, NULL, c, &nc, &ch, &ru, NULL), SH_OK);
     ck_assert_int_eq(ch, -1);
     ck_assert_int_eq(ru, -1);
     /* β = 0: the z method joins */
     o.max_beta = 0;
     o.tolerance = 1e-12;
-    ck_assert_int_eq(sh_rot_choose(&o, c, &nc, &ch, &ru), SH_OK);
+    ck_assert_int_eq(sh_rot_choose(&o, NULL, c, &nc, &ch, &ru, NULL), SH_OK);
     int have_z = 0;
     for (int k = 0; k < nc; k++) have_z |= c[k].method == SH_ROT_Z;
     ck_assert(have_z);
