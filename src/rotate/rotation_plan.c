@@ -220,6 +220,26 @@ int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par)
     return SH_OK;
 }
 
+/* A sparse method set straight from the matrix (ops->set_mat_P: direct),
+ * in the plan's precision: no angle, no par.  The matrix is kept (double)
+ * for sh_rot_plan_blocks. */
+static int set_mat(sh_rot_plan *p, const double *rd, const float *rf)
+{
+    for (int i = 0; i < 9; i++) p->rot.R[i] = rf ? (double)rf[i] : rd[i];
+    p->have_angles = 0;
+    p->set_mults = 0;
+    int st;
+    if (p->r->prec == SH_PREC_FLOAT) {
+        float R[9];
+        for (int i = 0; i < 9; i++) R[i] = rf ? rf[i] : (float)rd[i];
+        st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
+    } else {
+        st = p->r->ops->set_mat_d(p->r->order, p->rot.R, p->state, &p->set_mults);
+    }
+    if (st == SH_OK) p->have_rot = 1;
+    return st;
+}
+
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 {
     const int n = quat ? 4 : 9, nb = need_beta(p);
@@ -254,6 +274,7 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
         fast_par_done(p, NULL);
         return SH_OK;
     }
+    if (!quat && p->r->ops->set_mat_d) return set_mat(p, rd, rf);
     double v[9];
     for (int i = 0; i < n; i++) v[i] = rd ? rd[i] : (double)rf[i];
     int st;
@@ -518,6 +539,17 @@ static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, cons
     int st = check_batch(p, K, fl, 0);
     if (st) return st;
     const int nr = quat ? 4 : 9;
+    if (!quat && (fl ? p->r->ops->rotate_many_f != NULL : p->r->ops->rotate_many_d != NULL)) {
+        /* the method's own batch of matrices (direct) */
+        if (!(fl ? all_finite_f(rot, (size_t)nr * K) : all_finite_d(rot, (size_t)nr * K)))
+            return sh_error(SH_EINVAL, "rotation plan: a rotation has an entry that is not finite");
+        const int nocs = p->r->conv == SH_NOCS;
+        p->set_mults = p->apply_mults = 0;
+        if (fl) p->r->ops->rotate_many_f(p->r->order, nocs, K, rot, in, out, &p->set_mults, &p->apply_mults);
+        else p->r->ops->rotate_many_d(p->r->order, nocs, K, rot, in, out, &p->set_mults, &p->apply_mults);
+        p->have_rot = 0; /* the plan's own rotation is not one of them */
+        return SH_OK;
+    }
     if (p->r->fmeth >= 0) {
         /* unrolled, lanes of rotations; checked first: every entry finite */
         if (!(fl ? all_finite_f(rot, (size_t)nr * K) : all_finite_d(rot, (size_t)nr * K)))
