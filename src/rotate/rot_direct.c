@@ -77,10 +77,10 @@ SH__ROT_DECLARE_BLOCKS(direct);
 SH__ROT_DECLARE_APPLY(direct);
 int sh__rot_direct_set_mat_d(int, const double *, void *, uint64_t *);
 int sh__rot_direct_set_mat_f(int, const float *, void *, uint64_t *);
-void sh__rot_direct_rotate_many_d(int, int, size_t, const double *, const double *, double *,
-                                  uint64_t *, uint64_t *);
-void sh__rot_direct_rotate_many_f(int, int, size_t, const float *, const float *, float *,
-                                  uint64_t *, uint64_t *);
+void sh__rot_direct_rotate_many_d(int, int, sh_rot_kernel, size_t, const double *, const double *,
+                                  double *, uint64_t *, uint64_t *);
+void sh__rot_direct_rotate_many_f(int, int, sh_rot_kernel, size_t, const float *, const float *,
+                                  float *, uint64_t *, uint64_t *);
 
 #define DR_SQRT3 ((sh_real)1.7320508075688772935)
 #define DR_HSQRT3 ((sh_real)0.86602540378443864676)
@@ -234,25 +234,47 @@ static inline __attribute__((always_inline)) void SH_R(dr_one)(int order, int no
     for (int i = 0; i < order * order; i++) out[(size_t)i * K + k] = y[i];
 }
 
-#define DR_MANY(ORDER, NOCS)                                                                       \
+/* The batch loop, one instance per instruction set: LANES = the vector's
+ * bytes / sizeof(sh_real) (simdlen), ORDER and NOCS constants. */
+#define DR_MANY(ORDER, NOCS, LANES)                                                                \
     do {                                                                                           \
-        SH_PRAGMA(omp simd)                                                                        \
+        SH_PRAGMA(omp simd simdlen(LANES))                                                         \
         for (size_t k = 0; k < K; k++) SH_R(dr_one)(ORDER, NOCS, K, k, R, in, out);               \
     } while (0)
-
-void SH_R(sh__rot_direct_rotate_many)(int order, int nocs, size_t K, const sh_real *R,
-                                      const sh_real *in, sh_real *out, uint64_t *set_mults,
-                                      uint64_t *apply_mults)
-{
-    switch (order * 2 + (nocs != 0)) {
-    case 2: DR_MANY(1, 0); break;
-    case 3: DR_MANY(1, 1); break;
-    case 4: DR_MANY(2, 0); break;
-    case 5: DR_MANY(2, 1); break;
-    case 6: DR_MANY(3, 0); break;
-    case 7: DR_MANY(3, 1); break;
-    default: return; /* the rotator refuses other orders */
+#define DR_MANY_FN(NAME, TARGET, LANES)                                                            \
+    TARGET static void NAME(int order, int nocs, size_t K, const sh_real *R, const sh_real *in,    \
+                            sh_real *out)                                                          \
+    {                                                                                              \
+        switch (order * 2 + (nocs != 0)) {                                                         \
+        case 2: DR_MANY(1, 0, LANES); break;                                                       \
+        case 3: DR_MANY(1, 1, LANES); break;                                                       \
+        case 4: DR_MANY(2, 0, LANES); break;                                                       \
+        case 5: DR_MANY(2, 1, LANES); break;                                                       \
+        case 6: DR_MANY(3, 0, LANES); break;                                                       \
+        case 7: DR_MANY(3, 1, LANES); break;                                                       \
+        default: break; /* the rotator refuses other orders */                                     \
+        }                                                                                          \
     }
+/* the default flags (SSE2 on x86-64), and on x86-64 AVX2 and AVX-512 (the
+ * same arithmetic: no contraction to FMA, -std=c11, so every variant gives
+ * the same bits) */
+DR_MANY_FN(SH_R(dr_many_base), , SH_SIMD_LANES16)
+#if defined(__x86_64__) && defined(__GNUC__)
+#define DR_HAVE_WIDE 1
+DR_MANY_FN(SH_R(dr_many_avx2), __attribute__((target("avx2"))), 2 * SH_SIMD_LANES16)
+DR_MANY_FN(SH_R(dr_many_avx512), __attribute__((target("avx512f,avx512vl"))), 4 * SH_SIMD_LANES16)
+#endif
+
+void SH_R(sh__rot_direct_rotate_many)(int order, int nocs, sh_rot_kernel kernel, size_t K,
+                                      const sh_real *R, const sh_real *in, sh_real *out,
+                                      uint64_t *set_mults, uint64_t *apply_mults)
+{
+#ifdef DR_HAVE_WIDE
+    if (kernel == SH_KERNEL_AVX512) SH_R(dr_many_avx512)(order, nocs, K, R, in, out);
+    else if (kernel == SH_KERNEL_AVX2) SH_R(dr_many_avx2)(order, nocs, K, R, in, out);
+    else
+#endif
+        SH_R(dr_many_base)(order, nocs, K, R, in, out);
     if (set_mults) *set_mults += order > 2 ? DR_SET_MULTS : 0u;
     if (apply_mults) *apply_mults += order > 2 ? 34u : order > 1 ? 9u : 0u;
 }

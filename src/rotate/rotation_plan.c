@@ -221,11 +221,10 @@ int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par)
 }
 
 /* A sparse method set straight from the matrix (ops->set_mat_P: direct),
- * in the plan's precision: no angle, no par.  The matrix is kept (double)
- * for sh_rot_plan_blocks. */
+ * in the plan's precision: no angle, no par; its state is its blocks (read
+ * by sh_rot_plan_blocks), so the matrix is not kept. */
 static int set_mat(sh_rot_plan *p, const double *rd, const float *rf)
 {
-    for (int i = 0; i < 9; i++) p->rot.R[i] = rf ? (double)rf[i] : rd[i];
     p->have_angles = 0;
     p->set_mults = 0;
     int st;
@@ -234,7 +233,7 @@ static int set_mat(sh_rot_plan *p, const double *rd, const float *rf)
         for (int i = 0; i < 9; i++) R[i] = rf ? rf[i] : (float)rd[i];
         st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
     } else {
-        st = p->r->ops->set_mat_d(p->r->order, p->rot.R, p->state, &p->set_mults);
+        st = p->r->ops->set_mat_d(p->r->order, rd, p->state, &p->set_mults);
     }
     if (st == SH_OK) p->have_rot = 1;
     return st;
@@ -335,6 +334,14 @@ int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
         p->have_angles = 0;
         p->have_rot = 1;
         return SH_OK;
+    }
+    if (p->r->ops->set_mat_f) { /* set_rot's path for direct, written out */
+        if (!all_finite_f(R, 9)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
+        p->have_rot = p->have_angles = 0;
+        p->set_mults = 0;
+        const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
+        p->have_rot = st == SH_OK;
+        return st;
     }
     return set_rot(p, NULL, R, 0);
 }
@@ -545,8 +552,8 @@ static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, cons
             return sh_error(SH_EINVAL, "rotation plan: a rotation has an entry that is not finite");
         const int nocs = p->r->conv == SH_NOCS;
         p->set_mults = p->apply_mults = 0;
-        if (fl) p->r->ops->rotate_many_f(p->r->order, nocs, K, rot, in, out, &p->set_mults, &p->apply_mults);
-        else p->r->ops->rotate_many_d(p->r->order, nocs, K, rot, in, out, &p->set_mults, &p->apply_mults);
+        if (fl) p->r->ops->rotate_many_f(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
+        else p->r->ops->rotate_many_d(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
         p->have_rot = 0; /* the plan's own rotation is not one of them */
         return SH_OK;
     }
@@ -613,6 +620,12 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks)
             }
         }
         free(e);
+        return SH_OK;
+    }
+    if (p->r->ops->set_mat_d) { /* direct: the state is the cs blocks */
+        for (size_t i = 0; i < nb; i++)
+            blocks[i] = p->r->prec == SH_PREC_FLOAT ? ((const float *)p->state)[i] : ((const double *)p->state)[i];
+        if (p->r->conv == SH_NOCS) sh__rot_blocks_nocs_d(p->r->order, blocks);
         return SH_OK;
     }
     if (p->r->ops->apply_d) { /* sparse methods build their blocks on request */

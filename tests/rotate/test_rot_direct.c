@@ -181,9 +181,10 @@ START_TEST(test_pointwise)
 END_TEST
 
 /* rotate_many (K rotations, structure of arrays) == K single rotations
- * (set_matrix + apply) and == the reference; in place; every order and
- * convention, double and float; rotate_many_quat too. */
-static void dr_check_many(int order, sh_convention conv, sh_precision pr)
+ * (set_matrix + apply) and == the reference; in place; every order,
+ * convention and kernel (the batch is compiled per instruction set), double
+ * and float; rotate_many_quat too. */
+static void dr_check_many(int order, sh_convention conv, sh_precision pr, sh_rot_kernel kern)
 {
     const size_t K = DR_NCASES, n = (size_t)order * order;
     double *R = malloc(9 * K * sizeof *R), *q = malloc(4 * K * sizeof *q);
@@ -201,7 +202,8 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr)
         for (size_t i = 0; i < n; i++) xf[i * K + k] = (float)(x[i * K + k] = 2 * rot_urand() - 1);
     }
     sh_rot_plan *p = NULL, *one = NULL;
-    ck_assert_int_eq(sh_rot_plan_create(order, SH_ROT_DIRECT, pr, conv, &p), SH_OK);
+    ck_assert_int_eq(sh_rot_plan_create_kernel(order, SH_ROT_DIRECT, pr, conv, kern, &p), SH_OK);
+    ck_assert_int_eq(sh_rot_plan_kernel(p), kern); /* kept: the batch has a variant per kernel */
     ck_assert_int_eq(sh_rot_plan_create(order, SH_ROT_DIRECT, pr, conv, &one), SH_OK);
     if (pr) {
         ck_assert_int_eq(sh_rot_plan_rotate_many_f(p, K, Rf, xf, yf), SH_OK);
@@ -242,8 +244,8 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr)
         dr_reference(conv, &rs[k], ref);
         dr_mul(order, ref, xk, want);
         for (size_t i = 0; i < n; i++) {
-            ck_close(y[i * K + k], yk[i], tol_one, 1, "rotate_many vs one, order %d %s %s k %zu i %zu", order,
-                     sh_convention_name(conv), sh_precision_name(pr), k, i);
+            ck_close(y[i * K + k], yk[i], tol_one, 1, "rotate_many vs one, order %d %s %s %s k %zu i %zu", order,
+                     sh_convention_name(conv), sh_precision_name(pr), sh_rot_kernel_name(kern), k, i);
             ck_close(y[i * K + k], want[i], tol_ref, 1, "rotate_many vs reference, order %d %s %s k %zu i %zu",
                      order, sh_convention_name(conv), sh_precision_name(pr), k, i);
             if (!pr)
@@ -258,9 +260,12 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr)
 
 START_TEST(test_rotate_many)
 {
-    for (int order = 1; order <= 3; order++)
-        for (int conv = 0; conv < 2; conv++)
-            for (int pr = 0; pr < 2; pr++) dr_check_many(order, conv, pr);
+    for (int kern = SH_KERNEL_SCALAR; kern < SH_KERNEL_N; kern++) {
+        if (!sh_rot_kernel_available((sh_rot_kernel)kern)) continue;
+        for (int order = 1; order <= 3; order++)
+            for (int conv = 0; conv < 2; conv++)
+                for (int pr = 0; pr < 2; pr++) dr_check_many(order, conv, pr, (sh_rot_kernel)kern);
+    }
 }
 END_TEST
 
