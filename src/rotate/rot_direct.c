@@ -77,10 +77,10 @@ SH__ROT_DECLARE_BLOCKS(direct);
 SH__ROT_DECLARE_APPLY(direct);
 int sh__rot_direct_set_mat_d(int, const double *, void *, uint64_t *);
 int sh__rot_direct_set_mat_f(int, const float *, void *, uint64_t *);
-void sh__rot_direct_rotate_many_d(int, int, sh_rot_kernel, size_t, const double *, const double *,
-                                  double *, uint64_t *, uint64_t *);
-void sh__rot_direct_rotate_many_f(int, int, sh_rot_kernel, size_t, const float *, const float *,
-                                  float *, uint64_t *, uint64_t *);
+int sh__rot_direct_rotate_many_d(int, int, sh_rot_kernel, size_t, const double *, const double *,
+                                 double *, uint64_t *, uint64_t *);
+int sh__rot_direct_rotate_many_f(int, int, sh_rot_kernel, size_t, const float *, const float *,
+                                 float *, uint64_t *, uint64_t *);
 
 #define DR_SQRT3 ((sh_real)1.7320508075688772935)
 #define DR_HSQRT3 ((sh_real)0.86602540378443864676)
@@ -164,10 +164,20 @@ static void SH_R(dr_blocks)(int order, const sh_real *R, sh_real *blocks, uint64
 }
 
 /* the per-rotation state is the blocks (header) */
+/* 0 if every R[i] is finite: Σ (R[i] − R[i]) is 0, else NaN (∞ − ∞) */
+static inline __attribute__((always_inline)) int SH_R(dr_finite)(const sh_real *R)
+{
+    sh_real acc = 0;
+#pragma GCC unroll 9
+    for (int i = 0; i < 9; i++) acc += R[i] - R[i];
+    return acc == 0;
+}
+
 int SH_R(sh__rot_direct_set_mat)(int order, const sh_real *R, void *state, uint64_t *mults)
 {
     const int st = dr_check_order(order);
     if (st) return st;
+    if (!SH_R(dr_finite)(R)) return sh_error(SH_EINVAL, "method direct: matrix entries must be finite");
     SH_R(dr_blocks)(order, R, state, mults);
     return SH_OK;
 }
@@ -242,9 +252,13 @@ static inline __attribute__((always_inline)) void SH_R(dr_one)(int order, int no
         for (size_t k = 0; k < K; k++) SH_R(dr_one)(ORDER, NOCS, K, k, R, in, out);               \
     } while (0)
 #define DR_MANY_FN(NAME, TARGET, LANES)                                                            \
-    TARGET static void NAME(int order, int nocs, size_t K, const sh_real *R, const sh_real *in,    \
-                            sh_real *out)                                                          \
+    TARGET static int NAME(int order, int nocs, size_t K, const sh_real *R, const sh_real *in,     \
+                           sh_real *out)                                                           \
     {                                                                                              \
+        sh_real acc = 0; /* 0 if every entry is finite (dr_finite) */                              \
+        SH_PRAGMA(omp simd simdlen(LANES) reduction(+ : acc))                                      \
+        for (size_t i = 0; i < 9 * K; i++) acc += R[i] - R[i];                                     \
+        if (acc != 0) return 0;                                                                    \
         switch (order * 2 + (nocs != 0)) {                                                         \
         case 2: DR_MANY(1, 0, LANES); break;                                                       \
         case 3: DR_MANY(1, 1, LANES); break;                                                       \
@@ -254,6 +268,7 @@ static inline __attribute__((always_inline)) void SH_R(dr_one)(int order, int no
         case 7: DR_MANY(3, 1, LANES); break;                                                       \
         default: break; /* the rotator refuses other orders */                                     \
         }                                                                                          \
+        return 1;                                                                                  \
     }
 /* the default flags (SSE2 on x86-64), and on x86-64 AVX2 and AVX-512 (the
  * same arithmetic: no contraction to FMA, -std=c11, so every variant gives
@@ -265,18 +280,21 @@ DR_MANY_FN(SH_R(dr_many_avx2), __attribute__((target("avx2"))), 2 * SH_SIMD_LANE
 DR_MANY_FN(SH_R(dr_many_avx512), __attribute__((target("avx512f,avx512vl"))), 4 * SH_SIMD_LANES16)
 #endif
 
-void SH_R(sh__rot_direct_rotate_many)(int order, int nocs, sh_rot_kernel kernel, size_t K,
-                                      const sh_real *R, const sh_real *in, sh_real *out,
-                                      uint64_t *set_mults, uint64_t *apply_mults)
+int SH_R(sh__rot_direct_rotate_many)(int order, int nocs, sh_rot_kernel kernel, size_t K,
+                                     const sh_real *R, const sh_real *in, sh_real *out,
+                                     uint64_t *set_mults, uint64_t *apply_mults)
 {
+    int ok;
 #ifdef DR_HAVE_WIDE
-    if (kernel == SH_KERNEL_AVX512) SH_R(dr_many_avx512)(order, nocs, K, R, in, out);
-    else if (kernel == SH_KERNEL_AVX2) SH_R(dr_many_avx2)(order, nocs, K, R, in, out);
+    if (kernel == SH_KERNEL_AVX512) ok = SH_R(dr_many_avx512)(order, nocs, K, R, in, out);
+    else if (kernel == SH_KERNEL_AVX2) ok = SH_R(dr_many_avx2)(order, nocs, K, R, in, out);
     else
 #endif
-        SH_R(dr_many_base)(order, nocs, K, R, in, out);
+        ok = SH_R(dr_many_base)(order, nocs, K, R, in, out);
+    if (!ok) return sh_error(SH_EINVAL, "method direct: a rotation has an entry that is not finite");
     if (set_mults) *set_mults += order > 2 ? DR_SET_MULTS : 0u;
     if (apply_mults) *apply_mults += order > 2 ? 34u : order > 1 ? 9u : 0u;
+    return SH_OK;
 }
 
 #ifndef SH_REAL_FLOAT

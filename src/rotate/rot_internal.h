@@ -75,23 +75,25 @@ typedef struct {
                         void *work, uint64_t *mults);
     /* sparse methods straight from a row-major matrix R (optional; direct):
      * the same as set_P, with R in the plan's precision and no angle or par
-     * computed.  R is finite (checked by the plan), assumed orthogonal.  The
+     * computed.  Checks that R is finite (SH_EINVAL, nothing set), assumes
+     * it orthogonal.  The
      * state of such a method is its blocks (cs, the plan's precision, the
      * layout of sh_rot_block_offset): sh_rot_plan_blocks reads them there. */
     int (*set_mat_d)(int order, const double *R, void *state, uint64_t *mults);
     int (*set_mat_f)(int order, const float *R, void *state, uint64_t *mults);
     /* K rotations given as matrices (9 rows of K, structure of arrays, like
      * sh_rot_plan_rotate_many) applied to K vectors (order² rows of K),
-     * in == out allowed, in the convention nocs (1) or cs (0), compiled for
+     * in == out allowed, in the convention nocs (1) or cs (0); checks first
+     * that every entry of R is finite (SH_EINVAL, nothing written); compiled for
      * the rotator's kernel (avx2, avx512: that instruction set; any other:
      * the default flags); adds the multiplications of one rotation's set to
      * *set_mults and of its apply to *apply_mults (optional; NULL: the plan
      * sets and applies each).  A method with this keeps the kernel asked
      * (rotator.c) though it has no unrolled tables. */
-    void (*rotate_many_d)(int order, int nocs, sh_rot_kernel kernel, size_t K, const double *R,
-                          const double *in, double *out, uint64_t *set_mults, uint64_t *apply_mults);
-    void (*rotate_many_f)(int order, int nocs, sh_rot_kernel kernel, size_t K, const float *R,
-                          const float *in, float *out, uint64_t *set_mults, uint64_t *apply_mults);
+    int (*rotate_many_d)(int order, int nocs, sh_rot_kernel kernel, size_t K, const double *R,
+                         const double *in, double *out, uint64_t *set_mults, uint64_t *apply_mults);
+    int (*rotate_many_f)(int order, int nocs, sh_rot_kernel kernel, size_t K, const float *R,
+                         const float *in, float *out, uint64_t *set_mults, uint64_t *apply_mults);
 } sh__rot_ops;
 
 /* Progress of the long steps (rotator.c): a method whose tables or blocks

@@ -335,8 +335,7 @@ int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
         p->have_rot = 1;
         return SH_OK;
     }
-    if (p->r->ops->set_mat_f) { /* set_rot's path for direct, written out */
-        if (!all_finite_f(R, 9)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
+    if (p->r->ops->set_mat_f) { /* set_rot's path for direct, written out (set_mat checks R) */
         p->have_rot = p->have_angles = 0;
         p->set_mults = 0;
         const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
@@ -547,15 +546,12 @@ static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, cons
     if (st) return st;
     const int nr = quat ? 4 : 9;
     if (!quat && (fl ? p->r->ops->rotate_many_f != NULL : p->r->ops->rotate_many_d != NULL)) {
-        /* the method's own batch of matrices (direct) */
-        if (!(fl ? all_finite_f(rot, (size_t)nr * K) : all_finite_d(rot, (size_t)nr * K)))
-            return sh_error(SH_EINVAL, "rotation plan: a rotation has an entry that is not finite");
+        /* the method's own batch of matrices (direct; it checks them finite) */
         const int nocs = p->r->conv == SH_NOCS;
         p->set_mults = p->apply_mults = 0;
-        if (fl) p->r->ops->rotate_many_f(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
-        else p->r->ops->rotate_many_d(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
         p->have_rot = 0; /* the plan's own rotation is not one of them */
-        return SH_OK;
+        if (fl) return p->r->ops->rotate_many_f(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
+        return p->r->ops->rotate_many_d(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
     }
     if (p->r->fmeth >= 0) {
         /* unrolled, lanes of rotations; checked first: every entry finite */

@@ -306,6 +306,23 @@ START_TEST(test_counts_limits)
     double x[DR_N] = {0}, y[DR_N];
     ck_assert_int_ne(sh_rot_plan_rotate_many(p, 1, bad, x, y), SH_OK);
     sh_rot_plan_free(p);
+    /* float, every kernel: an infinite entry in the last of 3 rotations is
+     * refused before anything is written (in place: the input survives) */
+    for (int kern = SH_KERNEL_SCALAR; kern < SH_KERNEL_N; kern++) {
+        if (!sh_rot_kernel_available((sh_rot_kernel)kern)) continue;
+        ck_assert_int_eq(sh_rot_plan_create_kernel(3, SH_ROT_DIRECT, SH_PREC_FLOAT, SH_CS, kern, &p), SH_OK);
+        float Rf[27], v[27], v0[27], R1[9];
+        for (int j = 0; j < 9; j++)
+            for (int k = 0; k < 3; k++) Rf[j * 3 + k] = (float)r.R[j];
+        Rf[4 * 3 + 2] = INFINITY;
+        for (int i = 0; i < 27; i++) v[i] = v0[i] = (float)i;
+        ck_assert_int_ne(sh_rot_plan_rotate_many_f(p, 3, Rf, v, v), SH_OK);
+        ck_assert(memcmp(v, v0, sizeof v) == 0);
+        for (int j = 0; j < 9; j++) R1[j] = (float)r.R[j];
+        R1[8] = NAN;
+        ck_assert_int_ne(sh_rot_plan_set_matrix_f(p, R1), SH_OK);
+        sh_rot_plan_free(p);
+    }
 }
 END_TEST
 
