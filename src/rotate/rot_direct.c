@@ -59,14 +59,19 @@
  * sum is 3(r20² − r21²)/√12.)  In all 49 multiplications for the band-2
  * block, counted as the set's multiplications; band 1 costs none.  The
  * identities hold for an orthogonal R: the result is the SH rotation of R
- * only if R is one (the plan checks that R is finite, as for the other
- * methods given a matrix).
+ * only if R is one (R is checked finite, as by the other methods given a
+ * matrix; here by Σ (r − r) = 0, which is vectorised in the batch and runs
+ * before anything is written).
  *
  * Apply: out_0 = in_0, band 1 and band 2 as dense 3×3 and 5×5 products, 9 +
  * 25 = 34 multiplications at n = 3.  The per-rotation state is the blocks
  * themselves (layout of sh_rot_block_offset, cs).  rotate_many (K rotations,
  * structure of arrays) fuses the blocks and the products per rotation in one
- * loop over k that the compiler vectorises across rotations.
+ * loop over k that the compiler vectorises across rotations (`omp simd`),
+ * compiled three times: default flags (SSE2 on x86-64), AVX2 and AVX-512
+ * (target attributes), chosen by the rotator's kernel.  No contraction to
+ * FMA (-std=c11 turns it off), so the variants and the single-rotation path
+ * compute the same bits.
  */
 #include "rotate/rot_internal.h"
 #include "rotate/rot_real.h"

@@ -158,7 +158,9 @@ void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *appl
  *   auto      the best this CPU runs (avx512, else avx2, else sse2, else
  *             unrolled)
  * A plan whose method or order has no unrolled kernel uses the loop kernels
- * (sh_rot_plan_kernel then says scalar).  sh_rot_plan_create uses auto. */
+ * (sh_rot_plan_kernel then says scalar), except `direct`, whose batch of K
+ * rotations (sh_rot_plan_rotate_many) is compiled for avx2 and avx512 too:
+ * it keeps the kernel asked.  sh_rot_plan_create uses auto. */
 typedef enum {
     SH_KERNEL_AUTO = 0,
     SH_KERNEL_SCALAR,
