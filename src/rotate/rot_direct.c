@@ -57,17 +57,33 @@
  * (e.g. B2[0][2] = (−X00 − X11 + 2X22)/√6 with X = (r0r0ᵀ − r1r1ᵀ)/√2:
  * −(r00² − r01²) − (r10² − r11²) = r20² − r21² by the column norms, so the
  * sum is 3(r20² − r21²)/√12.)  In all 49 multiplications for the band-2
- * block, counted as the set's multiplications; band 1 costs none.  The
+ * block (sh_rot_plan_blocks, rotmat); band 1 costs none.  The
  * identities hold for an orthogonal R: the result is the SH rotation of R
  * only if R is one (R is checked finite, as by the other methods given a
  * matrix; here by Σ (r − r) = 0, which is vectorised in the batch and runs
  * before anything is written).
  *
- * Apply: out_0 = in_0, band 1 and band 2 as dense 3×3 and 5×5 products, 9 +
- * 25 = 34 multiplications at n = 3.  The per-rotation state is the blocks
- * themselves (layout of sh_rot_block_offset, cs).  rotate_many (K rotations,
- * structure of arrays) fuses the blocks and the products per rotation in one
- * loop over k that the compiler vectorises across rotations (`omp simd`),
+ * Apply.  One vector per rotation (the goal: a new rotation for every
+ * vector) does not need the block: the same identity read the other way,
+ * with Ã = √2 Σ c_m E_m (symmetric, traceless),
+ *   Ã = | c_2 − q   c_{−2}     c_1   |    q = c_0/√3         1 mult
+ *       | c_{−2}   −c_2 − q   c_{−1} |
+ *       | c_1       c_{−1}     2q    |
+ *   Ã' = r Ã rᵀ:  M = Ã rᵀ (27), Ã'_ij = Σ_k r_ik M_kj for the six
+ *        entries 00, 11, 22, 01, 12, 02 (18)
+ *   c'_{−2} = Ã'01,  c'_{−1} = Ã'12,  c'_1 = Ã'02,
+ *   c'_2 = ½(Ã'00 − Ã'11),  c'_0 = (√3/2) Ã'22                 2 mults
+ * (c'_m = ⟨E_m, A'⟩: √2 A'_ij for the off-diagonal m, (A'00 − A'11)/√2,
+ * and (2A'22 − A'00 − A'11)/√6 = 3A'22/√6 as A' is traceless), i.e. 48
+ * multiplications for band 2, and 9 for band 1 (B1 x, a permuted R x):
+ * 57 at n = 3 per rotation and vector, against 49 + 34 through the blocks
+ * (the count of Hable's order-3 rotation, reached here by another route).
+ * out_0 = in_0.  So the per-rotation state is r alone (9 values, the cs
+ * signs applied: no multiplication at set), and every apply costs 57; a
+ * rotation applied to many vectors pays 57 a vector where blocks would pay
+ * 34 (apply_many is not this method's case).  rotate_many (K rotations,
+ * structure of arrays) runs the same per-vector code in one loop over k
+ * that the compiler vectorises across rotations (`omp simd`),
  * compiled three times: default flags (SSE2 on x86-64), AVX2 and AVX-512
  * (target attributes), chosen by the rotator's kernel.  No contraction to
  * FMA (-std=c11 turns it off), so the variants and the single-rotation path
@@ -82,6 +98,8 @@ SH__ROT_DECLARE_BLOCKS(direct);
 SH__ROT_DECLARE_APPLY(direct);
 int sh__rot_direct_set_mat_d(int, const double *, void *, uint64_t *);
 int sh__rot_direct_set_mat_f(int, const float *, void *, uint64_t *);
+void sh__rot_direct_state_blocks_d(int, const void *, double *);
+void sh__rot_direct_state_blocks_f(int, const void *, double *);
 int sh__rot_direct_rotate_many_d(int, int, sh_rot_kernel, size_t, const double *, const double *,
                                  double *, uint64_t *, uint64_t *);
 int sh__rot_direct_rotate_many_f(int, int, sh_rot_kernel, size_t, const float *, const float *,
@@ -89,7 +107,9 @@ int sh__rot_direct_rotate_many_f(int, int, sh_rot_kernel, size_t, const float *,
 
 #define DR_SQRT3 ((sh_real)1.7320508075688772935)
 #define DR_HSQRT3 ((sh_real)0.86602540378443864676)
-#define DR_SET_MULTS 49u /* band 2's block (header) */
+#define DR_RSQRT3 ((sh_real)0.57735026918962576451)
+#define DR_BLOCK_MULTS 49u /* band 2's block (header) */
+#define DR_APPLY_MULTS 57u /* band 1 (9) and band 2 (48) of one vector from r (header) */
 
 /* r = R for nocs, Rz(π) R Rz(π) for cs (header: r02, r12, r20, r21 negated) */
 static inline __attribute__((always_inline)) void SH_R(dr_signs)(const sh_real *R, int nocs, sh_real *r)
@@ -155,20 +175,18 @@ static int dr_check_order(int order)
     return SH_OK;
 }
 
-/* The cs blocks of bands 0..order−1 from R (layout of sh_rot_block_offset). */
-static void SH_R(dr_blocks)(int order, const sh_real *R, sh_real *blocks, uint64_t *mults)
+/* The blocks of bands 0..order−1 (layout of sh_rot_block_offset) from r
+ * (R sign-flipped for cs already: the blocks are cs). */
+static void SH_R(dr_blocks_r)(int order, const sh_real *r, sh_real *blocks, uint64_t *mults)
 {
-    sh_real r[9];
-    SH_R(dr_signs)(R, 0, r);
     blocks[0] = 1;
     if (order > 1) SH_R(dr_band1)(r, blocks + 1);
     if (order > 2) {
         SH_R(dr_band2)(r, blocks + 10);
-        if (mults) *mults += DR_SET_MULTS;
+        if (mults) *mults += DR_BLOCK_MULTS;
     }
 }
 
-/* the per-rotation state is the blocks (header) */
 /* 0 if every R[i] is finite: Σ (R[i] − R[i]) is 0, else NaN (∞ − ∞) */
 static inline __attribute__((always_inline)) int SH_R(dr_finite)(const sh_real *R)
 {
@@ -178,12 +196,14 @@ static inline __attribute__((always_inline)) int SH_R(dr_finite)(const sh_real *
     return acc == 0;
 }
 
+/* The per-rotation state is r: R with the cs signs (header), 9 values; no
+ * multiplication. */
 int SH_R(sh__rot_direct_set_mat)(int order, const sh_real *R, void *state, uint64_t *mults)
 {
     const int st = dr_check_order(order);
     if (st) return st;
     if (!SH_R(dr_finite)(R)) return sh_error(SH_EINVAL, "method direct: matrix entries must be finite");
-    SH_R(dr_blocks)(order, R, state, mults);
+    SH_R(dr_signs)(R, 0, state);
     return SH_OK;
 }
 
@@ -198,53 +218,78 @@ int SH_R(sh__rot_direct_set)(int order, const sh_rotation *rot, const void *tabl
 int SH_R(sh__rot_direct_blocks)(int order, const sh_rotation *rot, const void *tables,
                                 sh_real *blocks, void *work, uint64_t *mults)
 {
-    return SH_R(sh__rot_direct_set)(order, rot, tables, blocks, mults);
+    const int st = dr_check_order(order);
+    if (st) return st;
+    sh_real R[9], r[9];
+    for (int i = 0; i < 9; i++) R[i] = (sh_real)rot->R[i];
+    SH_R(dr_signs)(R, 0, r);
+    SH_R(dr_blocks_r)(order, r, blocks, mults);
+    return SH_OK;
 }
 
-/* y = B x for one band's dense w × w block, rows summed left to right */
-static inline __attribute__((always_inline)) void SH_R(dr_mv)(int w, const sh_real *B, const sh_real *x, sh_real *y)
+/* The blocks of the state (sh_rot_plan_blocks), in double. */
+void SH_R(sh__rot_direct_state_blocks)(int order, const void *state, double *blocks)
 {
-#pragma GCC unroll 5
-    for (int i = 0; i < w; i++) {
-        sh_real s = B[i * w] * x[0];
-#pragma GCC unroll 4
-        for (int j = 1; j < w; j++) s += B[i * w + j] * x[j];
-        y[i] = s;
+    sh_real b[35];
+    SH_R(dr_blocks_r)(order, state, b, NULL);
+    for (size_t i = 0; i < sh_rot_block_offset(order); i++) blocks[i] = b[i];
+}
+
+/* y = R_sh x for bands 0..order−1 from r (header, "Apply"): band 1 by the
+ * permutation B1, band 2 as Ã' = r Ã rᵀ; 9 + 48 multiplications. */
+static inline __attribute__((always_inline)) void SH_R(dr_apply_r)(int order, const sh_real *r, const sh_real *x,
+                                                                   sh_real *y)
+{
+    y[0] = x[0];
+    if (order > 1) {
+        y[1] = r[4] * x[1] + r[5] * x[2] + r[3] * x[3];
+        y[2] = r[7] * x[1] + r[8] * x[2] + r[6] * x[3];
+        y[3] = r[1] * x[1] + r[2] * x[2] + r[0] * x[3];
+    }
+    if (order > 2) {
+        const sh_real q = DR_RSQRT3 * x[6];
+        /* Ã, symmetric: a[3i + j] */
+        const sh_real a[9] = {x[8] - q, x[4], x[7], x[4], -x[8] - q, x[5], x[7], x[5], q + q};
+        sh_real M[9]; /* M = Ã rᵀ: M_ij = Σ_k a_ik r_jk */
+#pragma GCC unroll 3
+        for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
+            for (int j = 0; j < 3; j++)
+                M[3 * i + j] = a[3 * i] * r[3 * j] + a[3 * i + 1] * r[3 * j + 1] + a[3 * i + 2] * r[3 * j + 2];
+        /* Ã'_ij = Σ_k r_ik M_kj */
+#define DR_AP(i, j) (r[3 * (i)] * M[(j)] + r[3 * (i) + 1] * M[3 + (j)] + r[3 * (i) + 2] * M[6 + (j)])
+        y[4] = DR_AP(0, 1);
+        y[5] = DR_AP(1, 2);
+        y[6] = DR_HSQRT3 * DR_AP(2, 2);
+        y[7] = DR_AP(0, 2);
+        y[8] = (sh_real)0.5 * (DR_AP(0, 0) - DR_AP(1, 1));
+#undef DR_AP
     }
 }
+static uint64_t dr_apply_mults(int order) { return order > 2 ? DR_APPLY_MULTS : order > 1 ? 9u : 0u; }
 
-/* out = blocks · in (in ≠ out: the plan copies for in place) */
+/* out = R_sh in (in ≠ out: the plan copies for in place) */
 void SH_R(sh__rot_direct_apply)(int order, const void *tables, const void *state, const sh_real *in,
                                 sh_real *out, void *work, uint64_t *mults)
 {
-    const sh_real *b = state;
-    out[0] = in[0];
-    if (order > 1) SH_R(dr_mv)(3, b + 1, in + 1, out + 1);
-    if (order > 2) SH_R(dr_mv)(5, b + 10, in + 4, out + 4);
-    if (mults) *mults += order > 2 ? 34u : order > 1 ? 9u : 0u;
+    SH_R(dr_apply_r)(order, state, in, out);
+    if (mults) *mults += dr_apply_mults(order);
 }
 
-/* One rotation k of a structure-of-arrays batch (stride K): the blocks in
- * registers, then the products.  ORDER and NOCS are constants at each call. */
+/* One rotation k of a structure-of-arrays batch (stride K): r and the
+ * vector in registers, then dr_apply_r.  ORDER and NOCS are constants at
+ * each call. */
 static inline __attribute__((always_inline)) void SH_R(dr_one)(int order, int nocs, size_t K, size_t k,
                                                                const sh_real *R, const sh_real *in,
                                                                sh_real *out)
 {
-    sh_real Rk[9], r[9], b1[9], b2[25], x[9], y[9];
+    sh_real Rk[9], r[9], x[9], y[9];
 #pragma GCC unroll 9
     for (int j = 0; j < 9; j++) Rk[j] = R[(size_t)j * K + k];
 #pragma GCC unroll 9
     for (int i = 0; i < order * order; i++) x[i] = in[(size_t)i * K + k];
     SH_R(dr_signs)(Rk, nocs, r);
-    y[0] = x[0];
-    if (order > 1) {
-        SH_R(dr_band1)(r, b1);
-        SH_R(dr_mv)(3, b1, x + 1, y + 1);
-    }
-    if (order > 2) {
-        SH_R(dr_band2)(r, b2);
-        SH_R(dr_mv)(5, b2, x + 4, y + 4);
-    }
+    SH_R(dr_apply_r)(order, r, x, y);
 #pragma GCC unroll 9
     for (int i = 0; i < order * order; i++) out[(size_t)i * K + k] = y[i];
 }
@@ -297,13 +342,12 @@ int SH_R(sh__rot_direct_rotate_many)(int order, int nocs, sh_rot_kernel kernel, 
 #endif
         ok = SH_R(dr_many_base)(order, nocs, K, R, in, out);
     if (!ok) return sh_error(SH_EINVAL, "method direct: a rotation has an entry that is not finite");
-    if (set_mults) *set_mults += order > 2 ? DR_SET_MULTS : 0u;
-    if (apply_mults) *apply_mults += order > 2 ? 34u : order > 1 ? 9u : 0u;
+    if (apply_mults) *apply_mults += dr_apply_mults(order); /* set: none */
     return SH_OK;
 }
 
 #ifndef SH_REAL_FLOAT
-static size_t dr_state(int order) { return sh_rot_block_offset(order) * sizeof(double); }
+static size_t dr_state(int order) { return 9 * sizeof(double); }
 static size_t dr_work(int order) { return 0; }
 const sh__rot_ops sh__rot_direct_ops = {
     .name = "direct",
@@ -321,5 +365,7 @@ const sh__rot_ops sh__rot_direct_ops = {
     .set_mat_f = sh__rot_direct_set_mat_f,
     .rotate_many_d = sh__rot_direct_rotate_many_d,
     .rotate_many_f = sh__rot_direct_rotate_many_f,
+    .state_blocks_d = sh__rot_direct_state_blocks_d,
+    .state_blocks_f = sh__rot_direct_state_blocks_f,
 };
 #endif

@@ -76,11 +76,13 @@ typedef struct {
     /* sparse methods straight from a row-major matrix R (optional; direct):
      * the same as set_P, with R in the plan's precision and no angle or par
      * computed.  Checks that R is finite (SH_EINVAL, nothing set), assumes
-     * it orthogonal.  The
-     * state of such a method is its blocks (cs, the plan's precision, the
-     * layout of sh_rot_block_offset): sh_rot_plan_blocks reads them there. */
+     * it orthogonal.  Such a method keeps no sh_rotation: state_blocks_P
+     * gives the blocks (cs, double, layout of sh_rot_block_offset) of the
+     * state set_P or set_mat_P (P: the plan's precision) wrote. */
     int (*set_mat_d)(int order, const double *R, void *state, uint64_t *mults);
     int (*set_mat_f)(int order, const float *R, void *state, uint64_t *mults);
+    void (*state_blocks_d)(int order, const void *state, double *blocks);
+    void (*state_blocks_f)(int order, const void *state, double *blocks);
     /* K rotations given as matrices (9 rows of K, structure of arrays, like
      * sh_rot_plan_rotate_many) applied to K vectors (order² rows of K),
      * in == out allowed, in the convention nocs (1) or cs (0); checks first

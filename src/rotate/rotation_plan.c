@@ -221,8 +221,8 @@ int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par)
 }
 
 /* A sparse method set straight from the matrix (ops->set_mat_P: direct),
- * in the plan's precision: no angle, no par; its state is its blocks (read
- * by sh_rot_plan_blocks), so the matrix is not kept. */
+ * in the plan's precision: no angle, no par; sh_rot_plan_blocks reads its
+ * state (ops->state_blocks_P), so the matrix is not kept. */
 static int set_mat(sh_rot_plan *p, const double *rd, const float *rf)
 {
     p->have_angles = 0;
@@ -618,9 +618,9 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks)
         free(e);
         return SH_OK;
     }
-    if (p->r->ops->set_mat_d) { /* direct: the state is the cs blocks */
-        for (size_t i = 0; i < nb; i++)
-            blocks[i] = p->r->prec == SH_PREC_FLOAT ? ((const float *)p->state)[i] : ((const double *)p->state)[i];
+    if (p->r->ops->state_blocks_d) { /* direct: the blocks of its state */
+        if (p->r->prec == SH_PREC_FLOAT) p->r->ops->state_blocks_f(p->r->order, p->state, blocks);
+        else p->r->ops->state_blocks_d(p->r->order, p->state, blocks);
         if (p->r->conv == SH_NOCS) sh__rot_blocks_nocs_d(p->r->order, blocks);
         return SH_OK;
     }
