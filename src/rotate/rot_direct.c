@@ -247,23 +247,27 @@ static inline __attribute__((always_inline)) void SH_R(dr_apply_r)(int order, co
         y[3] = r[1] * x[1] + r[2] * x[2] + r[0] * x[3];
     }
     if (order > 2) {
+        /* Ã (symmetric, six values); v_j = Ã (row j of r)ᵀ = column j of
+         * M = Ã rᵀ; Ã'_ij = (row i of r)·v_j, v_2 first, so that few values
+         * are alive at once */
         const sh_real q = DR_RSQRT3 * x[6];
-        /* Ã, symmetric: a[3i + j] */
-        const sh_real a[9] = {x[8] - q, x[4], x[7], x[4], -x[8] - q, x[5], x[7], x[5], q + q};
-        sh_real M[9]; /* M = Ã rᵀ: M_ij = Σ_k a_ik r_jk */
-#pragma GCC unroll 3
-        for (int i = 0; i < 3; i++)
-#pragma GCC unroll 3
-            for (int j = 0; j < 3; j++)
-                M[3 * i + j] = a[3 * i] * r[3 * j] + a[3 * i + 1] * r[3 * j + 1] + a[3 * i + 2] * r[3 * j + 2];
-        /* Ã'_ij = Σ_k r_ik M_kj */
-#define DR_AP(i, j) (r[3 * (i)] * M[(j)] + r[3 * (i) + 1] * M[3 + (j)] + r[3 * (i) + 2] * M[6 + (j)])
-        y[4] = DR_AP(0, 1);
-        y[5] = DR_AP(1, 2);
-        y[6] = DR_HSQRT3 * DR_AP(2, 2);
-        y[7] = DR_AP(0, 2);
-        y[8] = (sh_real)0.5 * (DR_AP(0, 0) - DR_AP(1, 1));
-#undef DR_AP
+        const sh_real a00 = x[8] - q, a11 = -x[8] - q, a22 = q + q, a01 = x[4], a12 = x[5], a02 = x[7];
+#define DR_V(j, v0, v1, v2)                                                                        \
+    const sh_real v0 = a00 * r[3 * (j)] + a01 * r[3 * (j) + 1] + a02 * r[3 * (j) + 2];             \
+    const sh_real v1 = a01 * r[3 * (j)] + a11 * r[3 * (j) + 1] + a12 * r[3 * (j) + 2];             \
+    const sh_real v2 = a02 * r[3 * (j)] + a12 * r[3 * (j) + 1] + a22 * r[3 * (j) + 2]
+#define DR_DOT(i, v0, v1, v2) (r[3 * (i)] * v0 + r[3 * (i) + 1] * v1 + r[3 * (i) + 2] * v2)
+        DR_V(2, w0, w1, w2);
+        y[6] = DR_HSQRT3 * DR_DOT(2, w0, w1, w2); /* c'_0 = (√3/2) Ã'22 */
+        y[5] = DR_DOT(1, w0, w1, w2);             /* c'_{−1} = Ã'12 */
+        y[7] = DR_DOT(0, w0, w1, w2);             /* c'_1 = Ã'02 */
+        DR_V(1, u0, u1, u2);
+        y[4] = DR_DOT(0, u0, u1, u2); /* c'_{−2} = Ã'01 */
+        const sh_real t11 = DR_DOT(1, u0, u1, u2);
+        DR_V(0, s0, s1, s2);
+        y[8] = (sh_real)0.5 * (DR_DOT(0, s0, s1, s2) - t11); /* c'_2 = ½(Ã'00 − Ã'11) */
+#undef DR_V
+#undef DR_DOT
     }
 }
 static uint64_t dr_apply_mults(int order) { return order > 2 ? DR_APPLY_MULTS : order > 1 ? 9u : 0u; }
@@ -272,7 +276,11 @@ static uint64_t dr_apply_mults(int order) { return order > 2 ? DR_APPLY_MULTS : 
 void SH_R(sh__rot_direct_apply)(int order, const void *tables, const void *state, const sh_real *in,
                                 sh_real *out, void *work, uint64_t *mults)
 {
-    SH_R(dr_apply_r)(order, state, in, out);
+    switch (order) { /* each order a constant: the tests on it fold away */
+    case 3: SH_R(dr_apply_r)(3, state, in, out); break;
+    case 2: SH_R(dr_apply_r)(2, state, in, out); break;
+    default: SH_R(dr_apply_r)(1, state, in, out); break;
+    }
     if (mults) *mults += dr_apply_mults(order);
 }
 
