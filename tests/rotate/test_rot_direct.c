@@ -269,6 +269,41 @@ START_TEST(test_rotate_many)
 }
 END_TEST
 
+/* apply_many (one rotation, K vectors, structure of arrays) == the
+ * reference blocks × each vector, double and float, both conventions. */
+START_TEST(test_apply_many)
+{
+    enum { K = 13 };
+    sh_rotation r;
+    char name[160];
+    dr_case(3, &r, name, sizeof name);
+    for (int conv = 0; conv < 2; conv++)
+        for (int pr = 0; pr < 2; pr++) {
+            double ref[DR_NB], x[DR_N * K], y[DR_N * K], xk[DR_N], want[DR_N];
+            float xf[DR_N * K], yf[DR_N * K];
+            dr_reference(conv, &r, ref);
+            for (int i = 0; i < DR_N * K; i++) xf[i] = (float)(x[i] = 2 * rot_urand() - 1);
+            sh_rot_plan *p = NULL;
+            ck_assert_int_eq(sh_rot_plan_create(3, SH_ROT_DIRECT, pr, conv, &p), SH_OK);
+            ck_assert_int_eq(sh_rot_plan_set(p, &r), SH_OK);
+            if (pr) {
+                ck_assert_int_eq(sh_rot_plan_apply_many_f(p, K, xf, yf), SH_OK);
+                for (int i = 0; i < DR_N * K; i++) y[i] = yf[i], x[i] = xf[i];
+            } else {
+                ck_assert_int_eq(sh_rot_plan_apply_many(p, K, x, y), SH_OK);
+            }
+            for (int k = 0; k < K; k++) {
+                for (int i = 0; i < DR_N; i++) xk[i] = x[i * K + k];
+                dr_mul(3, ref, xk, want);
+                for (int i = 0; i < DR_N; i++)
+                    ck_close(y[i * K + k], want[i], pr ? ROT_TOL_F : 4 * DR_TOL_D, 1, "apply_many %s %s k %d i %d",
+                             sh_precision_name(pr), sh_convention_name(conv), k, i);
+            }
+            sh_rot_plan_free(p);
+        }
+}
+END_TEST
+
 /* Counts of one rotation (the header's derivation), the limits, and the
  * refusals. */
 START_TEST(test_counts_limits)
@@ -335,6 +370,7 @@ static Suite *suite(void)
     tcase_add_test(tc, test_apply_vs_reference);
     tcase_add_test(tc, test_pointwise);
     tcase_add_test(tc, test_rotate_many);
+    tcase_add_test(tc, test_apply_many);
     tcase_add_test(tc, test_counts_limits);
     suite_add_tcase(s, tc);
     return s;
