@@ -174,9 +174,10 @@ static int parse_baseline(const char *opt, const char *s, void *field)
 static const cli_opt bench_opts[] = {
     CLI_CUSTOM(bench_args, orders, "order", "LIST", parse_orders, "2,4,6,8,10,16", "orders (comma separated)"),
     CLI_CUSTOM(bench_args, methods, "methods", "LIST", parse_methods, NULL,
-               "z, ivanic, zxzxz, choi, blanco, wigner, reference,\n"
-               "taylor1, taylor1.5, taylor2, or 'all' (default: every\n"
-               "method built in except reference, which is MPFR)"),
+               "z, ivanic, zxzxz, choi, blanco, wigner, reference, halfpi,\n"
+               "direct (orders ≤ 3), taylor1, taylor1.5, taylor2, or\n"
+               "'all' (default: every method built in except\n"
+               "reference, which is MPFR)"),
     CLI_CUSTOM(bench_args, modes, "mode", "LIST", parse_modes, "both",
                "per-rotation | batched | both | k-rotations | all (the\n"
                "three before) | oneshot; several: comma separated"),

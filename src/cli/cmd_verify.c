@@ -176,9 +176,11 @@ static const cli_cmd verify_decl = {
         "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
         "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
         "       cases mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
-        "       [\"simulated\" (with --simulate)],\n"
+        "       [\"simulated\" (with --simulate)],[\"skipped\"],\n"
         "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
         "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
+        "\"skipped\" (--method, when non-zero): the cases above the method's largest order\n"
+        "(direct: 3), neither rotated nor judged; \"cases\" counts them too.\n"
         "The diagnosis compares at each case's float32 tolerance (1e-6 and more), so its\n"
         "counts are not comparable with \"failed\": diagnosis_checked = the cases the\n"
         "mistake changes by more than their float32 tolerance (a mistake that changes a\n"
@@ -192,6 +194,8 @@ typedef struct {
     fx_set fx;
     double **got, *tmp;
     int maxn;
+    unsigned char *skip; /* case k above the method's largest order: not rotated, not judged */
+    int nskip;
     cli_progress prog;
 } verify_work;
 
@@ -201,6 +205,7 @@ static void work_free(verify_work *w)
         for (int k = 0; k < w->fx.ncases; k++) free(w->got[k]);
     free(w->got);
     free(w->tmp);
+    free(w->skip);
     fx_free(&w->fx);
 }
 
@@ -211,21 +216,36 @@ static int work_load(const verify_args *a, verify_work *w)
     for (int k = 0; k < w->fx.ncases; k++) w->maxn = w->fx.cases[k].n > w->maxn ? w->fx.cases[k].n : w->maxn;
     w->got = calloc((size_t)w->fx.ncases + 1, sizeof *w->got);
     w->tmp = malloc(2 * (size_t)w->maxn * sizeof *w->tmp);
-    int ok = w->got && w->tmp;
+    w->skip = calloc((size_t)w->fx.ncases + 1, 1);
+    int ok = w->got && w->tmp && w->skip;
     for (int k = 0; ok && k < w->fx.ncases; k++) ok = (w->got[k] = malloc((size_t)w->fx.cases[k].n * sizeof **w->got)) != NULL;
     return ok ? 0 : cli_fail("out of memory");
 }
 
-/* Every case rotated by shlab's method (or as the simulated mistake does it). */
+/* Every case rotated by shlab's method (or as the simulated mistake does it).
+ * Cases above the method's largest order (direct: 3) are skipped, and said
+ * so (stderr and "skipped"); a fixture with none in reach is refused. */
 static int run_method(const verify_args *a, verify_work *w)
 {
     const sh_rot_method m = a->method;
+    const int top = sh_rot_method_max_order(m);
     int st = 0;
+    for (int k = 0; k < w->fx.ncases; k++) {
+        w->skip[k] = w->fx.cases[k].order > top;
+        w->nskip += w->skip[k];
+    }
+    if (w->nskip == w->fx.ncases)
+        return cli_fail("verify: method %s is limited to order %d; every case of the fixture needs more",
+                        sh_rot_method_name(m), top);
+    if (w->nskip && a->emit)
+        return cli_fail("verify: method %s is limited to order %d: %d cases would be missing from "
+                        "--emit-candidate", sh_rot_method_name(m), top, w->nskip);
+    if (w->nskip)
+        fprintf(stderr, "verify: method %s is limited to order %d: %d of the %d cases skipped (higher orders)\n",
+                sh_rot_method_name(m), top, w->nskip, w->fx.ncases);
     for (int k = 0; k < w->fx.ncases && !st; k++) {
         const fx_case *c = &w->fx.cases[k];
-        if (c->order > sh_rot_method_max_order(m))
-            return cli_fail("verify: method %s is limited to order %d; case '%s' needs %d", sh_rot_method_name(m),
-                            sh_rot_method_max_order(m), c->id, c->order);
+        if (w->skip[k]) continue;
         if (m == SH_ROT_Z && c->rot.beta != 0)
             return cli_fail("verify: method z rotates about z only; case '%s' has β = %.3g rad", c->id, c->rot.beta);
         if (a->simulate < T_COUNT)
@@ -248,8 +268,11 @@ static verdict judge(const verify_args *a, const verify_work *w)
 {
     verdict v = {0};
     double worst_ratio = -1;
+    v.worst_k = -1;
     for (int k = 0; k < w->fx.ncases; k++) {
         const fx_case *c = &w->fx.cases[k];
+        if (w->skip[k]) continue;
+        if (v.worst_k < 0) v.worst_k = k;
         const double tol = a->prec == SH_PREC_FLOAT ? c->tol_float : c->tol_double;
         int at;
         const double e = max_err(w->got[k], c->expected, c->n, &at);
@@ -289,6 +312,7 @@ static json_t *result(const verify_args *a, int have_kernel, const verify_work *
     if (a->simulate != SIM_NONE) root = cli_put(root, "simulated", json_string(t_short[a->simulate]));
     if (have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(a->kernel)));
     if (a->matrix_input) root = cli_put(root, "input", json_string("matrix"));
+    if (w->nskip) root = cli_put(root, "skipped", json_integer(w->nskip));
     return root;
 }
 
@@ -308,6 +332,7 @@ static int best_mistake(verify_work *w, int *n_ok, int *n_seen)
         for (int k = 0; k < w->fx.ncases; k++) {
             const fx_case *c = &w->fx.cases[k];
             int at;
+            if (w->skip[k]) continue;
             if (transformed((transform)t, c, y, w->tmp)) continue;
             /* a transformation that changes nothing (β = 0, say) proves nothing */
             if (max_err(y, c->expected, c->n, &at) <= c->tol_float) continue;
@@ -331,10 +356,11 @@ static int diagnose(const verify_args *a, verify_work *w, const verdict *v, json
     int float_ok = 0, best = -1, best_n = 0, best_seen = 0;
     for (int k = 0; k < w->fx.ncases; k++) {
         int at;
+        if (w->skip[k]) continue;
         if (max_err(w->got[k], w->fx.cases[k].expected, w->fx.cases[k].n, &at) <= w->fx.cases[k].tol_float) float_ok++;
     }
     const char *cause = NULL;
-    if (a->prec == SH_PREC_DOUBLE && float_ok == w->fx.ncases) {
+    if (a->prec == SH_PREC_DOUBLE && float_ok == w->fx.ncases - w->nskip) {
         cause = "float precision only: every case matches within its float32 tolerance";
         best_n = best_seen = float_ok;
     } else if ((best = best_mistake(w, &best_n, &best_seen)) == -2) {
@@ -397,7 +423,7 @@ static int run(int argc, char **argv)
     const int simulated = a.simulate != SIM_NONE;
     if (v.failed)
         fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n", v.failed,
-                w.fx.ncases, a.prec == SH_PREC_FLOAT ? "float32" : "double", w.fx.cases[v.worst_k].id, v.worst_i,
+                w.fx.ncases - w.nskip, a.prec == SH_PREC_FLOAT ? "float32" : "double", w.fx.cases[v.worst_k].id, v.worst_i,
                 simulated ? " (the simulated mistake, as asked)" : "");
     work_free(&w);
     rc = cli_emit(root, (cli_format)a.fmt);

@@ -73,6 +73,29 @@ typedef struct {
                         void *work, uint64_t *mults);
     int (*blocks_par_f)(int order, const float *par, const void *tables, float *blocks,
                         void *work, uint64_t *mults);
+    /* sparse methods straight from a row-major matrix R (optional; direct):
+     * the same as set_P, with R in the plan's precision and no angle or par
+     * computed.  Checks that R is finite (SH_EINVAL, nothing set), assumes
+     * it orthogonal.  Such a method keeps no sh_rotation: state_blocks_P
+     * gives the blocks (cs, double, layout of sh_rot_block_offset) of the
+     * state set_P or set_mat_P (P: the plan's precision) wrote. */
+    int (*set_mat_d)(int order, const double *R, void *state, uint64_t *mults);
+    int (*set_mat_f)(int order, const float *R, void *state, uint64_t *mults);
+    void (*state_blocks_d)(int order, const void *state, double *blocks);
+    void (*state_blocks_f)(int order, const void *state, double *blocks);
+    /* K rotations given as matrices (9 rows of K, structure of arrays, like
+     * sh_rot_plan_rotate_many) applied to K vectors (order² rows of K),
+     * in == out allowed, in the convention nocs (1) or cs (0); checks first
+     * that every entry of R is finite (SH_EINVAL, nothing written); compiled for
+     * the rotator's kernel (avx2, avx512: that instruction set; any other:
+     * the default flags); adds the multiplications of one rotation's set to
+     * *set_mults and of its apply to *apply_mults (optional; NULL: the plan
+     * sets and applies each).  A method with this keeps the kernel asked
+     * (rotator.c) though it has no unrolled tables. */
+    int (*rotate_many_d)(int order, int nocs, sh_rot_kernel kernel, size_t K, const double *R,
+                         const double *in, double *out, uint64_t *set_mults, uint64_t *apply_mults);
+    int (*rotate_many_f)(int order, int nocs, sh_rot_kernel kernel, size_t K, const float *R,
+                         const float *in, float *out, uint64_t *set_mults, uint64_t *apply_mults);
 } sh__rot_ops;
 
 /* Progress of the long steps (rotator.c): a method whose tables or blocks
@@ -209,6 +232,7 @@ extern const sh__rot_ops sh__rot_z_ops, sh__rot_ivanic_ops, sh__rot_zxzxz_ops, s
     sh__rot_blanco_ops, sh__rot_wigner_ops, sh__rot_reference_ops;
 extern const sh__rot_ops sh__rot_taylor1_ops, sh__rot_taylor15_ops, sh__rot_taylor2_ops;
 extern const sh__rot_ops sh__rot_halfpi_ops;
+extern const sh__rot_ops sh__rot_direct_ops;
 
 /* ---- rot_halfpi.c: the band kernel of `halfpi`, shared with the threaded
  * all-band rotation (rotation_stream.c).  Band l of nj vectors (job j: the

@@ -220,6 +220,25 @@ int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par)
     return SH_OK;
 }
 
+/* A sparse method set straight from the matrix (ops->set_mat_P: direct),
+ * in the plan's precision: no angle, no par; sh_rot_plan_blocks reads its
+ * state (ops->state_blocks_P), so the matrix is not kept. */
+static int set_mat(sh_rot_plan *p, const double *rd, const float *rf)
+{
+    p->have_angles = 0;
+    p->set_mults = 0;
+    int st;
+    if (p->r->prec == SH_PREC_FLOAT) {
+        float R[9];
+        for (int i = 0; i < 9; i++) R[i] = rf ? rf[i] : (float)rd[i];
+        st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
+    } else {
+        st = p->r->ops->set_mat_d(p->r->order, rd, p->state, &p->set_mults);
+    }
+    if (st == SH_OK) p->have_rot = 1;
+    return st;
+}
+
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 {
     const int n = quat ? 4 : 9, nb = need_beta(p);
@@ -254,6 +273,7 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
         fast_par_done(p, NULL);
         return SH_OK;
     }
+    if (!quat && p->r->ops->set_mat_d) return set_mat(p, rd, rf);
     double v[9];
     for (int i = 0; i < n; i++) v[i] = rd ? rd[i] : (double)rf[i];
     int st;
@@ -314,6 +334,13 @@ int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
         p->have_angles = 0;
         p->have_rot = 1;
         return SH_OK;
+    }
+    if (p->r->ops->set_mat_f) { /* set_rot's path for direct, written out (set_mat checks R) */
+        p->have_rot = p->have_angles = 0;
+        p->set_mults = 0;
+        const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
+        p->have_rot = st == SH_OK;
+        return st;
     }
     return set_rot(p, NULL, R, 0);
 }
@@ -518,6 +545,14 @@ static int rotate_many(sh_rot_plan *p, size_t K, const void *rot, int quat, cons
     int st = check_batch(p, K, fl, 0);
     if (st) return st;
     const int nr = quat ? 4 : 9;
+    if (!quat && (fl ? p->r->ops->rotate_many_f != NULL : p->r->ops->rotate_many_d != NULL)) {
+        /* the method's own batch of matrices (direct; it checks them finite) */
+        const int nocs = p->r->conv == SH_NOCS;
+        p->set_mults = p->apply_mults = 0;
+        p->have_rot = 0; /* the plan's own rotation is not one of them */
+        if (fl) return p->r->ops->rotate_many_f(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
+        return p->r->ops->rotate_many_d(p->r->order, nocs, p->r->kernel, K, rot, in, out, &p->set_mults, &p->apply_mults);
+    }
     if (p->r->fmeth >= 0) {
         /* unrolled, lanes of rotations; checked first: every entry finite */
         if (!(fl ? all_finite_f(rot, (size_t)nr * K) : all_finite_d(rot, (size_t)nr * K)))
@@ -581,6 +616,12 @@ int sh_rot_plan_blocks(sh_rot_plan *p, double *blocks)
             }
         }
         free(e);
+        return SH_OK;
+    }
+    if (p->r->ops->state_blocks_d) { /* direct: the blocks of its state */
+        if (p->r->prec == SH_PREC_FLOAT) p->r->ops->state_blocks_f(p->r->order, p->state, blocks);
+        else p->r->ops->state_blocks_d(p->r->order, p->state, blocks);
+        if (p->r->conv == SH_NOCS) sh__rot_blocks_nocs_d(p->r->order, blocks);
         return SH_OK;
     }
     if (p->r->ops->apply_d) { /* sparse methods build their blocks on request */

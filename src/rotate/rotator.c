@@ -125,16 +125,20 @@ void sh__rot_band_done(int done, int total)
 /* ---- create ------------------------------------------------------------------- */
 
 /* The kernel: the unrolled code of (method, order) in the chosen variant, or
- * the loop kernels when there is none (then the kernel is `scalar`). */
+ * the loop kernels when there is none (then the kernel is `scalar`) — but a
+ * method with its own batch kernel per instruction set (ops->rotate_many:
+ * direct) keeps the kernel chosen, which its batches use. */
 static void choose_kernel(sh_rotator *r, sh_rot_kernel kernel)
 {
     r->kernel = kernel == SH_KERNEL_AUTO ? sh__rot_kernel_auto() : kernel;
     sh__rot_kernel_tables(r->kernel, &r->fd1, &r->fdv, &r->ff1, &r->ffv);
     r->fmeth = r->stream ? -1 : sh__rot_fast_method(r->method);
+    const sh__rot_ops *ops = sh__rot_ops_of(r->method);
+    const int own_batch = !r->stream && ops && ops->rotate_many_d;
     if (r->kernel == SH_KERNEL_SCALAR || r->fmeth < 0 || r->order > r->fd1->max_order ||
         !r->fd1->fn[r->fmeth][r->order]) {
         r->fmeth = -1;
-        r->kernel = SH_KERNEL_SCALAR;
+        if (!own_batch) r->kernel = SH_KERNEL_SCALAR;
     }
     r->nb = r->method == SH_ROT_TAYLOR1 || r->method == SH_ROT_TAYLOR15 || r->method == SH_ROT_TAYLOR2;
     if (r->fmeth >= 0) {

@@ -65,6 +65,7 @@ typedef enum {
     SH_ROT_TAYLOR15,  /* approximate: Z(α)·(I + βJ + β²/2·diag(J²))·Z(γ) */
     SH_ROT_TAYLOR2,   /* approximate: Z(α)·(I + βJ + β²/2·J²)·Z(γ) */
     SH_ROT_HALFPI,    /* d^l(π/2) generated band by band (O(l²) each), Z·Δ·Z(β)·Δ·Z; high bands */
+    SH_ROT_DIRECT,    /* bands 0..2 straight from the matrix: a permutation, quadratic forms */
     SH_ROT_NMETHODS
 } sh_rot_method;
 typedef enum { SH_PREC_DOUBLE = 0, SH_PREC_FLOAT = 1 } sh_precision;
@@ -87,13 +88,17 @@ int sh_precision_parse(const char *s, sh_precision *out);
  *               accepted to show that, accurate only to l ≈ 50
  *   wigner      l ≤ 60: rotation_stability (its terms grow like 4^l)
  *   reference   l ≤ 400: halfpi against it at band 400 (test_rot_halfpi)
- *   taylor*     SH_TAYLOR_MAX_ORDER (taylor.h; tests/core/test_ranges.c) */
+ *   taylor*     SH_TAYLOR_MAX_ORDER (taylor.h; tests/core/test_ranges.c)
+ *   direct      order 3 (bands 0..2): its closed forms exist for these bands
+ *               only (rot_direct.c); tests/rotate/test_rot_direct.c against
+ *               the MPFR reference */
 #define SH_ROT_BLANCO_MAX_ORDER 4001
 #define SH_ROT_ZXZXZ_MAX_ORDER 1401
 #define SH_ROT_IVANIC_MAX_ORDER 201
 #define SH_ROT_CHOI_MAX_ORDER 201
 #define SH_ROT_WIGNER_MAX_ORDER 61
 #define SH_ROT_REFERENCE_MAX_ORDER 401
+#define SH_ROT_DIRECT_MAX_ORDER 3
 int sh_rot_method_max_order(sh_rot_method m);
 /* 1 for the exact methods, 0 for the Taylor approximations. */
 int sh_rot_method_is_exact(sh_rot_method m);
@@ -153,7 +158,9 @@ void sh_rot_plan_mults(const sh_rot_plan *p, uint64_t *set_mults, uint64_t *appl
  *   auto      the best this CPU runs (avx512, else avx2, else sse2, else
  *             unrolled)
  * A plan whose method or order has no unrolled kernel uses the loop kernels
- * (sh_rot_plan_kernel then says scalar).  sh_rot_plan_create uses auto. */
+ * (sh_rot_plan_kernel then says scalar), except `direct`, whose batch of K
+ * rotations (sh_rot_plan_rotate_many) is compiled for avx2 and avx512 too:
+ * it keeps the kernel asked.  sh_rot_plan_create uses auto. */
 typedef enum {
     SH_KERNEL_AUTO = 0,
     SH_KERNEL_SCALAR,

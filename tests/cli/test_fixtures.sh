@@ -76,3 +76,29 @@ done
 # a correct candidate passes with exit 0
 "$SHLAB" verify --fixture $FX/orders_1_10.json --method blanco --emit-candidate "$TMP/c.json" >/dev/null 2>&1
 expect_success "verify a correct candidate" verify --fixture $FX/orders_1_10.json --candidate "$TMP/c.json"
+# direct stops at order 3: verify rotates and judges the cases of orders 1-3,
+# skips the others and says how many (counted here from the fixture itself)
+lo=$(grep -c '"order":[1-3],' $FX/orders_1_10.json)
+hi=$(grep -c '"order":\([4-9]\|[1-9][0-9]\),' $FX/orders_1_10.json)
+for p in double float; do
+    for mi in "" --matrix-input; do
+        "$SHLAB" verify --fixture $FX/orders_1_10.json --method direct --precision $p $mi --format json >"$TMP/dv.json" 2>"$TMP/dv.err"; rc=$?
+        if [ "$rc" = 0 ] && [ "$lo" -gt 0 ] && [ "$hi" -gt 0 ] && grep -q "\"failed\":0," "$TMP/dv.json" \
+            && grep -q "\"skipped\":$hi[,}]" "$TMP/dv.json" && grep -q "$hi of the $((lo + hi)) cases skipped" "$TMP/dv.err"; then
+            ok "verify direct $p $mi: the $lo cases of orders 1-3 pass, $hi skipped"
+        else
+            notok "verify direct $p $mi: rc $rc $(head -c 300 "$TMP/dv.json") $(cat "$TMP/dv.err")"
+        fi
+    done
+done
+# a method reaching every case reports no "skipped"
+"$SHLAB" verify --fixture $FX/orders_1_10.json --method zxzxz --format json >"$TMP/dz.json" 2>/dev/null
+grep -q '"skipped"' "$TMP/dz.json" && notok "zxzxz reports skipped cases" || ok "zxzxz: no skipped cases"
+# nothing in reach, or a candidate file that would miss cases: refused
+{
+    echo '{"format":"shlab-rotation-fixtures/1","description":"order 10 only","cases":['
+    grep '"order":10,' $FX/orders_1_10.json | sed '$ s/,$//'
+    echo ']}'
+} >"$TMP/o10.json"
+expect_usage_error "verify direct, every case above order 3" verify --fixture "$TMP/o10.json" --method direct
+expect_usage_error "verify direct --emit-candidate with skipped cases" verify --fixture $FX/orders_1_10.json --method direct --emit-candidate "$TMP/dc.json"
