@@ -12,7 +12,7 @@
  *                   batched paths without choi and wigner (BATCH_METHODS);
  *   orders 20..64   per-rotation from a matrix (the O(n⁴) methods choi and
  *                   wigner up to 32, where they are already far off the
- *                   frontier).
+ *                   frontier; direct stops at order 3).
  * Instructions are counted with the widest kernel valgrind runs (AVX2;
  * it cannot run AVX-512), times taken with the kernel `auto` picks; the
  * model's calibration c = ns / instruction per (method, precision, mode,
@@ -39,7 +39,7 @@ static int NR;
 /* The batched paths leave out the O(n⁴) methods choi and wigner: one
  * rotation costs them 10-1000× the frontier's at every order here, and 256
  * of them per call under callgrind would take most of the run. */
-#define BATCH_METHODS "--methods z,ivanic,zxzxz,blanco,taylor1,taylor1.5,taylor2,halfpi"
+#define BATCH_METHODS "--methods z,ivanic,zxzxz,blanco,taylor1,taylor1.5,taylor2,halfpi,direct"
 
 /* One bench call's sets of arguments, per precision. */
 static const struct {
@@ -49,9 +49,10 @@ static const struct {
     {"--order 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16 --input matrix,quat,euler --mode per-rotation", 16},
     {"--order 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16 --input matrix,quat --mode k-rotations --batch 256 " BATCH_METHODS, 1},
     {"--order 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16 --input matrix --mode batched --batch 256 " BATCH_METHODS, 1},
-    {"--order 20,24,32 --input matrix --mode per-rotation", 4},
+    {"--order 20,24,32 --input matrix --mode per-rotation "
+     "--methods z,ivanic,zxzxz,choi,blanco,wigner,taylor1,taylor1.5,taylor2,halfpi", 4},
     {"--order 48,64 --input matrix --mode per-rotation "
-     "--methods z,ivanic,zxzxz,blanco,taylor1,taylor1.5,taylor2", 2},
+     "--methods z,ivanic,zxzxz,blanco,taylor1,taylor1.5,taylor2,halfpi", 2},
 };
 
 /* Split a CSV line in place (bench's CSV quotes no field we read). */
