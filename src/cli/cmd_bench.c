@@ -177,7 +177,8 @@ static const cli_opt bench_opts[] = {
                "z, ivanic, zxzxz, choi, blanco, wigner, reference, halfpi,\n"
                "direct (orders ≤ 3), taylor1, taylor1.5, taylor2, or\n"
                "'all' (default: every method built in except\n"
-               "reference, which is MPFR)"),
+               "reference, which is MPFR, and those limited below the\n"
+               "largest --order, e.g. direct beyond 3)"),
     CLI_CUSTOM(bench_args, modes, "mode", "LIST", parse_modes, "both",
                "per-rotation | batched | both | k-rotations | all (the\n"
                "three before) | oneshot; several: comma separated"),
@@ -562,9 +563,14 @@ static int validate(bench_args *a, const cli_parsed *seen, sh_bench_opts *bo)
         bo->max_beta = fmin(b, M_PI);
     }
     bench_methods *ms = &a->methods;
-    const int by_default = ms->n == 0; /* every method built in but the MPFR reference */
+    /* by default every method built in but the MPFR reference that reaches
+     * the largest order asked for */
+    const int by_default = ms->n == 0;
+    int top = 0;
+    for (int q = 0; q < a->orders.n; q++) top = a->orders.v[q] > top ? a->orders.v[q] : top;
     for (int m = 0; by_default && m < SH_ROT_NMETHODS; m++)
-        if (m != SH_ROT_REFERENCE && sh_rot_method_max_order((sh_rot_method)m) > 0) ms->v[ms->n++] = (sh_rot_method)m;
+        if (m != SH_ROT_REFERENCE && sh_rot_method_max_order((sh_rot_method)m) >= top) ms->v[ms->n++] = (sh_rot_method)m;
+    if (!ms->n) return cli_fail("bench: no method reaches order %d", top);
     for (int k = 0; k < ms->n; k++)
         for (int q = 0; q < a->orders.n; q++)
             if (a->orders.v[q] > sh_rot_method_max_order(ms->v[k]))
