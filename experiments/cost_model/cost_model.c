@@ -193,7 +193,7 @@ int main(int argc, char **argv)
               "`data/cost_model.tsv`, instructions counted under callgrind and times by the interleaved bench, "
               "computed at code revision `%s` on %s. The planner (`shlab plan`), the trade atlas and the scene "
               "planner cost methods as instructions × the median ns per instruction of the method's "
-              "(precision, mode, kernel) rows (src/lab/cost_model.c).",
+              "(precision, input, mode, kernel) rows (src/lab/cost_model.c).",
               kept, exp_revision(), cpu);
     return 0;
 }

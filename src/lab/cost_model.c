@@ -16,11 +16,12 @@
  * so the model needs no file at run time.
  *
  * The model.  cost(row) = instructions(row) × c(group), where the group is
- * (method, precision, mode, kernel) and c(group) the median over its rows
- * of ns / instructions: instructions carry how the work grows with the
- * order and the input form; c carries the kernel's speed per instruction
- * (its IPC on the calibration machine), taken over many rows so that one
- * noisy sample does not move it.  Orders between measured ones: log
+ * (method, precision, input, mode, kernel) and c(group) the median over its
+ * rows (the orders the kernel serves) of ns / instructions: instructions
+ * carry how the work grows with the order; c carries the kernel's speed per
+ * instruction on that path (its IPC on the calibration machine; the input
+ * forms differ: Euler angles cost trigonometric calls), taken over many
+ * rows so that one noisy sample does not move it.  Orders between measured ones: log
  * instructions linear in log order between the two neighbours (the work is
  * a power of the order, piecewise), c from the kernel auto picks there
  * (or the upper neighbour's when that kernel was not measured).
@@ -108,13 +109,13 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* c(group): the median of ns / instructions over the rows of (method,
- * precision, mode, kernel); 0 when the group has no row. */
-static double calibration(sh_rot_method m, sh_precision p, sh_bench_mode md, sh_rot_kernel k)
+ * precision, input, mode, kernel); 0 when the group has no row. */
+static double calibration(sh_rot_method m, sh_precision p, sh_bench_input in, sh_bench_mode md, sh_rot_kernel k)
 {
     double *q = malloc(sizeof *q * (size_t)(nrows ? nrows : 1));
     int n = 0;
     for (int i = 0; q && i < nrows; i++)
-        if (rows[i].method == m && rows[i].prec == p && rows[i].mode == md && rows[i].kernel == k)
+        if (same_path(&rows[i], m, p, in, md) && rows[i].kernel == k)
             q[n++] = rows[i].ns / rows[i].instructions;
     double c = 0;
     if (n > 0) {
@@ -168,8 +169,8 @@ int sh_cost_model(int order, sh_rot_method m, sh_precision p, sh_bench_input in,
         out->kernel = sh_rot_plan_kernel_for(order, m, SH_KERNEL_AUTO);
         out->interpolated = 1;
     }
-    double c = calibration(m, p, md, out->kernel);
-    if (!(c > 0)) c = calibration(m, p, md, above->kernel);
+    double c = calibration(m, p, in, md, out->kernel);
+    if (!(c > 0)) c = calibration(m, p, in, md, above->kernel);
     out->ns_per_instruction = c;
     out->ns = out->instructions * c;
     return SH_OK;

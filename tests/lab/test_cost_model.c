@@ -48,7 +48,7 @@ static int cmpd(const void *a, const void *b)
 }
 
 /* every row of the table: cost = instructions × median(ns/ins of its
- * group), the group being (method, precision, mode, kernel) */
+ * group), the group being (method, precision, input, mode, kernel) */
 START_TEST(test_model_rows)
 {
     int n;
@@ -61,7 +61,7 @@ START_TEST(test_model_rows)
         int g = 0;
         for (int j = 0; j < n; j++)
             if (!strcmp(t[j].method, t[i].method) && !strcmp(t[j].prec, t[i].prec) && !strcmp(t[j].mode, t[i].mode) &&
-                !strcmp(t[j].kernel, t[i].kernel))
+                !strcmp(t[j].input, t[i].input) && !strcmp(t[j].kernel, t[i].kernel))
                 q[g++] = t[j].ns / t[j].ins;
         qsort(q, (size_t)g, sizeof *q, cmpd);
         const double c = g % 2 ? q[g / 2] : 0.5 * (q[g / 2 - 1] + q[g / 2]);
