@@ -196,6 +196,14 @@ static int study_orders(plan_work *w)
 
 static int has_order(const plan_work *w, int k) { return !w->dec[k].undecided && w->dec[k].order > 0; }
 
+/* Step j of the β grid in the unit printed: j times the step as the user
+ * gave it (15, not 14.999999999999998, for the third step of 5°). */
+static double grid_beta_shown(const plan_work *w, long j)
+{
+    const double step = w->a->beta_step > 0 ? w->a->beta_step : (w->a->degrees ? 5.0 : 5 * M_PI / 180);
+    return (double)j * step;
+}
+
 /* The open walks' comparisons at this β (refining the reference until they
  * are trusted or the cap stops it), then each walk's verdict so far. */
 static int walks_at(plan_work *w)
@@ -250,7 +258,7 @@ static int rotation_at(plan_work *w, double beta)
             sh_shade_err er;
             if ((e = sh_study_error(w->st, meth, w->dec[k].order, &er))) return e;
             json_t *r = json_object();
-            r = cli_put(r, "beta", json_real(beta / w->deg));
+            r = cli_put(r, "beta", json_real(grid_beta_shown(w, lround(beta / w->beta_step))));
             r = cli_put(r, "method", json_string(t < 0 ? "exact" : sh_rot_method_name(meth)));
             r = cli_put(r, "order", json_integer(w->dec[k].order));
             r = cli_put(r, "rel_l2", json_real(er.rel_l2));
@@ -327,8 +335,8 @@ static json_t *walk_json(const plan_work *w, const walk *wk, int order, sh_rot_m
     const int undecided = d->undecided, reps = wk->reps[d->at];
     json_t *o = json_object();
     o = cli_put(o, "decision", json_string(undecided ? "undecided" : "decided"));
-    o = cli_put(o, "max_beta", !undecided && d->last >= 0 ? json_real(d->last * w->beta_step / w->deg) : json_null());
-    o = cli_put(o, "at_beta", json_real(d->at * w->beta_step / w->deg));
+    o = cli_put(o, "max_beta", !undecided && d->last >= 0 ? json_real(grid_beta_shown(w, d->last)) : json_null());
+    o = cli_put(o, "at_beta", json_real(grid_beta_shown(w, d->at)));
     o = cli_put(o, "ref_l2", json_real(d->ref_l2));
     o = cli_put(o, "ref_needed", json_real(d->ref_needed));
     o = cli_put(o, "replications", json_integer(reps));
@@ -436,7 +444,7 @@ static int report_gaps(const plan_work *w)
             fprintf(stderr,
                     "scene-plan: budget %g, %s: largest β undecided at β = %g: the reference's error %.3g is above the "
                     "%.3g the rule needs (%s; the cap is %d)\n",
-                    a->budget.v[k], sh_rot_method_name(taylor[t]), wk->d.at * w->beta_step / w->deg, wk->d.ref_l2,
+                    a->budget.v[k], sh_rot_method_name(taylor[t]), grid_beta_shown(w, wk->d.at), wk->d.ref_l2,
                     wk->d.ref_needed, reps_words(wk->d.ref_l2, wk->reps[wk->d.at], wk->d.ref_needed, words, sizeof words),
                     w->info.max_replications);
             gaps = 1;
