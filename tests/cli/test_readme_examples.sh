@@ -24,18 +24,26 @@ awk -v dir="$TMP/ex" '
 ' "$README"
 
 # Same text, and every number equal to 1e-13 relative or 1e-15 absolute.
+# With ERROR_LOOSE=1 (docs/choosing.md), a number on a line whose key names
+# an error ("choice.error_max: ...") may differ by 1e-4 relative, or both be
+# below 1e-5: the measured error of a float kernel is rounding, which
+# depends on the build (-O1 under the sanitizers) and on the kernel the CPU
+# runs; the choices and the model's costs are still compared exactly.
 same_to_rounding() {
-    awk -v other="$2" '
+    awk -v other="$2" -v loose="${ERROR_LOOSE:-0}" '
         function isnum(t) { return t ~ /^-?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?$/ }
+        function abs(x) { return x < 0 ? -x : x }
         { if ((getline o < other) <= 0) { bad = 1; exit }
           n = split($0, a, /[][ ,:\t{}"]+/); m = split(o, b, /[][ ,:\t{}"]+/)
           if (n != m) { bad = 1; exit }
+          err = loose == 1 && a[1] ~ /error/
           for (i = 1; i <= n; i++) {
               if (a[i] == b[i]) continue
               if (!isnum(a[i]) || !isnum(b[i])) { bad = 1; exit }
-              d = a[i] - b[i]; if (d < 0) d = -d
-              s = a[i] < 0 ? -a[i] : a[i]
-              if (d > 1e-15 && d > 1e-13 * s) { bad = 1; exit }
+              d = abs(a[i] - b[i]); s = abs(a[i])
+              if (d <= 1e-15 || d <= 1e-13 * s) continue
+              if (err && (d <= 1e-4 * s || (s < 1e-5 && abs(b[i]) < 1e-5))) continue
+              bad = 1; exit
           } }
         END { if (!bad && (getline o < other) > 0) bad = 1; exit bad }' "$1"
 }
@@ -58,7 +66,7 @@ for c in "$TMP"/ex/*.cmd; do
         # the README shows this machine kind's output; a CPU whose rotation
         # kernel (auto: widest instruction set) rounds differently may differ
         # in the last digits of results that are rounding-level anyway
-        ok "README example (numbers equal to 1e-13 relative / 1e-15 absolute on this CPU): $cmd"
+        ok "$(basename "$README") example (numbers equal to rounding on this build and CPU): $cmd"
     else
         notok "$(basename "$README") example differs: $cmd
 $(diff "$e" "$TMP/got" | head -20)"
