@@ -196,7 +196,7 @@ header='claim_id\tsource\tstatement\tprinted\tmeasured\ttolerance\tverdict\tevid
     echo "run of an experiment rewrites its part (machine, revision and date below each heading, and"
     echo "in the headers of its data files), the others are assembled as committed. Times are"
     echo "interleaved in one process and ratios are paired (median of per-round ratios,"
-    echo "\`sh_bench_interleaved\`); a run that breaks the noise criterion (README, \"Rotation speed\")"
+    echo "\`sh_bench_interleaved\`); a run that breaks the noise criterion (docs/rotation.md, \"Rotation speed\")"
     echo "publishes its speed claims as \"not-measured\"."
     echo
     echo "## Claims by source"

@@ -2,7 +2,7 @@
  *
  * shlab is a numerical verification and analysis workbench for real spherical
  * harmonics (SH).  Conventions (basis, phase, index, rotation direction, image
- * layouts) are pinned in docs/CONVENTIONS.md and summarised in README.md:
+ * layouts) are pinned in docs/CONVENTIONS.md and summarised in docs/tour.md:
  *   - direction s = (sinθ cosφ, sinθ sinφ, cosθ), z up;
  *   - real SH y_l^m, default convention SH_CS (Condon-Shortley phase inside P,
  *     as Green's P()/SH() code), alternative SH_NOCS (odd m negated);

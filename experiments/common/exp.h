@@ -80,7 +80,7 @@ void exp_claim_judged(const char *id, const char *source, const char *statement,
                       const char *measured, const char *tolerance, int ok, const char *files, const char *why);
 /* Speed claims (timing part).  The uncertainty of a paired ratio is its
  * quartiles over the rounds widened by ±EXP_RUN_TO_RUN, the spread of
- * paired ratios between repeated runs on a quiet machine (README, "Rotation
+ * paired ratios between repeated runs on a quiet machine (docs/rotation.md, "Rotation
  * speed").  EXP_INSIDE: that interval lies in [lo, hi]; EXP_OUTSIDE: wholly
  * outside it; EXP_STRADDLES: neither (the verdict is then "inconclusive"). */
 #define EXP_RUN_TO_RUN 0.05

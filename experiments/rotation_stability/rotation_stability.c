@@ -17,7 +17,7 @@
  * kept by `make report`, which runs only the part above): the stable
  * methods to l = 4000 (halfpi, blanco; zxzxz to 1400, its single band costs
  * O(l³)), double, exact orthogonality to l = 500 and the probe estimate
- * above, on a sparse ladder of bands; meant to be run as shards (README,
+ * above, on a sparse ladder of bands; meant to be run as shards (docs/sweeps.md,
  * "Sweeps in shards"). */
 #include <math.h>
 #include <stdio.h>
@@ -193,7 +193,7 @@ static int run_long(void)
                                a.last_band < M[k].lmax ? " (stopped: orth > 1)" : "", ex, est, o[0], o[1], o[2], hom);
     }
     exp_index("**To l = 4000** (the long part, computed on request as shards and kept by `make report`, "
-              "which runs only the sweeps above; README, \"Sweeps in shards\"): the stable methods in "
+              "which runs only the sweeps above; docs/sweeps.md): the stable methods in "
               "double on bands 0–20 and about 12 a decade above, halfpi and blanco to l = 4000, zxzxz to "
               "1400 (a single zxzxz band costs O(l³): 4.5 s at l = 500, minutes above 1000). *orth* is exact "
               "(max|RRᵀ − I|, O(l³) a block) up to l = %d and the two-probe estimate max|Rᵀ(R v) − v| "

@@ -3,7 +3,7 @@
  * side.
  *
  * For each lmax L: seeded N(0, 1) coefficients for every (l, m) up to L,
- * the Gauss grid of L + 1 rings × 2L + 2 points (the grid the README's
+ * the Gauss grid of L + 1 rings × 2L + 2 points (the grid the manual's
  * promise is about), and
  *   round trip   synthesis then analysis, ‖Δc‖₂/‖c‖₂ and max|Δc|/max|c|;
  *   synthesis    against the truth, max|f − f_true| / max|f_true| over the

@@ -28,7 +28,7 @@ void SH_R(sh__rot_blocks_apply)(int order, const sh_real *blocks, const sh_real 
      * loop, the same accuracy).  An earlier form, four rows at a time with
      * four scalar accumulators, was packed by -O3 -march=native into one
      * vector of the four rows' entries gathered column by column, and ran
-     * slower than with -O2 (README "Rotation speed"). */
+     * slower than with -O2 (docs/rotation.md "Rotation speed"). */
     uint64_t count = 0;
     for (int l = 0; l < order; l++) {
         const int w = 2 * l + 1;

@@ -164,7 +164,7 @@ static void SH_R(ivanic_band1)(const sh_rotation *rot, sh_real *M1)
  * (GCC inlines it).  Earlier the row was written by a u·U pass and then
  * read back and updated by a v·V and a w·W pass: once -O3 vectorises those
  * passes, a vector load of the row just stored element by element waits
- * for store-to-load forwarding (the −O3 slowdown of README "Rotation
+ * for store-to-load forwarding (the −O3 slowdown of docs/rotation.md "Rotation
  * speed"); written once, the row has no such dependence. */
 static inline __attribute__((always_inline)) void SH_R(iv_row)(
     int w, sh_real *restrict row, int hu, sh_real r00, sh_real ue0, sh_real uew,

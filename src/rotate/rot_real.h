@@ -16,7 +16,7 @@
  * (simdlen; GCC takes it as the vectorisation factor): with -march=native
  * GCC otherwise vectorises them 32 or 64 bytes wide, and most iterations of
  * such short loops then run in the remainder — measured 1.1–1.2× slower
- * (README "Rotation speed", the -O3 -march=native note).  The loops are
+ * (docs/rotation.md "Rotation speed", the -O3 -march=native note).  The loops are
  * vectorised at -O2 too (-fopenmp-simd; no OpenMP runtime). */
 #define SH_PRAGMA_(x) _Pragma(#x)
 #define SH_PRAGMA(x) SH_PRAGMA_(x)

@@ -105,7 +105,7 @@ static void read_cpu(void)
 }
 
 /* AUTO: the widest the CPU runs — AVX-512 (for one rotation its 32
- * registers, for batches 16 float lanes: both measured fastest, README
+ * registers, for batches 16 float lanes: both measured fastest, docs/rotation.md
  * "Rotation speed"), else AVX2, else SSE2, else the plain unrolled code. */
 sh_rot_kernel sh__rot_kernel_auto(void)
 {

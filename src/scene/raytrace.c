@@ -344,7 +344,7 @@ int sh__rotate_frame(sh_rot_plan *plan, const double M[9], const double *in, dou
 {
     /* the matrix straight into the plan (sh_rot_plan_set_matrix: no Euler
      * angles in between; 1.2-1.7x faster per record use than angles + set,
-     * README "Radiance cache") */
+     * docs/scenes.md "Radiance cache") */
     int st = sh_rot_plan_set_matrix(plan, M);
     if (st) return st;
     return sh_rot_plan_apply(plan, in, out);

@@ -1,6 +1,7 @@
 #!/bin/sh
-# test_readme_examples.sh — every console example in README.md prints exactly
-# what the README shows.  A ```console block holds one or more examples: a
+# test_readme_examples.sh — every console example in README.md and the
+# manual's pages (docs/*.md, in the order the README lists them) prints
+# exactly what the page shows.  A ```console block holds one or more examples: a
 # line "$ COMMAND" followed by its output (stdout and stderr as a terminal
 # shows them).  Each command runs in a scratch directory (with the
 # repository's data/ visible, and `shlab` meaning the binary under test) and
@@ -9,7 +10,11 @@
 # reproduced (timings) belongs in a ```text block, which is not run.
 . "$(dirname "$0")/lib.inc"
 ROOT=$(pwd)
-README=${README:-$ROOT/README.md}
+# the pages in reading order (an example may use a file an earlier one made);
+# docs/choosing.md has its own test (test_choosing_examples.sh)
+LABEL=${LABEL:-"README/manual"}
+README=${README:-"$ROOT/README.md $ROOT/docs/tour.md $ROOT/docs/rotation.md $ROOT/docs/high-bands.md
+$ROOT/docs/scaling.md $ROOT/docs/sweeps.md $ROOT/docs/bad-input.md $ROOT/docs/scenes.md $ROOT/docs/developing.md"}
 case $SHLAB in /*) bin=$SHLAB ;; *) bin=$ROOT/$SHLAB ;; esac
 mkdir -p "$TMP/bin" "$TMP/work" "$TMP/ex"
 ln -s "$bin" "$TMP/bin/shlab"
@@ -21,7 +26,7 @@ awk -v dir="$TMP/ex" '
     on && /^```[ \t]*$/ { on = 0; next }
     on && /^\$ / { n++; f = sprintf("%s/%03d", dir, n); print substr($0, 3) > (f ".cmd"); printf "" > (f ".out"); next }
     on && n { print > (f ".out") }
-' "$README"
+' $README
 
 # Same text, and every number equal to 1e-13 relative or 1e-15 absolute.
 # With ERROR_LOOSE=1 (docs/choosing.md), a number on a line whose key names
@@ -61,15 +66,15 @@ for c in "$TMP"/ex/*.cmd; do
     esac
     (cd "$TMP/work" && PATH="$TMP/bin:$PATH" sh -c "$cmd") >"$TMP/got" 2>&1
     if cmp -s "$e" "$TMP/got"; then
-        ok "$(basename "$README") example: $cmd"
+        ok "$LABEL example: $cmd"
     elif same_to_rounding "$e" "$TMP/got"; then
         # the README shows this machine kind's output; a CPU whose rotation
         # kernel (auto: widest instruction set) rounds differently may differ
         # in the last digits of results that are rounding-level anyway
-        ok "$(basename "$README") example (numbers equal to rounding on this build and CPU): $cmd"
+        ok "$LABEL example (numbers equal to rounding on this build and CPU): $cmd"
     else
-        notok "$(basename "$README") example differs: $cmd
+        notok "$LABEL example differs: $cmd
 $(diff "$e" "$TMP/got" | head -20)"
     fi
 done
-[ "$count" -ge "${MIN_EXAMPLES:-11}" ] && ok "$(basename "$README") has $count console examples" || notok "only $count console examples found in $README"
+[ "$count" -ge "${MIN_EXAMPLES:-11}" ] && ok "$LABEL has $count console examples" || notok "only $count console examples found in $README"
