@@ -165,16 +165,13 @@ static json_t *cand_json(const sh_rot_candidate *c, int full, int degrees)
 /* The choice or the runner-up as the answer (its path: the result's
  * precision, input, mode, batch): the candidate, its worst error in every
  * unit and how far in β it holds. */
-static json_t *answer_json(const sh_rot_choose_opts *co, const sh_rot_candidate *c, int degrees)
+static json_t *answer_json(const sh_rot_candidate *c, const sh_rot_error *w, double holds, int degrees)
 {
-    sh_rot_error w;
-    double holds;
-    if (sh_rot_choose_extent(co, c->method, &w, &holds)) return NULL;
     json_t *o = cand_json(c, 0, degrees);
     for (int m = 0; m < SH_NMEASURES; m++) {
         char key[32];
         snprintf(key, sizeof key, "error_%s", sh_error_measure_name((sh_error_measure)m));
-        o = cli_put(o, key, json_real(sh_rot_error_in(&w, (sh_error_measure)m)));
+        o = cli_put(o, key, json_real(sh_rot_error_in(w, (sh_error_measure)m)));
     }
     return cli_put(o, "holds_to_beta", json_real(cli_angle_out(holds, degrees)));
 }
@@ -249,8 +246,16 @@ static json_t *finish(const json_t *params, json_t *rows)
         root = cli_put(root, "noise", json_string(noise.why));
         if (noise.noisy) cli_warn("plan: noisy live timing (%s); the choice uses the model", noise.why);
     }
-    json_t *cjs = choice >= 0 ? answer_json(&co, &cand[choice], degrees) : json_null();
-    json_t *rjs = runner >= 0 ? answer_json(&co, &cand[runner], degrees) : json_null();
+    /* the answer's extent: choice and runner-up on one pass over the β grid */
+    sh_rot_method am[2];
+    sh_rot_error aw[2];
+    double ah[2];
+    int na = 0;
+    if (choice >= 0) am[na++] = cand[choice].method;
+    if (runner >= 0) am[na++] = cand[runner].method;
+    if (na && sh_rot_choose_extents(&co, am, na, aw, ah)) { json_decref(root); json_decref(cj); return NULL; }
+    json_t *cjs = choice >= 0 ? answer_json(&cand[choice], &aw[0], ah[0], degrees) : json_null();
+    json_t *rjs = runner >= 0 ? answer_json(&cand[runner], &aw[na - 1], ah[na - 1], degrees) : json_null();
     if (!cjs || !rjs) { json_decref(cjs); json_decref(rjs); json_decref(root); json_decref(cj); return NULL; }
     root = cli_put(root, "choice", cjs);
     root = cli_put(root, "runner_up", rjs);

@@ -255,43 +255,56 @@ int sh_rot_choose_errors(const sh_rot_choose_opts *o, const sh_items *items, dou
     return st;
 }
 
-int sh_rot_choose_extent(const sh_rot_choose_opts *o, sh_rot_method method, sh_rot_error *worst,
-                         double *holds_to)
+int sh_rot_choose_extents(const sh_rot_choose_opts *o, const sh_rot_method *methods, int n, sh_rot_error *worst,
+                          double *holds_to)
 {
     sh_rot_method ms[SH_ROT_NMETHODS];
     int nm, nsteps;
     int st = sh_rot_choose_grid(o, ms, &nm, &nsteps);
     if (st) return st;
+    if (n < 1 || n > SH_ROT_NMETHODS) return sh_error(SH_EINVAL, "plan: extents of %d methods", n);
     const int nbeta = nsteps - 1;
     const double h = nbeta ? o->max_beta / nbeta : o->beta_step;
     /* the grid, then its continuation to π */
     const int nall = nsteps + (o->max_beta < M_PI ? (int)ceil((M_PI - o->max_beta) / h - 1e-9) : 0);
     sh_rot_errws *w;
     if ((st = sh_rot_errws_create_conv(o->order, o->lobe_exp, o->order <= 32, o->conv, &w))) return st;
-    *worst = (sh_rot_error){0, 0, 0, 0};
-    *holds_to = -1;
-    int failed = 0; /* within the grid */
+    /* per method: failed within the grid, or its continuation has ended */
+    int failed[SH_ROT_NMETHODS] = {0}, ended[SH_ROT_NMETHODS] = {0};
+    for (int k = 0; k < n; k++) worst[k] = (sh_rot_error){0, 0, 0, 0}, holds_to[k] = -1;
     for (int j = 0; j < nall && !st; j++) {
+        int active = 0;
+        for (int k = 0; k < n; k++) active += j < nsteps || !ended[k];
+        if (!active) break; /* the truth of the steps beyond is needed by none */
         sh_rotation rot;
-        sh_rot_error e;
         double beta;
-        if ((st = step_rotation(o, nbeta, j, &rot, &beta)) || (st = sh_rot_errws_set(w, &rot)) ||
-            (st = sh_rot_errws_eval(w, method, o->prec, &e)))
-            break;
-        const int ok = sh_rot_error_in(&e, o->measure) <= o->tolerance;
-        if (j < nsteps) {
-            worst->max = fmax(worst->max, e.max);
-            worst->mean = fmax(worst->mean, e.mean);
-            worst->lobe = fmax(worst->lobe, e.lobe);
-            worst->coeff = fmax(worst->coeff, e.coeff);
-            if (!ok) failed = 1, *holds_to = -1;
-        } else if (failed || !ok) {
-            break; /* the grid's worst is known; the answer holds up to the previous step */
+        if ((st = step_rotation(o, nbeta, j, &rot, &beta)) || (st = sh_rot_errws_set(w, &rot))) break;
+        for (int k = 0; k < n && !st; k++) {
+            if (j >= nsteps && ended[k]) continue;
+            sh_rot_error e;
+            if ((st = sh_rot_errws_eval(w, methods[k], o->prec, &e))) break;
+            const int ok = sh_rot_error_in(&e, o->measure) <= o->tolerance;
+            if (j < nsteps) {
+                worst[k].max = fmax(worst[k].max, e.max);
+                worst[k].mean = fmax(worst[k].mean, e.mean);
+                worst[k].lobe = fmax(worst[k].lobe, e.lobe);
+                worst[k].coeff = fmax(worst[k].coeff, e.coeff);
+                if (!ok) failed[k] = ended[k] = 1, holds_to[k] = -1;
+            } else if (!ok) {
+                ended[k] = 1; /* the answer holds up to the previous step */
+                continue;
+            }
+            if (!failed[k]) holds_to[k] = beta;
         }
-        if (!failed) *holds_to = beta;
     }
     sh_rot_errws_free(w);
     return st;
+}
+
+int sh_rot_choose_extent(const sh_rot_choose_opts *o, sh_rot_method method, sh_rot_error *worst,
+                         double *holds_to)
+{
+    return sh_rot_choose_extents(o, &method, 1, worst, holds_to);
 }
 
 /* ------------------------------------------------------- order for image */

@@ -81,6 +81,10 @@ typedef struct {
  * fails; −1 when it fails within the grid already). */
 int sh_rot_choose_extent(const sh_rot_choose_opts *o, sh_rot_method method, sh_rot_error *worst,
                          double *holds_to);
+/* The same for n methods at once (each step's exact rotation computed once
+ * for all of them): worst[k], holds_to[k] for methods[k]. */
+int sh_rot_choose_extents(const sh_rot_choose_opts *o, const sh_rot_method *methods, int n, sh_rot_error *worst,
+                          double *holds_to);
 /* The β grid of sh_rot_choose as a sweep: the candidate methods (ms, *nm)
  * and the steps j = 0..nsteps−1 (β_j = max_beta·j/(nsteps−1); α, γ seeded by
  * j).  sh_rot_choose_errors writes err[j·nm + k], the error of ms[k] at step

@@ -185,6 +185,20 @@ START_TEST(test_extent)
     ck_assert_int_eq(sh_rot_choose_extent(&o, SH_ROT_ZXZXZ, &w, &holds), SH_OK);
     ck_close(holds, M_PI, 1e-12, 0, "exact holds to pi");
     ck_assert(w.max < 1e-13 && w.coeff <= w.max * (1 + 1e-12) && w.lobe <= w.max * (1 + 1e-12));
+    /* two methods on one pass (one exact rotation a step) give what each
+     * gives alone */
+    {
+        const sh_rot_method two[2] = {SH_ROT_TAYLOR2, SH_ROT_ZXZXZ};
+        sh_rot_error w2[2], w1;
+        double h2[2], h1;
+        o.tolerance = 1e-2;
+        ck_assert_int_eq(sh_rot_choose_extents(&o, two, 2, w2, h2), SH_OK);
+        for (int k = 0; k < 2; k++) {
+            ck_assert_int_eq(sh_rot_choose_extent(&o, two[k], &w1, &h1), SH_OK);
+            ck_assert(h1 == h2[k] && w1.max == w2[k].max && w1.lobe == w2[k].lobe && w1.coeff == w2[k].coeff);
+        }
+        o.tolerance = 1e-3;
+    }
     /* taylor2 at order 6: the error grows with β (~β³), so it fails beyond
      * some β; the extent is where the grid continued first exceeds E */
     o.tolerance = 1e-2;
