@@ -26,6 +26,7 @@
 #include "shlab/taylor.h"
 #include "shlab/scale.h"
 #include "shlab/measure.h"
+#include "shlab/verify.h"
 #include "shlab/scene.h"
 
 #endif /* SHLAB_H */
