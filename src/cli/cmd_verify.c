@@ -451,7 +451,7 @@ static int outputs(const verify_args *a, const char *emit_tmp, verify_work *w)
 
 static int run(int argc, char **argv)
 {
-    verify_args a = {.method = SH_ROT_AUTO, .conv = -1};
+    verify_args a = {.method = SH_ROT_AUTO};
     cli_parsed seen;
     int rc = cli_args_parse(&verify_decl, argc, argv, &a, &seen);
     if (rc >= 0) return rc;
@@ -462,7 +462,8 @@ static int run(int argc, char **argv)
     if (a.plugin && !cli_given(&seen, "abi"))
         return cli_fail("verify: --plugin needs --abi NAME (the function's type, shlab/kernel.h)");
     if (a.plugin && !cli_given(&seen, "precision")) a.prec = sh_plugin_abi_precision((sh_plugin_abi)a.abi);
-    if (a.plugin && !cli_given(&seen, "convention")) a.conv = SH_CS; /* a kernel has one convention */
+    /* not given: every case, but a plug-in has one convention (cs) */
+    if (!cli_given(&seen, "convention")) a.conv = a.plugin ? SH_CS : -1;
     if (a.emit && !a.plugin && a.method == SH_ROT_AUTO)
         return cli_fail("verify: --emit-candidate needs --method or --plugin");
     const char *emit_tmp = NULL;
