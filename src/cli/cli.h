@@ -126,6 +126,8 @@ int cli_mem_check(const char *cmd, double bytes, const char *what);
 
 /* `shlab bench --peers` (cli_peers.c): shlab's transforms against libsharp. */
 int cli_bench_peers(const cli_command *bench, int argc, char **argv);
+/* `shlab bench --plugin`: a user's kernel on the frontier (cmd_bench_plugin.c). */
+int cli_bench_plugin(const cli_command *bench, int argc, char **argv);
 
 /* Render `root` in `fmt` on stdout and release it; then, if stdout took it
  * all, rename the output files (cli_out_open) onto their targets, else

@@ -52,6 +52,7 @@ typedef struct {
     double target_ms, max_beta;
     long seed;
     int degrees, conv, instructions, quiet, fmt, peers;
+    const char *plugin; /* declared for --help; handled by cmd_bench_plugin.c */
 } bench_args;
 
 static int parse_orders(const char *opt, const char *s, void *field)
@@ -220,13 +221,18 @@ static const cli_opt bench_opts[] = {
     CLI_FLAG(bench_args, peers, "peers",
              "instead: shlab's spherical harmonic transforms against\n"
              "libsharp's (see 'shlab bench --peers --help')"),
+    {.type = CLI_T_STRING, .name = "plugin", .meta = "LIB.so:SYMBOL", .off = offsetof(bench_args, plugin),
+     .help = "instead: your kernel (shlab/kernel.h) on the cost/error\n"
+             "frontier beside shlab's choice at its error (see\n"
+             "'shlab bench --plugin X --help')"},
     CLI_END,
 };
 
 static const cli_cmd bench_decl = {
     .name = "bench",
     .usage = "bench [--order LIST] [--methods LIST] [OPTIONS]\n"
-             "       shlab bench --peers [OPTIONS]   (see 'shlab bench --peers --help')",
+             "       shlab bench --peers [OPTIONS]   (see 'shlab bench --peers --help')\n"
+             "       shlab bench --plugin LIB.so:SYMBOL --abi NAME [OPTIONS]   (see 'shlab bench --plugin X --help')",
     .about =
         "Time the rotation of one coefficient vector by each method and order.\n"
         "  per-rotation  for every vector a new rotation, given as an orthonormal\n"
@@ -886,6 +892,8 @@ static int run(int argc, char **argv)
 {
     for (int k = 1; k < argc; k++)
         if (!strcmp(argv[k], "--peers")) return cli_bench_peers(&cmd_bench, argc, argv);
+    for (int k = 1; k < argc; k++)
+        if (!strcmp(argv[k], "--plugin")) return cli_bench_plugin(&cmd_bench, argc, argv);
     bench_args a = {.max_beta = M_PI, .base = {SH_ROT_Z, -1, -1, -1}};
     cli_parsed seen;
     int rc = cli_args_parse(&bench_decl, argc, argv, &a, &seen), rerun;

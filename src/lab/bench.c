@@ -53,7 +53,6 @@
 #endif
 #endif
 
-#define SH_BENCH_POOL 64
 
 const char *sh_bench_mode_name(sh_bench_mode m)
 {
@@ -387,22 +386,26 @@ static void bench_ctx_free(void *v)
     free(b);
 }
 
+void sh_bench_pool(uint64_t seed, double max_beta, int nc, double (*R)[9], double *vin)
+{
+    uint64_t s = seed ? seed : 12345u;
+    for (int k = 0; k < SH_BENCH_POOL; k++) {
+        sh_rotation r;
+        const double a = M_PI * (2 * urand(&s) - 1), g = M_PI * (2 * urand(&s) - 1);
+        const double be = max_beta * urand(&s);
+        sh_rotation_from_euler(a, be, g, &r);
+        memcpy(R[k], r.R, sizeof r.R);
+    }
+    for (size_t i = 0; i < (size_t)SH_BENCH_POOL * nc; i++) vin[i] = 2 * urand(&s) - 1;
+}
+
 static int bench_pool(bench_ctx *b, const sh_bench_opts *o, int zonly)
 {
-    uint64_t s = o->seed ? o->seed : 12345u;
-    const double bmax = zonly ? 0.0 : o->max_beta;
     b->R = malloc(SH_BENCH_POOL * sizeof *b->R);
     b->vin = malloc((size_t)SH_BENCH_POOL * b->nc * sizeof *b->vin);
     b->vout = malloc((size_t)b->nc * sizeof *b->vout);
     if (!b->R || !b->vin || !b->vout) return sh_error(SH_ENOMEM, "bench: out of memory");
-    for (int k = 0; k < SH_BENCH_POOL; k++) {
-        sh_rotation r;
-        const double a = M_PI * (2 * urand(&s) - 1), g = M_PI * (2 * urand(&s) - 1);
-        const double be = bmax * urand(&s);
-        sh_rotation_from_euler(a, be, g, &r);
-        memcpy(b->R[k], r.R, sizeof r.R);
-    }
-    for (size_t i = 0; i < (size_t)SH_BENCH_POOL * b->nc; i++) b->vin[i] = 2 * urand(&s) - 1;
+    sh_bench_pool(o->seed, zonly ? 0.0 : o->max_beta, b->nc, b->R, b->vin);
     return SH_OK;
 }
 

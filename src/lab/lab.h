@@ -181,6 +181,11 @@ int sh_rot_bench_entry(int order, sh_rot_method method, sh_precision prec, sh_be
  * of rotations and vectors); the entries of one order live at once. */
 double sh_rot_bench_entry_bytes(int order, sh_rot_method method, sh_precision prec, sh_bench_mode mode,
                                 const sh_bench_opts *opts);
+/* The pool every rotation entry cycles through: SH_BENCH_POOL rotations
+ * (α, γ uniform in (−π, π], β uniform in [0, max_beta], from seed) into R and
+ * SH_BENCH_POOL vectors of nc coefficients uniform in [−1, 1) into vin. */
+#define SH_BENCH_POOL 64
+void sh_bench_pool(uint64_t seed, double max_beta, int nc, double (*R)[9], double *vin);
 /* An entry for the matrix → ZYZ angles step alone (per rotation). */
 int sh_rot_bench_setup_entry(const sh_bench_opts *opts, sh_bench_entry *e);
 void sh_bench_entry_free(sh_bench_entry *e);
@@ -230,6 +235,31 @@ typedef struct {
  * the kernel did (rep says); SH_EIO if no child process could be started. */
 int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsigned char *skip, double **got,
                           unsigned char *status, sh_plugin_report *rep);
+
+/* The plug-in timed beside shlab's methods at one order, interleaved (the
+ * engine above, paired ratios and its noise rule), in a child process: the
+ * kernel on the pool of sh_bench_pool in the ABI's form (a batch ABI takes
+ * `batch` rotations per call), each method on the path (input, mode, batch)
+ * in the ABI's precision. */
+#define SH_PLUGIN_BENCH_MAX_METHODS 4
+typedef struct {
+    int order;
+    const sh_rot_method *methods;
+    int nmethods;
+    sh_bench_input input;
+    sh_bench_mode mode;
+    int batch;
+    sh_bench_opts bench; /* seed, β range, convention of the methods' plans */
+    sh_bench_cfg cfg;
+} sh_plugin_bench_opts;
+typedef struct {
+    sh_bench_stats stats[1 + SH_PLUGIN_BENCH_MAX_METHODS]; /* 0: the plug-in, then the methods */
+    sh_bench_ratio ratio[SH_PLUGIN_BENCH_MAX_METHODS];     /* plug-in / method i, paired by round */
+    sh_bench_noise noise;
+    int failed;          /* the kernel crashed, hung, ...: failure says how */
+    char failure[320];
+} sh_plugin_bench_result;
+int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin_bench_result *res);
 
 /* ---- the planner's choice (planner.c) ----------------------------------------
  * The path a user runs: how the rotation arrives (matrix, quaternion or

@@ -464,3 +464,216 @@ int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsign
     rep->failed = rep->failure[0] != '\0';
     return SH_OK;
 }
+
+/* ------------------------------------------------------------------ timing */
+
+/* The plug-in as a bench entry: per iteration one call on rotation k of the
+ * pool (held in the ABI's own form, as its user holds it) and vector k; the
+ * batch ABIs take `batch` rotations and vectors per call (units = batch). */
+typedef struct {
+    const sh_plugin *p;
+    void *fn;
+    int order, nc, batch, fl;
+    void *R;           /* pool: 9 (matrix), 4 (quat) or 3 (euler) per rotation, or per batch 9·batch */
+    void *vin, *vout;  /* pool vectors (batch ABIs: batch·nc per call), one output (batch·nc) */
+    int per;           /* numbers per rotation in R */
+} plugin_entry;
+
+static int plugin_entry_run(void *v, long count)
+{
+    plugin_entry *e = v;
+    const size_t es = e->fl ? sizeof(float) : sizeof(double);
+    int bad = 0;
+    for (long it = 0; it < count; it++) {
+        const long k = it & (SH_BENCH_POOL - 1);
+        const char *R = (const char *)e->R + (size_t)k * e->per * es;
+        const char *in = (const char *)e->vin + (size_t)k * e->nc * es;
+        int rc;
+        switch (e->p->abi) {
+        case SH_PLUGIN_MATRIX_D: rc = ((shlab_kernel_matrix_d *)e->fn)(e->order, (const double *)R, (const double *)in, e->vout); break;
+        case SH_PLUGIN_MATRIX_F: rc = ((shlab_kernel_matrix_f *)e->fn)(e->order, (const float *)R, (const float *)in, e->vout); break;
+        case SH_PLUGIN_QUAT_D: rc = ((shlab_kernel_quat_d *)e->fn)(e->order, (const double *)R, (const double *)in, e->vout); break;
+        case SH_PLUGIN_QUAT_F: rc = ((shlab_kernel_quat_f *)e->fn)(e->order, (const float *)R, (const float *)in, e->vout); break;
+        case SH_PLUGIN_EULER_D: {
+            const double *a = (const double *)R;
+            rc = ((shlab_kernel_euler_d *)e->fn)(e->order, a[0], a[1], a[2], (const double *)in, e->vout);
+            break;
+        }
+        case SH_PLUGIN_EULER_F: {
+            const float *a = (const float *)R;
+            rc = ((shlab_kernel_euler_f *)e->fn)(e->order, a[0], a[1], a[2], (const float *)in, e->vout);
+            break;
+        }
+        case SH_PLUGIN_MATRIX_BATCH_D:
+            rc = ((shlab_kernel_matrix_batch_d *)e->fn)(e->order, e->batch, (const double *)R, (const double *)in, e->vout);
+            break;
+        case SH_PLUGIN_MATRIX_BATCH_F:
+            rc = ((shlab_kernel_matrix_batch_f *)e->fn)(e->order, e->batch, (const float *)R, (const float *)in, e->vout);
+            break;
+        default: rc = -1;
+        }
+        bad |= rc != SHLAB_KERNEL_OK;
+    }
+    return bad ? sh_error(SH_EINVAL, "the kernel returned a failure code while timed") : SH_OK;
+}
+
+static void plugin_entry_free(void *v)
+{
+    plugin_entry *e = v;
+    if (!e) return;
+    free(e->R), free(e->vin), free(e->vout), free(e);
+}
+
+/* The pool of sh_bench_pool (the rotation entries' own seed and β range) in
+ * the ABI's form; batch ABIs: per call `batch` consecutive pool entries. */
+static int plugin_entry_make(const sh_plugin *p, void *fn, int order, int batch, const sh_bench_opts *o,
+                             sh_bench_entry *out)
+{
+    plugin_entry *e = calloc(1, sizeof *e);
+    if (!e) return sh_error(SH_ENOMEM, "out of memory");
+    const int isbatch = p->abi == SH_PLUGIN_MATRIX_BATCH_D || p->abi == SH_PLUGIN_MATRIX_BATCH_F;
+    e->p = p, e->fn = fn, e->order = order, e->nc = order * order, e->batch = isbatch ? batch : 1;
+    e->fl = sh_plugin_abi_precision(p->abi) == SH_PREC_FLOAT;
+    const int per1 = p->abi == SH_PLUGIN_QUAT_D || p->abi == SH_PLUGIN_QUAT_F ? 4
+                     : p->abi == SH_PLUGIN_EULER_D || p->abi == SH_PLUGIN_EULER_F ? 3 : 9;
+    e->per = per1 * e->batch;
+    const size_t es = e->fl ? sizeof(float) : sizeof(double), nb = (size_t)e->batch * e->nc;
+    double(*R)[9] = malloc(SH_BENCH_POOL * sizeof *R), *v = malloc((size_t)SH_BENCH_POOL * e->nc * sizeof *v);
+    e->R = malloc((size_t)SH_BENCH_POOL * e->per * es);
+    e->vin = malloc((size_t)SH_BENCH_POOL * nb * es);
+    e->vout = malloc(nb * es);
+    if (!R || !v || !e->R || !e->vin || !e->vout) {
+        free(R), free(v), plugin_entry_free(e);
+        return sh_error(SH_ENOMEM, "out of memory");
+    }
+    sh_bench_pool(o->seed, o->max_beta, e->nc, R, v);
+    for (int k = 0; k < SH_BENCH_POOL; k++)
+        for (int b = 0; b < e->batch; b++) {
+            const int q = (k + b) & (SH_BENCH_POOL - 1);
+            sh_rotation r;
+            memcpy(r.R, R[q], sizeof r.R);
+            double x[9];
+            if (per1 == 9) memcpy(x, r.R, sizeof r.R);
+            else if (per1 == 4) sh_rotation_to_quat(&r, x);
+            else sh_euler_from_matrix(r.R, &x[0], &x[1], &x[2]);
+            for (int j = 0; j < per1; j++) {
+                const size_t at = (size_t)k * e->per + (size_t)b * per1 + j;
+                if (e->fl) ((float *)e->R)[at] = (float)x[j];
+                else ((double *)e->R)[at] = x[j];
+            }
+            for (int i = 0; i < e->nc; i++) {
+                const size_t at = (size_t)k * nb + (size_t)b * e->nc + i;
+                if (e->fl) ((float *)e->vin)[at] = (float)v[(size_t)q * e->nc + i];
+                else ((double *)e->vin)[at] = v[(size_t)q * e->nc + i];
+            }
+        }
+    free(R), free(v);
+    *out = (sh_bench_entry){.name = "plug-in", .run = plugin_entry_run, .free = plugin_entry_free, .ctx = e,
+                            .units = e->batch};
+    return SH_OK;
+}
+
+/* What the timing child sends back: entry 0 the plug-in, then the methods. */
+typedef struct {
+    int status;
+    char why[256];
+    sh_bench_stats st[1 + SH_PLUGIN_BENCH_MAX_METHODS];
+    sh_bench_ratio ratio[SH_PLUGIN_BENCH_MAX_METHODS]; /* plug-in / method i, paired by round */
+    sh_bench_noise noise;
+} bench_answer;
+
+typedef struct {
+    const sh_plugin *p;
+    const sh_plugin_bench_opts *o;
+} bench_job;
+
+static int bench_child(void *arg, int fd)
+{
+    const bench_job *j = arg;
+    const sh_plugin_bench_opts *o = j->o;
+    bench_answer *ans = calloc(1, sizeof *ans);
+    sh_bench_entry ent[1 + SH_PLUGIN_BENCH_MAX_METHODS];
+    memset(ent, 0, sizeof ent);
+    int ne = 0, st = ans ? SH_OK : SH_ENOMEM;
+    void *fn = st ? NULL : open_kernel(j->p, fd);
+    if (!fn) return 0; /* the OPEN record says why (or no memory: the parent sees no answer) */
+    sh_bench_opts bo = o->bench;
+    bo.input = o->input;
+    bo.batch = o->batch;
+    st = plugin_entry_make(j->p, fn, o->order, o->batch, &bo, &ent[ne++]);
+    for (int i = 0; !st && i < o->nmethods; i++)
+        st = sh_rot_bench_entry(o->order, o->methods[i], sh_plugin_abi_precision(j->p->abi), o->mode, &bo, &ent[ne++]);
+    const int S = o->cfg.samples > 0 ? o->cfg.samples : 15;
+    double *smp = st ? NULL : malloc((size_t)ne * S * sizeof *smp);
+    if (!st && !smp) st = SH_ENOMEM;
+    if (!st) st = sh_bench_interleaved(ent, ne, &o->cfg, smp, ans->st, &ans->noise);
+    for (int i = 1; !st && i < ne; i++)
+        st = sh_bench_paired_ratio(smp, smp + (size_t)i * S, S, o->cfg.noise_spread, &ans->ratio[i - 1]);
+    ans->status = st;
+    if (st) snprintf(ans->why, sizeof ans->why, "%s", sh_last_error());
+    for (int i = 0; i < ne; i++) sh_bench_entry_free(&ent[i]);
+    free(smp);
+    /* one DONE record: the answer's bytes as doubles */
+    const int nd = (int)((sizeof *ans + sizeof(double) - 1) / sizeof(double));
+    double *buf = calloc((size_t)nd, sizeof *buf);
+    if (!buf) return CHILD_WRITE;
+    memcpy(buf, ans, sizeof *ans);
+    const int w = send_rec(fd, REC_DONE, 0, 0, buf, nd);
+    free(buf);
+    free(ans);
+    return w ? CHILD_WRITE : 0;
+}
+
+typedef struct {
+    unsigned char *buf;
+    size_t have, cap;
+} byte_sink;
+
+static int sink_feed(void *fctx, const unsigned char *bytes, size_t n)
+{
+    byte_sink *s = fctx;
+    if (s->have + n > s->cap) return -1;
+    memcpy(s->buf + s->have, bytes, n);
+    s->have += n;
+    return 0;
+}
+
+int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin_bench_result *res)
+{
+    memset(res, 0, sizeof *res);
+    if (o->nmethods < 0 || o->nmethods > SH_PLUGIN_BENCH_MAX_METHODS)
+        return sh_error(SH_EINVAL, "plug-in bench: at most %d methods beside the plug-in", SH_PLUGIN_BENCH_MAX_METHODS);
+    const int nd = (int)((sizeof(bench_answer) + sizeof(double) - 1) / sizeof(double));
+    byte_sink sink = {.cap = sizeof(rec_hdr) + 512 + (size_t)nd * sizeof(double)};
+    if (!(sink.buf = malloc(sink.cap))) return sh_error(SH_ENOMEM, "out of memory");
+    const bench_job j = {p, o};
+    const sh_sandbox_job sj = {.child = bench_child, .feed = sink_feed, .arg = (void *)&j, .fctx = &sink,
+                               .cpu_seconds = p->timeout_s, .wall_seconds = p->timeout_s, .mem_bytes = 1LL << 30,
+                               .what = "the plug-in"};
+    sh_sandbox_result sr;
+    int st = sh__sandbox_run(&sj, &sr);
+    const rec_hdr *h = (const rec_hdr *)(void *)sink.buf;
+    if (!st && sink.have >= sizeof *h && h->kind == REC_OPEN) {
+        char *m = (char *)(sink.buf + sizeof *h);
+        sink.buf[sink.cap - 1] = '\0';
+        st = sh_error(SH_EINVAL, "cannot load the plug-in: %.280s", m);
+    } else if (!st && sr.outcome == SH_SANDBOX_DONE && sr.exit_status == 0 &&
+               sink.have == sizeof *h + (size_t)nd * sizeof(double) && h->kind == REC_DONE && h->n == nd) {
+        bench_answer ans;
+        memcpy(&ans, sink.buf + sizeof *h, sizeof ans);
+        if (ans.status) st = sh_error(ans.status, "%s", ans.why);
+        memcpy(res->stats, ans.st, sizeof ans.st);
+        memcpy(res->ratio, ans.ratio, sizeof ans.ratio);
+        res->noise = ans.noise;
+    } else if (!st) {
+        /* the kernel ended the child: say how, as the fixture run does */
+        sh_plugin_report rep = {.current = -1};
+        reader r = {0};
+        describe(p, NULL, &sr, &r, &rep);
+        if (!rep.failure[0]) snprintf(rep.failure, sizeof rep.failure, "the plug-in's process sent no answer");
+        res->failed = 1;
+        snprintf(res->failure, sizeof res->failure, "%s", rep.failure);
+    }
+    free(sink.buf);
+    return st;
+}

@@ -124,3 +124,28 @@ if [ "$rc" = 1 ] && [ "$(field "$TMP/p.json" kernel_errors)" = "$n5" ] && [ "$(f
 # an output left unwritten (it starts as NaN) fails
 "$SHLAB" verify --quiet --fixture $FX --plugin "$SO:skips_last_output" --abi matrix-d --format json >"$TMP/p.json" 2>/dev/null; rc=$?
 if [ "$rc" = 1 ] && [ "$(field "$TMP/p.json" worst_got)" = "not finite" ]; then ok "an unwritten output fails as not finite"; else notok "skips_last_output: exit $rc $(cat "$TMP/p.json")"; fi
+
+# bench --plugin: the kernel beside the method `shlab plan` runs at its
+# error (here the fixture's double tolerance: the kernel is exact to
+# rounding) on its path (a matrix, one rotation per call); no timing is
+# asserted, only what the run must say.  The timing child is sandboxed too.
+expect_refused "bench --plugin without --abi" 'needs --abi' bench --plugin "$SO:rot_matrix_d"
+expect_refused "bench --plugin, order not in the fixture" 'order 12' bench --plugin "$SO:rot_matrix_d" --abi matrix-d --order 12
+"$SHLAB" bench --quiet --plugin "$SO:rot_matrix_d" --abi matrix-d --order 6 --repeat 3 --target-ms 1 --format json >"$TMP/b.json" 2>"$TMP/err"; rc=$?
+"$SHLAB" plan --order 6 --max-beta 180 --degrees --tolerance 1e-13 --error coeff --input matrix --format json >"$TMP/plan.json" 2>/dev/null
+want=$(grep -o '"choice":{"method":"[a-z0-9.]*"' "$TMP/plan.json" | sed 's/.*"method":"//; s/"$//')
+if [ "$rc" = 0 ] && [ "$(field "$TMP/b.json" choice)" = "$want" ] && [ "$(field "$TMP/b.json" budget)" = 1e-13 ] &&
+   [ "$(field "$TMP/b.json" choice_admissible)" = true ] && awk -v e="$(field "$TMP/b.json" plugin_error)" 'BEGIN { exit !(e < 1e-14) }'; then
+    ok "bench --plugin order 6: choice $want as plan's, budget the fixture's tolerance, kernel error $(field "$TMP/b.json" plugin_error)"
+else notok "bench --plugin: exit $rc, plan's choice '$want', $(head -c 400 "$TMP/b.json") $(head -c 200 "$TMP/err")"; fi
+for f in plugin_ns choice_ns ratio ratio_q1 ratio_q3; do
+    v=$(field "$TMP/b.json" $f)
+    if awk -v x="$v" 'BEGIN { exit !(x > 0) }'; then ok "bench --plugin: $f = $v > 0"; else notok "bench --plugin: $f '$v'"; fi
+done
+"$SHLAB" bench --quiet --plugin "$SO:mistake_float" --abi matrix-d --order 4 --repeat 3 --target-ms 1 --format json >"$TMP/b.json" 2>/dev/null; rc=$?
+e=$(field "$TMP/b.json" plugin_error); b=$(field "$TMP/b.json" budget)
+if [ "$rc" = 0 ] && [ "$e" = "$b" ] && awk -v e="$e" 'BEGIN { exit !(e > 1e-9 && e < 1e-6) }'; then ok "bench --plugin: a float-accurate kernel's budget is its own error ($e)"; else notok "bench float kernel: exit $rc $(head -c 300 "$TMP/b.json")"; fi
+"$SHLAB" bench --quiet --plugin "$SO:crash_order_4" --abi matrix-d --order 2 --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+if [ "$rc" = 1 ] && [ ! -s "$TMP/out" ] && grep -q "^bench: the kernel crashed (SIGSEGV" "$TMP/err"; then ok "bench --plugin: a crashing kernel, exit 1 and one line"; else notok "bench crash: exit $rc $(head -c 300 "$TMP/err")"; fi
+"$SHLAB" bench --quiet --plugin "$SO:hang_order_3" --abi matrix-d --order 2 --timeout 2 --format json >"$TMP/out" 2>"$TMP/err"; rc=$?
+if [ "$rc" = 1 ] && grep -q "^bench: the kernel did not return within 2 s on case 'o3-" "$TMP/err"; then ok "bench --plugin: a hanging kernel stopped after 2 s"; else notok "bench hang: exit $rc $(head -c 300 "$TMP/err")"; fi
