@@ -414,7 +414,7 @@ static int diagnose(const verify_args *a, verify_work *w, const sh_verdict *v, j
     fprintf(stderr,
             "verify: failed counts the cases beyond their %s tolerance; the diagnosis compares at "
             "each case's float32 tolerance: diagnosis_checked = the %d cases the mistake changes "
-            "by more than that, diagnosis_matches = the %d of them the candidate equals (%d of the "
+            "by more than that, diagnosis_matches = the %d of them the outputs equal (%d of the "
             "%d failed cases are within their float32 tolerance: too close to tell)\n",
             a->prec == SH_PREC_FLOAT ? "float32" : "double", d.checked, d.matches, v->failed_near, v->failed);
     return 0;

@@ -4,7 +4,7 @@
 # exactly what the page shows.  A ```console block holds one or more examples: a
 # line "$ COMMAND" followed by its output (stdout and stderr as a terminal
 # shows them).  Each command runs in a scratch directory (with the
-# repository's data/ visible, and `shlab` meaning the binary under test) and
+# repository's data/, src/ and tests/ visible, and `shlab` meaning the binary under test) and
 # its output is compared byte for byte.  Examples that read data/probes/ are
 # skipped when the probes are absent (`make probes`).  Output that cannot be
 # reproduced (timings) belongs in a ```text block, which is not run.
@@ -13,12 +13,15 @@ ROOT=$(pwd)
 # the pages in reading order (an example may use a file an earlier one made);
 # docs/choosing.md has its own test (test_choosing_examples.sh)
 LABEL=${LABEL:-"README/manual"}
-README=${README:-"$ROOT/README.md $ROOT/docs/tour.md $ROOT/docs/rotation.md $ROOT/docs/high-bands.md
+README=${README:-"$ROOT/README.md $ROOT/docs/tour.md $ROOT/docs/rotation.md $ROOT/docs/check-your-kernel.md $ROOT/docs/high-bands.md
 $ROOT/docs/scaling.md $ROOT/docs/sweeps.md $ROOT/docs/bad-input.md $ROOT/docs/scenes.md $ROOT/docs/developing.md"}
 case $SHLAB in /*) bin=$SHLAB ;; *) bin=$ROOT/$SHLAB ;; esac
 mkdir -p "$TMP/bin" "$TMP/work" "$TMP/ex"
 ln -s "$bin" "$TMP/bin/shlab"
 ln -s "$ROOT/data" "$TMP/work/data"
+# the example plug-in's source and the ABI header (docs/check-your-kernel.md builds it)
+ln -s "$ROOT/src" "$TMP/work/src"
+ln -s "$ROOT/tests" "$TMP/work/tests"
 
 # split the console blocks into ex/N.cmd (the command) and ex/N.out (its output)
 awk -v dir="$TMP/ex" '

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #define MAXO 64 /* largest order these kernels rotate */
+#define PI 3.14159265358979323846
 
 /* R^l as a (2l+1)² block, index [(m+l)(2l+1) + (m'+l)]. */
 typedef struct {
@@ -190,13 +191,13 @@ int mistake_beta(int order, double a, double b, double g, const double *in, doub
 /* degrees taken as radians: the kernel converts radians it thinks are degrees (euler-d) */
 int mistake_deg2rad(int order, double a, double b, double g, const double *in, double *out)
 {
-    const double k = M_PI / 180;
+    const double k = PI / 180;
     return rot_euler_d(order, a * k, b * k, g * k, in, out);
 }
 /* radians taken as degrees (euler-d) */
 int mistake_rad2deg(int order, double a, double b, double g, const double *in, double *out)
 {
-    const double k = 180 / M_PI;
+    const double k = 180 / PI;
     return rot_euler_d(order, a * k, b * k, g * k, in, out);
 }
 
@@ -211,7 +212,7 @@ static int mdesc(int order, const double R[9], const double *in, double *out, in
 {
     if (order < 1 || order > MAXO) return SHLAB_KERNEL_UNSUPPORTED;
     const int n = order * order;
-    double *t = malloc(2 * (size_t)n * sizeof *t);
+    double *t = calloc(2 * (size_t)n, sizeof *t);
     if (!t) return 2;
     if (in_rev) reverse(order, in, t);
     else memcpy(t, in, (size_t)n * sizeof *t);
