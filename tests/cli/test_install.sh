@@ -48,6 +48,12 @@ if cc -std=c11 -Wall -Wextra $san -o "$TMP/prog" "$TMP/prog.c" $(pkg-config --cf
     ldd "$TMP/prog" | grep -q "libshlab.so.0 => $P/lib/libshlab.so.0" && ok "it loads \$PREFIX/lib/libshlab.so.0" \
         || notok "ldd: $(ldd "$TMP/prog" | grep shlab)"
 else notok "compile with pkg-config: $(head -5 "$TMP/err")"; notok "(not run)"; fi
+# a plug-in kernel built against the installed ABI header alone, verified by the installed shlab
+if cc -std=c11 -O2 -shared -fPIC -I"$P/include" -o "$TMP/kernels.so" "$ROOT/tests/plugins/kernels.c" -lm 2>"$TMP/err" &&
+   env -u LD_LIBRARY_PATH "$P/bin/shlab" verify --quiet --fixture "$ROOT/data/fixtures/rotation/orders_1_10.json" \
+       --plugin "$TMP/kernels.so:rot_matrix_d" --abi matrix-d >"$TMP/out" 2>&1; then
+    ok "a plug-in built with -I\$PREFIX/include (shlab/kernel.h) passes the installed verify"
+else notok "plug-in against the installed header: $(head -5 "$TMP/err") $(tail -3 "$TMP/out")"; fi
 # static: libshlab.a plus the Libs.private flags
 if cc -std=c11 $san -o "$TMP/prog_static" "$TMP/prog.c" $(pkg-config --cflags shlab) \
         $(pkg-config --static --libs shlab | sed 's/-lshlab/-l:libshlab.a/') 2>"$TMP/err"; then
