@@ -11,6 +11,7 @@
  * Ambisonic systems" (2003), table of the FuMa set; HEALPix's a_lm order as
  * in Górski et al. (2005) and healpix_cxx's Alm_Base::index(l,m). */
 #include "shlab.h"
+#include "convention_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -249,7 +250,7 @@ static double norm_scale(sh_conv_norm n, int l, int am)
 
 /* Real kinds: user entry k is U_k = w · y_i (shlab's cs function i at the
  * formula coordinates). */
-static void real_entry(const sh_conv *c, int k, int *i, double *w)
+void sh__conv_real_entry(const sh_conv *c, int k, int *i, double *w)
 {
     int l, m, j;
     if (c->index == SH_CINDEX_FUMA) {
@@ -281,7 +282,7 @@ int sh_conv_eval_dir(const sh_conv *c, int order, const double d[3], double *val
         for (int k = 0; k < n; k++) {
             int i;
             double w;
-            real_entry(c, k, &i, &w);
+            sh__conv_real_entry(c, k, &i, &w);
             values[k] = w * y[i];
         }
     } else {
@@ -349,7 +350,7 @@ static void user_to_formula(const sh_conv *c, int order, const double *user, dou
         for (int k = 0; k < order * order; k++) {
             int i;
             double w;
-            real_entry(c, k, &i, &w);
+            sh__conv_real_entry(c, k, &i, &w);
             b[i] = user[k] * w;
         }
         return;
@@ -381,7 +382,7 @@ static void formula_to_user(const sh_conv *c, int order, const double *b, double
         for (int k = 0; k < order * order; k++) {
             int i;
             double w;
-            real_entry(c, k, &i, &w);
+            sh__conv_real_entry(c, k, &i, &w);
             user[k] = b[i] / w;
         }
         return;

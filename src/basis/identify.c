@@ -12,6 +12,7 @@
  * conversion is band by band and the axes an orthogonal map, so the
  * residual is the same as in shlab's frame). */
 #include "shlab.h"
+#include "convention_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -257,6 +258,53 @@ static int no_kind(size_t nd, int order)
                     "complex-half (n(n+1)) coefficients", nd, SH_IDENTIFY_MAX_ORDER);
 }
 
+/* Residuals of candidates of one kind and order against basis values.  The
+ * real kinds read shlab's basis at the directions turned by each axes once
+ * (Y[j·n² + i] = y_i(S d_j)); U_k = w_k y_{i_k} (sh__conv_real_entry). */
+static int basis_residuals(int ndir, const double *dirs, size_t per_dir, const double *values, cand *c0,
+                           int nc)
+{
+    const int order = c0->order, n2 = order * order;
+    double *Y = malloc(sizeof(double) * ((size_t)ndir * n2 + per_dir + n2));
+    if (!Y) return sh_error(SH_ENOMEM, "out of memory");
+    double *v = Y + (size_t)ndir * n2, *w = v + per_dir;
+    int *idx = malloc(sizeof(int) * n2), st = idx ? SH_OK : sh_error(SH_ENOMEM, "out of memory");
+    for (int a = 0; a < SH_CONV_NAXES && !st; a++) {
+        double S[9];
+        sh_conv_axes_matrix(a, S);
+        for (int j = 0; j < ndir && !st && c0->c.kind == SH_KIND_REAL; j++) {
+            const double *d = dirs + 3 * j;
+            double s[3];
+            for (int r = 0; r < 3; r++) s[r] = S[3 * r] * d[0] + S[3 * r + 1] * d[1] + S[3 * r + 2] * d[2];
+            st = sh_eval_dir(order, SH_CS, s, Y + (size_t)j * n2);
+        }
+        for (int q = 0; q < nc && !st; q++) {
+            cand *c = &c0[q];
+            if (c->c.axes != a) continue;
+            if (c->c.kind == SH_KIND_REAL)
+                for (int k = 0; k < n2; k++) sh__conv_real_entry(&c->c, k, &idx[k], &w[k]);
+            for (int j = 0; j < ndir && !st; j++) {
+                if (c->c.kind == SH_KIND_REAL)
+                    for (int k = 0; k < n2; k++) v[k] = w[k] * Y[(size_t)j * n2 + idx[k]];
+                else
+                    st = sh_conv_eval_dir(&c->c, order, dirs + 3 * j, v);
+                for (size_t k = 0; k < per_dir && !st; k++) {
+                    const int l = sh_conv_band_of(&c->c, order, k);
+                    const double e = values[(size_t)j * per_dir + k] - v[k];
+                    c->band_sq[l] += e * e;
+                    c->band_ref[l] += v[k] * v[k];
+                }
+            }
+            double num = 0, den = 0;
+            for (int l = 0; l < order; l++) num += c->band_sq[l], den += c->band_ref[l];
+            c->residual = sqrt(num / (den > 1e-300 ? den : 1e-300));
+        }
+    }
+    free(idx);
+    free(Y);
+    return st;
+}
+
 int sh_identify_basis(int ndir, const double *dirs, size_t per_dir, const double *values, int order,
                       double tol, sh_id_result *res)
 {
@@ -267,28 +315,15 @@ int sh_identify_basis(int ndir, const double *dirs, size_t per_dir, const double
     if (ndir < 1) return sh_error(SH_EINVAL, "no directions");
     if (!kinds_for(per_dir, order, orders)) return no_kind(per_dir, order);
     cand *cands = malloc(sizeof(cand) * MAX_CAND);
-    double *v = malloc(sizeof(double) * per_dir);
-    if (!cands || !v) { free(cands); free(v); return sh_error(SH_ENOMEM, "out of memory"); }
+    if (!cands) return sh_error(SH_ENOMEM, "out of memory");
     int n = 0;
-    for (int k = 0; k < 3; k++)
-        if (orders[k]) n += enumerate((sh_conv_kind)k, orders[k], cands + n);
-    for (int i = 0; i < n && !st; i++) {
-        cand *c = &cands[i];
-        for (int j = 0; j < ndir && !st; j++) {
-            st = sh_conv_eval_dir(&c->c, c->order, dirs + 3 * j, v);
-            for (size_t q = 0; q < per_dir && !st; q++) {
-                const int l = sh_conv_band_of(&c->c, c->order, q);
-                const double e = values[(size_t)j * per_dir + q] - v[q];
-                c->band_sq[l] += e * e;
-                c->band_ref[l] += v[q] * v[q];
-            }
+    for (int k = 0; k < 3 && !st; k++)
+        if (orders[k]) {
+            const int n0 = n;
+            n += enumerate((sh_conv_kind)k, orders[k], cands + n);
+            st = basis_residuals(ndir, dirs, per_dir, values, cands + n0, n - n0);
         }
-        double num = 0, den = 0;
-        for (int l = 0; l < c->order; l++) num += c->band_sq[l], den += c->band_ref[l];
-        c->residual = sqrt(num / (den > 1e-300 ? den : 1e-300));
-    }
     if (!st) st = conclude(cands, n, tol, 0, res);
-    free(v);
     free(cands);
     return st;
 }

@@ -154,6 +154,18 @@ int sh_identify_projection(size_t n, const double *coeffs, const double *ref, in
                            int order, double tol, sh_id_result *res);
 void sh_identify_free(sh_id_result *res);
 
+/* The fixture (data/fixtures/basis/, identify_fixture.c): the directions at
+ * which a user evaluates their basis, d[3j..3j+2] (unit vectors), and
+ * exact[j] = {a, b, c, n}: d = (a, b, c)/n exactly (exact may be NULL). */
+#define SH_IDENTIFY_NDIRS 32
+void sh_identify_directions(double *d, int exact[][4]);
+/* The light the user projects: directional lights (unit d[3j..], weight
+ * w[j], exact as above), f = Σ_j w_j δ(d_j). */
+#define SH_IDENTIFY_NLIGHTS 3
+void sh_identify_light(double *d, double *w, int exact[][4]);
+/* Its projection on shlab's basis, c_i = Σ_j w_j y_i(d_j), order <= 16. */
+int sh_identify_light_coeffs(int order, double *c);
+
 #ifdef __cplusplus
 }
 #endif
