@@ -110,6 +110,11 @@ static int by_residual(const void *a, const void *b)
     return cost(&x->c) - cost(&y->c);
 }
 
+static int by_cost(const void *a, const void *b)
+{
+    return cost(&((const sh_id_candidate *)a)->conv) - cost(&((const sh_id_candidate *)b)->conv);
+}
+
 /* Every descriptor of this kind at this order. */
 static int enumerate(sh_conv_kind kind, int order, cand *out)
 {
@@ -209,6 +214,8 @@ static int conclude(cand *cands, int n, double tol, int projection, sh_id_result
         return SH_OK;
     }
     res->ncand = group(cands, nfit, nfit, tol, res->cand);
+    /* every class fits: the plainest name first */
+    qsort(res->cand, (size_t)res->ncand, sizeof *res->cand, by_cost);
     res->verdict = res->ncand == 1 ? SH_ID_IDENTIFIED : SH_ID_AMBIGUOUS;
     for (int a = 0; a < res->ncand; a++)
         for (int b = a + 1; b < res->ncand; b++) {
