@@ -20,6 +20,7 @@
 
 #include "shlab/core.h"
 #include "shlab/basis.h"
+#include "shlab/convention.h"
 #include "shlab/io.h"
 #include "shlab/project.h"
 #include "shlab/rotate.h"

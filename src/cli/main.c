@@ -4,7 +4,7 @@
 
 #include <string.h>
 
-extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert;
+extern const cli_command cmd_eval, cmd_project, cmd_reconstruct, cmd_triple, cmd_convert, cmd_identify;
 extern const cli_command cmd_rotmat, cmd_rotate, cmd_euler, cmd_stability, cmd_fixtures,
     cmd_verify;
 extern const cli_command cmd_scale, cmd_scale_interp, cmd_scale_scene;
@@ -16,7 +16,7 @@ extern const cli_command cmd_transfer, cmd_scene_plan, cmd_render;
 extern const cli_command cmd_cache, cmd_shadow_field;
 
 static const cli_command *const table[] = {
-    &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert,
+    &cmd_eval, &cmd_project, &cmd_reconstruct, &cmd_triple, &cmd_convert, &cmd_identify,
     &cmd_rotmat, &cmd_rotate, &cmd_euler, &cmd_stability, &cmd_fixtures,
     &cmd_verify, &cmd_scale, &cmd_scale_interp, &cmd_scale_scene,
     &cmd_deriv, &cmd_taylor_error,

@@ -14,7 +14,8 @@ ROOT=$(pwd)
 # docs/choosing.md has its own test (test_choosing_examples.sh)
 LABEL=${LABEL:-"README/manual"}
 README=${README:-"$ROOT/README.md $ROOT/docs/tour.md $ROOT/docs/rotation.md $ROOT/docs/check-your-kernel.md $ROOT/docs/high-bands.md
-$ROOT/docs/scaling.md $ROOT/docs/sweeps.md $ROOT/docs/bad-input.md $ROOT/docs/scenes.md $ROOT/docs/developing.md"}
+$ROOT/docs/scaling.md $ROOT/docs/sweeps.md $ROOT/docs/bad-input.md $ROOT/docs/scenes.md $ROOT/docs/developing.md
+$ROOT/docs/CONVENTIONS.md"}
 case $SHLAB in /*) bin=$SHLAB ;; *) bin=$ROOT/$SHLAB ;; esac
 mkdir -p "$TMP/bin" "$TMP/work" "$TMP/ex"
 ln -s "$bin" "$TMP/bin/shlab"
