@@ -8,7 +8,7 @@
 #include <string.h>
 
 typedef struct {
-    const char *basis, *projection, *print;
+    const char *basis, *projection, *print, *rotated, *fixture;
     int order;
     double tol;
     int fmt;
@@ -22,6 +22,13 @@ static const cli_opt identify_opts[] = {
     CLI_STRING(identify_args, projection, "projection", "FILE",
                "your coefficients of the fixture's light: JSON {\"coeffs\": [...]} or\n"
                "plain numbers"),
+    CLI_STRING(identify_args, rotated, "rotated", "FILE",
+               "your kernel's rotation of the golden cases of --fixture: a\n"
+               "candidate file {\"results\": {\"<case id>\": [...]}} (cases\n"
+               "missing from it are not used)"),
+    CLI_STRING(identify_args, fixture, "fixture", "F",
+               "with --rotated: the golden rotation fixture\n"
+               "(default data/fixtures/rotation/orders_1_10.json)"),
     CLI_INT(identify_args, order, "order", "N", 1, SH_IDENTIFY_MAX_ORDER, NULL,
             "the order of your data (default: from the count of numbers)"),
     CLI_REAL(identify_args, tol, "tol", "T", 0, 1, CLI_LO_OPEN | CLI_HI_OPEN, "1e-4",
@@ -36,6 +43,7 @@ static const cli_opt identify_opts[] = {
 static const cli_cmd identify_decl = {
     .name = "identify",
     .usage = "identify (--basis FILE | --projection FILE) [--order N] [--tol T] [OPTIONS]\n"
+             "       shlab identify --rotated FILE [--fixture F] [OPTIONS]\n"
              "       shlab identify --print directions|light [--order N] [--format json]",
     .about = "Name the spherical-harmonic convention of your data: real or complex, phase,\n"
              "normalisation (ortho, 4pi, schmidt = sn3d, n3d, fuma), index order (acn, mdesc,\n"
@@ -48,11 +56,18 @@ static const cli_cmd identify_decl = {
              "Σ w·conj(Y(d)).  Prints the convention, the residual of every fitting class\n"
              "band by band, and the `shlab convert` commands to shlab's coefficients and\n"
              "back.  Conventions that are the same functions (cs ≡ nocs turned by π about\n"
-             "z, ...) are one class, named by its plainest member, the rest as aliases.\n",
+             "z, ...) are one class, named by its plainest member, the rest as aliases.\n"
+             "--rotated reads a kernel's outputs on the golden rotation cases instead and\n"
+             "names what its rotation convention does differently from shlab's (the\n"
+             "diagnosis of `shlab verify --diagnose`): the phase, m-descending order,\n"
+             "the inverse (frame) rotation, Euler angle order or units, float precision.\n",
     .opts = identify_opts,
     .notes = "JSON: {\"input\",\"order\",\"tolerance\",\"verdict\":\"identified|ambiguous|none\",\n"
              "\"convention\",\"to_shlab\",\"from_shlab\",\"needs\",\"candidates\":[{\"convention\",\n"
              "\"aliases\",\"residual\",\"fits\",\"fits_through_order\",\"band_residuals\"}]}\n"
+             "--rotated: {\"input\":\"rotated\",\"fixture\",\"cases\",\"verdict\",\"convention\",\n"
+             "\"rotation\",[\"to_shlab\",\"from_shlab\"],\"diagnosis\",\"diagnosis_matches\",\n"
+             "\"diagnosis_checked\"}\n"
              "Exit status: 0 identified; 1 ambiguous or no fit (the result still printed:\n"
              "\"needs\" says what decides, or the nearest conventions are listed); 2 bad input.\n",
 };
@@ -187,15 +202,110 @@ static int print_fixture(const identify_args *a, const cli_parsed *seen)
     return cli_emit(root, (cli_format)a->fmt);
 }
 
+/* What a diagnosed mistake says about the user's conventions: the basis
+ * (a spec convert takes, or NULL) and the rotation. */
+static void rotated_meaning(const sh_diagnosis *d, const char *conv, const char **basis, const char **rotation)
+{
+    static char other[16], mdesc[32];
+    const int nocs = !strcmp(conv, "nocs");
+    *basis = conv;
+    *rotation = "shlab's: g(s) = f(R⁻¹s), ZYZ active, radians";
+    if (!d->found) { *basis = NULL; *rotation = NULL; return; }
+    if (d->float_only) { *rotation = "shlab's, computed in float precision"; return; }
+    switch (d->mistake) {
+    case SH_MISTAKE_CONVENTION:
+    case SH_MISTAKE_BETA:
+        snprintf(other, sizeof other, "%s", nocs ? "cs" : "nocs");
+        *basis = other;
+        break;
+    case SH_MISTAKE_MDESC:
+        snprintf(mdesc, sizeof mdesc, "%s,mdesc", conv);
+        *basis = mdesc;
+        break;
+    case SH_MISTAKE_MDESC_IN:
+    case SH_MISTAKE_MDESC_OUT:
+        *basis = NULL;
+        *rotation = d->mistake == SH_MISTAKE_MDESC_IN ? "reads its input m-descending and writes ascending"
+                                                     : "reads its input m-ascending and writes descending";
+        break;
+    case SH_MISTAKE_INVERSE: *rotation = "the inverse: g(s) = f(R s) (a frame rotation; transposed matrix, conjugated quaternion)"; break;
+    case SH_MISTAKE_SWAP: *rotation = "Euler angles applied in the other order: Rz(γ)Ry(β)Rz(α)"; break;
+    case SH_MISTAKE_DEG2RAD: *rotation = "takes the angles in degrees"; break;
+    case SH_MISTAKE_RAD2DEG: *rotation = "takes radians where degrees are meant (angles scaled by 180/π)"; break;
+    default: break;
+    }
+}
+
+/* --rotated: the user's rotated coefficients against the golden cases, the
+ * diagnosis read as conventions. */
+static int identify_rotated(const identify_args *a)
+{
+    const char *fxp = a->fixture ? a->fixture : "data/fixtures/rotation/orders_1_10.json";
+    sh_fixture fx;
+    if (cli_input("fixture", fxp) || cli_input("rotated file", a->rotated)) return CLI_EXIT_USAGE;
+    if (sh_fixture_load(fxp, &fx)) return cli_fail_status(SH_EFORMAT);
+    const size_t nc = (size_t)fx.ncases;
+    double **got = calloc(nc, sizeof *got);
+    unsigned char *want = calloc(nc, 1), *present = calloc(nc, 1), *skip = calloc(nc, 1);
+    int rc = got && want && present && skip ? 0 : cli_fail("out of memory");
+    for (size_t k = 0; !rc && k < nc; k++)
+        if (!(got[k] = malloc((size_t)fx.cases[k].n * sizeof **got))) rc = cli_fail("out of memory");
+    if (!rc && sh_fixture_load_candidate(a->rotated, &fx, want, got, present)) rc = cli_fail_status(SH_EFORMAT);
+    int run = 0, have_cs = 0, have_nocs = 0;
+    for (size_t k = 0; !rc && k < nc; k++) {
+        skip[k] = !present[k];
+        run += present[k];
+        if (present[k]) have_cs |= fx.cases[k].conv == SH_CS, have_nocs |= fx.cases[k].conv == SH_NOCS;
+    }
+    if (!rc && !run) rc = cli_fail("identify: '%s' holds none of the cases of fixture '%s'", a->rotated, fxp);
+    if (!rc && have_cs && have_nocs)
+        rc = cli_fail("identify: '%s' holds cases of both conventions; a kernel has one (keep the cs or the nocs cases)",
+                      a->rotated);
+    sh_verdict v;
+    sh_diagnosis d = {0};
+    if (!rc && (sh_verify_judge(&fx, skip, got, SH_PREC_DOUBLE, &v) ||
+                (v.failed && sh_verify_diagnose(&fx, skip, got, SH_PREC_DOUBLE, NULL, NULL, &d))))
+        rc = cli_fail_status(SH_ENOMEM);
+    json_t *root = NULL;
+    int verdict_ok = 0;
+    if (!rc) {
+        const char *conv = have_nocs ? "nocs" : "cs", *basis = conv, *rotation = "shlab's: g(s) = f(R⁻¹s), ZYZ active, radians";
+        if (v.failed) rotated_meaning(&d, conv, &basis, &rotation);
+        verdict_ok = !v.failed || d.found;
+        root = json_pack("{s:s,s:s,s:i,s:s}", "input", "rotated", "fixture", fxp, "cases", run, "verdict",
+                         verdict_ok ? "identified" : "none");
+        root = cli_put(root, "convention", basis ? json_string(basis) : json_null());
+        root = cli_put(root, "rotation", rotation ? json_string(rotation) : json_null());
+        if (basis && strcmp(basis, "cs")) {
+            char cmd[256];
+            snprintf(cmd, sizeof cmd, "shlab convert --from %s --to cs --in FILE", basis);
+            root = cli_put(root, "to_shlab", json_string(cmd));
+            snprintf(cmd, sizeof cmd, "shlab convert --from cs --to %s --in FILE", basis);
+            root = cli_put(root, "from_shlab", json_string(cmd));
+        }
+        root = cli_put(root, "diagnosis", json_string(v.failed ? d.cause : "none: every case matches shlab's rotation"));
+        root = cli_put(root, "diagnosis_matches", json_integer(v.failed ? d.matches : run));
+        root = cli_put(root, "diagnosis_checked", json_integer(v.failed ? d.checked : run));
+    }
+    for (size_t k = 0; got && k < nc; k++) free(got[k]);
+    free(got), free(want), free(present), free(skip);
+    sh_fixture_free(&fx);
+    if (rc) return rc;
+    rc = cli_emit(root, (cli_format)a->fmt);
+    return rc ? rc : verdict_ok ? CLI_EXIT_OK : CLI_EXIT_CHECK;
+}
+
 static int run(int argc, char **argv)
 {
     identify_args a = {0};
     cli_parsed seen;
     int rc = cli_args_parse(&identify_decl, argc, argv, &a, &seen);
     if (rc >= 0) return rc;
-    const int nin = !!a.basis + !!a.projection + !!a.print;
-    if (nin != 1) return cli_fail("identify: give exactly one of --basis, --projection and --print");
+    const int nin = !!a.basis + !!a.projection + !!a.print + !!a.rotated;
+    if (nin != 1) return cli_fail("identify: give exactly one of --basis, --projection, --rotated and --print");
+    if (a.fixture && !a.rotated) return cli_fail("identify: --fixture applies only to --rotated");
     if (a.print) return print_fixture(&a, &seen);
+    if (a.rotated) return identify_rotated(&a);
     const char *file = a.basis ? a.basis : a.projection;
     if ((rc = cli_input(a.basis ? "basis file" : "projection file", file))) return rc;
     double *v = NULL;

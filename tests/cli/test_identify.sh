@@ -67,3 +67,33 @@ expect_usage_error "--print bogus" identify --print bogus
 expect_refused "convert FuMa above order 4" "FuMa" convert --from fuma --to cs --coeffs 1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0
 expect_refused "convert bad spec" "unknown convention token" convert --from real,foo --to cs --coeffs 1
 expect_refused "convert complex count" "not a whole order" convert --from complex --to cs --coeffs 1,2,3
+
+# --rotated: a kernel's outputs on the golden rotation cases, its conventions
+# named from verify's diagnosis; the truths are the simulated kernels (the
+# exact rotation with the mistake applied) and the example plug-in's nocs kernel
+RFX=data/fixtures/rotation/orders_1_10.json
+for sw in none:cs:shlab convention:nocs:shlab mdesc:cs,mdesc:shlab inverse:cs:inverse swap:cs:other.order \
+          deg2rad:cs:degrees float:cs:float; do
+    sim=${sw%%:*}; rest=${sw#*:}; want_conv=${rest%%:*}; want_rot=${rest#*:}
+    if [ "$sim" = none ]; then
+        "$SHLAB" verify --quiet --fixture $RFX --method wigner --convention cs --emit-candidate "$TMP/rot.json" >/dev/null 2>&1
+    else
+        "$SHLAB" verify --quiet --fixture $RFX --method wigner --convention cs --emit-candidate "$TMP/rot.json" --simulate "$sim" >/dev/null 2>&1
+    fi
+    "$SHLAB" identify --rotated "$TMP/rot.json" --format json >"$TMP/id.json" 2>"$TMP/err"; rc=$?
+    conv=$(sed -n 's/.*"convention":"\([^"]*\)".*/\1/p' "$TMP/id.json"); rot=$(sed -n 's/.*"rotation":"\([^"]*\)".*/\1/p' "$TMP/id.json")
+    if [ "$rc" = 0 ] && [ "$conv" = "$want_conv" ] && printf '%s' "$rot" | grep -q "$want_rot"; then
+        ok "identify --rotated, simulated $sim: convention $conv, rotation '$rot'"
+    else notok "identify --rotated $sim: exit $rc, convention '$conv' (want $want_conv), rotation '$rot' (want $want_rot) $(cat "$TMP/err")"; fi
+done
+# the to_shlab command it prints maps an m-descending vector to shlab's
+"$SHLAB" verify --quiet --fixture $RFX --method wigner --convention cs --emit-candidate "$TMP/rot.json" --simulate mdesc >/dev/null 2>&1
+cmd=$("$SHLAB" identify --rotated "$TMP/rot.json" --format json | sed -n 's/.*"to_shlab":"\([^"]*\)".*/\1/p' | sed 's/ --in FILE//')
+out=$("$SHLAB" ${cmd#shlab } --coeffs 1,2,3,4 --format json | sed -n 's/.*"coeffs":\(\[[^]]*\]\).*/\1/p')
+case "$out" in '[1.0,4.0,3.0,2.0]') ok "its convert command reverses each band: $out" ;; *) notok "convert from mdesc: '$cmd' gave $out" ;; esac
+# mixed conventions are refused; a file with none of the cases too
+"$SHLAB" verify --quiet --fixture $RFX --method wigner --emit-candidate "$TMP/both.json" >/dev/null 2>&1
+expect_refused "identify --rotated, both conventions" 'both conventions' identify --rotated "$TMP/both.json"
+printf '{"results":{"nope":[1]}}' >"$TMP/none.json"
+expect_refused "identify --rotated, no case of the fixture" 'none of the cases' identify --rotated "$TMP/none.json"
+expect_refused "identify --fixture without --rotated" 'only to --rotated' identify --basis "$TMP/none.json" --fixture $RFX
