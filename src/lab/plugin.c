@@ -25,6 +25,7 @@
 #include "core/sandbox.h"
 #include "core/shlab_internal.h"
 #include "shlab/kernel.h"
+#include "lab/case_stream.h"
 
 #include <dlfcn.h>
 #include <errno.h>
@@ -90,33 +91,8 @@ int sh_plugin_parse(const char *spec, sh_plugin_abi abi, sh_plugin *out)
 
 /* ------------------------------------------------------------------ child */
 
-enum { REC_START = 1, REC_DONE = 2, REC_OPEN = 3 };
-typedef struct {
-    uint32_t kind;
-    int32_t k, rc, n;
-} rec_hdr;
-
 /* child exit statuses */
-enum { CHILD_WRITE = SH_SANDBOX_CHILD_FIRST_FREE, CHILD_FAULT, CHILD_CORRUPT };
-
-static int write_all(int fd, const void *p, size_t n)
-{
-    const char *c = p;
-    while (n) {
-        const ssize_t w = write(fd, c, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return -1;
-        c += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-static int send_rec(int fd, int kind, int k, int rc, const double *v, int n)
-{
-    const rec_hdr h = {(uint32_t)kind, k, rc, n};
-    return write_all(fd, &h, sizeof h) || (n && write_all(fd, v, (size_t)n * sizeof *v)) ? -1 : 0;
-}
+enum { CHILD_WRITE = SH_CASE_CHILD_WRITE, CHILD_FAULT = SH_CASE_CHILD_FAULT, CHILD_CORRUPT = SH_CASE_CHILD_CORRUPT };
 
 /* A buffer of `bytes` whose end touches a PROT_NONE page. */
 typedef struct {
@@ -207,11 +183,7 @@ static void *open_kernel(const sh_plugin *p, int fd)
         why = msg;
     }
     if (why) {
-        char text[512];
-        memset(text, 0, sizeof text);
-        snprintf(text, sizeof text, "%s", why);
-        const int nd = (int)((strlen(text) + sizeof(double)) / sizeof(double));
-        send_rec(fd, REC_OPEN, -1, 0, (const double *)(void *)text, nd);
+        sh__rec_send_text(fd, SH_REC_OPEN, why);
         return NULL;
     }
     return fn;
@@ -315,136 +287,17 @@ static int fixture_child(void *arg, int fd)
     for (int k = 0; k < j->fx->ncases; k++) {
         if (j->skip && j->skip[k]) continue;
         int rc = 0;
-        if (send_rec(fd, REC_START, k, 0, NULL, 0)) return CHILD_WRITE;
+        if (sh__rec_send(fd, SH_REC_START, k, 0, NULL, 0)) return CHILD_WRITE;
         const int st = run_case(j, fn, k, res, &rc);
         if (st == -2) return CHILD_CORRUPT;
         if (st) return CHILD_WRITE;
-        if (send_rec(fd, REC_DONE, k, rc, res, j->fx->cases[k].n)) return CHILD_WRITE;
+        if (sh__rec_send(fd, SH_REC_DONE, k, rc, res, j->fx->cases[k].n)) return CHILD_WRITE;
     }
     free(res);
     return 0;
 }
 
 /* ------------------------------------------------------------------ parent */
-
-typedef struct {
-    const sh_fixture *fx;
-    double **got;
-    sh_plugin_report *rep;
-    unsigned char *status;
-    rec_hdr h;
-    size_t have;       /* bytes of the current header or body */
-    int in_body;
-    unsigned char buf[sizeof(rec_hdr) + 512];
-    double *body;      /* where the body goes */
-    size_t body_bytes;
-    const char *why;   /* the protocol broken */
-} reader;
-
-static int rec_begin_body(reader *r)
-{
-    const rec_hdr *h = &r->h;
-    if (h->kind == REC_OPEN) {
-        if (h->n < 1 || (size_t)h->n * sizeof(double) > 512) return (r->why = "bad message length"), -1;
-        r->body = (double *)(void *)r->buf;
-        r->body_bytes = (size_t)h->n * sizeof(double);
-        return 0;
-    }
-    if (h->k < 0 || h->k >= r->fx->ncases) return (r->why = "case index out of range"), -1;
-    if (h->kind == REC_START) {
-        if (h->n) return (r->why = "START with a body"), -1;
-        r->rep->current = h->k;
-        return 0;
-    }
-    if (h->kind != REC_DONE || h->n != r->fx->cases[h->k].n) return (r->why = "bad record"), -1;
-    r->body = r->got[h->k];
-    r->body_bytes = (size_t)h->n * sizeof(double);
-    return 0;
-}
-
-static void rec_end(reader *r)
-{
-    const rec_hdr *h = &r->h;
-    if (h->kind == REC_OPEN) {
-        char *m = (char *)r->buf;
-        m[r->body_bytes - 1] = '\0';
-        snprintf(r->rep->failure, sizeof r->rep->failure, "cannot load the plug-in: %.280s", m);
-        r->rep->open_failed = 1;
-    } else if (h->kind == REC_DONE) {
-        r->rep->current = -1;
-        if (h->rc == SHLAB_KERNEL_OK) r->status[h->k] = SH_PLUGIN_CASE_RAN, r->rep->ran++;
-        else if (h->rc == SHLAB_KERNEL_UNSUPPORTED) r->status[h->k] = SH_PLUGIN_CASE_DECLINED, r->rep->declined++;
-        else {
-            r->status[h->k] = SH_PLUGIN_CASE_ERROR;
-            r->rep->errors++;
-            for (int i = 0; i < h->n; i++) r->got[h->k][i] = NAN; /* a failure fails its case */
-        }
-    }
-}
-
-static int reader_feed(void *fctx, const unsigned char *bytes, size_t n)
-{
-    reader *r = fctx;
-    while (n) {
-        if (!r->in_body) {
-            const size_t take = sizeof r->h - r->have < n ? sizeof r->h - r->have : n;
-            memcpy((unsigned char *)&r->h + r->have, bytes, take);
-            r->have += take, bytes += take, n -= take;
-            if (r->have < sizeof r->h) return 0;
-            r->have = 0;
-            r->body_bytes = 0;
-            if (rec_begin_body(r)) return -1;
-            r->in_body = 1;
-        }
-        const size_t take = r->body_bytes - r->have < n ? r->body_bytes - r->have : n;
-        memcpy((unsigned char *)r->body + r->have, bytes, take);
-        r->have += take, bytes += take, n -= take;
-        if (r->have < r->body_bytes) return 0;
-        rec_end(r);
-        r->have = 0;
-        r->in_body = 0;
-    }
-    return 0;
-}
-
-/* The one line that says what happened to the child, into rep->failure. */
-static void describe(const sh_plugin *p, const sh_fixture *fx, const sh_sandbox_result *sr, const reader *r,
-                     sh_plugin_report *rep)
-{
-    if (rep->open_failed) return;
-    char at[96] = "";
-    if (rep->current >= 0) snprintf(at, sizeof at, " on case '%s'", fx->cases[rep->current].id);
-    const char *line = sr->first_line;
-    switch (sr->outcome) {
-    case SH_SANDBOX_WALL:
-        snprintf(rep->failure, sizeof rep->failure, "the kernel did not return within %g s%s (stopped)", p->timeout_s, at);
-        break;
-    case SH_SANDBOX_CPU:
-        snprintf(rep->failure, sizeof rep->failure, "the kernel used more than %g s of CPU time%s (stopped)",
-                 sr->cpu_limit, at);
-        break;
-    case SH_SANDBOX_MEMORY:
-        snprintf(rep->failure, sizeof rep->failure, "the kernel went over its memory limit%s (stopped)", at);
-        break;
-    case SH_SANDBOX_BROKEN:
-        snprintf(rep->failure, sizeof rep->failure, "the plug-in's process broke its answer (%s)", r->why ? r->why : "?");
-        break;
-    case SH_SANDBOX_SIGNAL:
-        if (*line) snprintf(rep->failure, sizeof rep->failure, "%s", line);
-        else snprintf(rep->failure, sizeof rep->failure, "the kernel was killed by signal %d (%s)%s", sr->signal,
-                      strsignal(sr->signal), at);
-        break;
-    case SH_SANDBOX_DONE:
-        if (sr->exit_status == CHILD_FAULT || sr->exit_status == CHILD_CORRUPT)
-            snprintf(rep->failure, sizeof rep->failure, "%s", *line ? line : "the kernel crashed");
-        else if (sr->exit_status != 0)
-            snprintf(rep->failure, sizeof rep->failure, "the kernel's process exited with status %d%s%s%s",
-                     sr->exit_status, at, *line ? ": " : "", line);
-        else if (r->in_body || r->have)
-            snprintf(rep->failure, sizeof rep->failure, "the plug-in's process ended in the middle of an answer");
-        break;
-    }
-}
 
 int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsigned char *skip, double **got,
                           unsigned char *status, sh_plugin_report *rep)
@@ -453,14 +306,14 @@ int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsign
     rep->current = -1;
     for (int k = 0; k < fx->ncases; k++) status[k] = SH_PLUGIN_CASE_NOT_RUN;
     const fixture_job j = {p, fx, skip};
-    reader r = {.fx = fx, .got = got, .rep = rep, .status = status};
-    const sh_sandbox_job sj = {.child = fixture_child, .feed = reader_feed, .arg = (void *)&j, .fctx = &r,
+    sh_case_reader r = {.fx = fx, .got = got, .rep = rep, .status = status, .who = "the plug-in"};
+    const sh_sandbox_job sj = {.child = fixture_child, .feed = sh__case_reader_feed, .arg = (void *)&j, .fctx = &r,
                                .cpu_seconds = p->timeout_s, .wall_seconds = p->timeout_s,
                                .mem_bytes = 1LL << 30, .what = "the plug-in"};
     sh_sandbox_result sr;
     int st = sh__sandbox_run(&sj, &sr);
     if (st) return st;
-    describe(p, fx, &sr, &r, rep);
+    sh__case_describe(p->timeout_s, fx, &sr, &r, rep);
     rep->failed = rep->failure[0] != '\0';
     return SH_OK;
 }
@@ -618,7 +471,7 @@ static int bench_child(void *arg, int fd)
     double *buf = calloc((size_t)nd, sizeof *buf);
     if (!buf) return CHILD_WRITE;
     memcpy(buf, ans, sizeof *ans);
-    const int w = send_rec(fd, REC_DONE, 0, 0, buf, nd);
+    const int w = sh__rec_send(fd, SH_REC_DONE, 0, 0, buf, nd);
     free(buf);
     free(ans);
     return w ? CHILD_WRITE : 0;
@@ -644,7 +497,7 @@ int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin
     if (o->nmethods < 0 || o->nmethods > SH_PLUGIN_BENCH_MAX_METHODS)
         return sh_error(SH_EINVAL, "plug-in bench: at most %d methods beside the plug-in", SH_PLUGIN_BENCH_MAX_METHODS);
     const int nd = (int)((sizeof(bench_answer) + sizeof(double) - 1) / sizeof(double));
-    byte_sink sink = {.cap = sizeof(rec_hdr) + 512 + (size_t)nd * sizeof(double)};
+    byte_sink sink = {.cap = sizeof(sh_rec_hdr) + SH_REC_MAX_TEXT + (size_t)nd * sizeof(double)};
     if (!(sink.buf = malloc(sink.cap))) return sh_error(SH_ENOMEM, "out of memory");
     const bench_job j = {p, o};
     const sh_sandbox_job sj = {.child = bench_child, .feed = sink_feed, .arg = (void *)&j, .fctx = &sink,
@@ -652,13 +505,13 @@ int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin
                                .what = "the plug-in"};
     sh_sandbox_result sr;
     int st = sh__sandbox_run(&sj, &sr);
-    const rec_hdr *h = (const rec_hdr *)(void *)sink.buf;
-    if (!st && sink.have >= sizeof *h && h->kind == REC_OPEN) {
+    const sh_rec_hdr *h = (const sh_rec_hdr *)(void *)sink.buf;
+    if (!st && sink.have >= sizeof *h && h->kind == SH_REC_OPEN) {
         char *m = (char *)(sink.buf + sizeof *h);
         sink.buf[sink.cap - 1] = '\0';
         st = sh_error(SH_EINVAL, "cannot load the plug-in: %.280s", m);
     } else if (!st && sr.outcome == SH_SANDBOX_DONE && sr.exit_status == 0 &&
-               sink.have == sizeof *h + (size_t)nd * sizeof(double) && h->kind == REC_DONE && h->n == nd) {
+               sink.have == sizeof *h + (size_t)nd * sizeof(double) && h->kind == SH_REC_DONE && h->n == nd) {
         bench_answer ans;
         memcpy(&ans, sink.buf + sizeof *h, sizeof ans);
         if (ans.status) st = sh_error(ans.status, "%s", ans.why);
@@ -668,8 +521,8 @@ int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin
     } else if (!st) {
         /* the kernel ended the child: say how, as the fixture run does */
         sh_plugin_report rep = {.current = -1};
-        reader r = {0};
-        describe(p, NULL, &sr, &r, &rep);
+        sh_case_reader r = {.who = "the plug-in"};
+        sh__case_describe(p->timeout_s, NULL, &sr, &r, &rep);
         if (!rep.failure[0]) snprintf(rep.failure, sizeof rep.failure, "the plug-in's process sent no answer");
         res->failed = 1;
         snprintf(res->failure, sizeof res->failure, "%s", rep.failure);
