@@ -14,7 +14,7 @@ import numpy as np
 
 from ._lib import cstr, declare, real_array
 
-__all__ = ["read_exr", "pixel_solid_angles"]
+__all__ = ["read_exr", "write_exr", "pixel_solid_angles"]
 
 MAX_CHANNELS = 4
 
@@ -92,3 +92,17 @@ def pixel_solid_angles(layout, width, height):
     out = np.empty((int(height), int(width)))
     _solid(_names.layout(layout), int(width), int(height), out.ctypes.data)
     return out
+
+
+_exr_write = declare("sh_exr_write", [ctypes.c_char_p, _IP])
+
+
+def write_exr(path, image, channels=None):
+    """Write an image array ((H, W) or (H, W, C)) as a float EXR (sh_exr_write:
+    written to a temporary name and renamed).  channels: names (default Y,
+    or R, G, B[, A])."""
+    p, _ = planar(image)
+    if channels is not None and len(channels) != p.shape[0]:
+        raise ValueError("%d channel names for %d channels" % (len(channels), p.shape[0]))
+    c = c_image(p, list(channels) if channels else None)
+    _exr_write(cstr(os.fspath(path), "path"), ctypes.byref(c))
