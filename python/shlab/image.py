@@ -73,12 +73,13 @@ def read_exr(path):
     fb = ctypes.c_int()
     _exr_read(cstr(os.fspath(path), "path"), ctypes.byref(c), ctypes.byref(fb))
     try:
-        n = c.nchan * c.height * c.width
+        nc, h, w = c.nchan, c.height, c.width
+        n = nc * h * w
         flat = np.ctypeslib.as_array(c.data, shape=(n,)).copy()
         names = [c.names[k].value.decode() for k in range(c.nchan)]
     finally:
         _image_free(ctypes.byref(c))
-    return np.moveaxis(flat.reshape(len(names), c.height, c.width), 0, 2), names
+    return np.moveaxis(flat.reshape(nc, h, w), 0, 2), names
 
 
 def pixel_solid_angles(layout, width, height):
