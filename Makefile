@@ -237,7 +237,14 @@ CHECK_BIN = $(filter-out $(addprefix $(BUILD)/tests/,$(SAN_SKIP)),$(TEST_BIN))
 else
 CHECK_BIN = $(TEST_BIN)
 endif
-check: deps-quiet $(BUILD)/shlab $(CHECK_BIN) $(FUZZ_REPLAY)
+# Example plug-in kernels (shlab/kernel.h) for verify/bench --plugin
+# (tests/cli/test_plugins.sh): self-contained, so built without libshlab.
+PLUGIN_SO := $(BUILD)/tests/plugins/kernels.so
+$(PLUGIN_SO): tests/plugins/kernels.c src/shlab/kernel.h
+	@mkdir -p $(dir $@)
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -fPIC -shared -Isrc -o $@ $< -lm
+
+check: deps-quiet $(BUILD)/shlab $(CHECK_BIN) $(FUZZ_REPLAY) $(PLUGIN_SO)
 	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) TEST_JOBS=$(TEST_JOBS) tests/run.sh $(CHECK_BIN)
 
 # ---- fuzzing (tests/fuzz/README.md) -----------------------------------------

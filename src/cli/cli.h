@@ -211,43 +211,7 @@ int cli_rotation_finish(const char *cmd, cli_rotation_args *r, int degrees, int 
 json_t *cli_rotation_json(const sh_rotation *rot);
 int cli_method(const char *s, sh_rot_method *out);
 
-/* ---- rotation fixtures (cli_fixture.c) -----------------------------------
- * A golden case: rotate `input` (order² coefficients, or the 2L+1 of band L
- * when band >= 0) by `rot` in `conv`; `expected` is exact to double rounding
- * (MPFR reference), `expected_f` the same rounded to float32. */
-typedef struct {
-    char id[64];
-    int order, band;
-    sh_convention conv;
-    sh_rotation rot;
-    int n;              /* number of coefficients */
-    double *input, *expected, *expected_f;
-    double tol_double, tol_float;
-} fx_case;
-typedef struct {
-    int ncases;
-    fx_case *cases;
-} fx_set;
-/* Read a fixture file (one line "shlab: error: ..." and CLI_EXIT_USAGE on
- * failure; at least one case; every integer range-checked before use). */
-int fx_load(const char *path, fx_set *set);
-int fx_load_mem(const char *buf, size_t n, const char *name, fx_set *set);
-/* Read a candidate file {"results": {"<case id>": [n numbers], ...}} for the
- * cases of fx: out[k] (fx->cases[k].n values each, allocated by the caller). */
-int fx_load_candidate(const char *path, const fx_set *fx, double **out);
-int fx_load_candidate_mem(const char *buf, size_t n, const char *name, const fx_set *fx,
-                          double **out);
-void fx_free(fx_set *set);
-/* out = R_sh(rot)·in for a case's shape (its order, or band only), by method. */
-int fx_apply(sh_rot_method m, sh_precision prec, const fx_case *c, const sh_rotation *rot,
-             sh_convention conv, const double *in, double *out);
-/* The same with the plan's kernel chosen, and with matrix != 0 the rotation
- * given as its matrix (sh_rot_plan_set_matrix; in float, float matrix and
- * vectors: sh_rot_plan_set_matrix_f, sh_rot_plan_apply_f).  Whole-order
- * cases only; band cases have one path. */
-int fx_apply_kernel(sh_rot_method m, sh_precision prec, sh_rot_kernel kernel, int matrix,
-                    const fx_case *c, const sh_rotation *rot, sh_convention conv, const double *in,
-                    double *out);
+
 
 /* ---- angles and units (cli_angles.c) -------------------------------------
  * --degrees means angles in and angles out in degrees, in every command

@@ -1,8 +1,11 @@
-/* cmd_verify.c — `shlab verify`: check a candidate kernel's outputs (or one of
- * shlab's own methods) against golden rotation fixtures, and with --diagnose
- * name the likely cause of a mismatch by testing known transformations. */
+/* cmd_verify.c — `shlab verify`: check a kernel against golden rotation
+ * fixtures — its outputs in a candidate file, the kernel itself as a plug-in
+ * (shlab/kernel.h, run in a child process), or one of shlab's own methods —
+ * and with --diagnose name the likely cause of a mismatch.  The verdict and
+ * the diagnosis are the library's (shlab/verify.h). */
 #include "cli.h"
 #include "core/shlab_internal.h"
+#include "lab/lab.h"
 
 #include <errno.h>
 #include <math.h>
@@ -10,100 +13,37 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A transformation of the expected answer that a wrong kernel would produce. */
-typedef enum {
-    T_CONV, T_INVERSE, T_SWAP, T_BETA, T_DEG2RAD, T_RAD2DEG, T_MDESC_BOTH, T_MDESC_OUT, T_MDESC_IN,
-    T_COUNT
-} transform;
-static const char *const t_name[T_COUNT] = {
-    "other CS-phase convention (cs vs nocs; the same as β negated: R(α,-β,γ) = S R S)",
-    "inverse rotation (frame rotation / transposed matrix / conjugated quaternion)",
-    "alpha and gamma swapped (Rz(γ)Ry(β)Rz(α))",
-    "beta negated (Ry(-β): left-handed y rotation)",
-    "degrees taken as radians (angles scaled by π/180)",
-    "radians taken as degrees (angles scaled by 180/π)",
-    "m-descending order within each band (input and output)",
-    "m-descending order of the output within each band",
-    "m-descending order of the input within each band",
-};
-
-/* --simulate's names: the mistakes (transform's order), then float
- * precision only (T_COUNT) and none. */
+/* --simulate's names: the known mistakes (sh_mistake's order), then float
+ * precision only and none. */
 static const char *const t_short[] = {"convention", "inverse", "swap", "beta", "deg2rad", "rad2deg", "mdesc",
                                       "mdesc-out", "mdesc-in", "float", "none", NULL};
-#define SIM_FLOAT T_COUNT
-#define SIM_NONE (T_COUNT + 1)
-
-static void reverse_bands(const fx_case *c, const double *in, double *out)
-{
-    const int l0 = c->band >= 0 ? c->band : 0, l1 = c->band >= 0 ? c->band : c->order - 1;
-    for (int l = l0; l <= l1; l++) {
-        const int off = c->band >= 0 ? 0 : l * l, w = 2 * l + 1;
-        for (int i = 0; i < w; i++) out[off + i] = in[off + w - 1 - i];
-    }
-}
-
-/* What a kernel with mistake t outputs for case c (exact method). */
-static int transformed(transform t, const fx_case *c, double *out, double *tmp)
-{
-    sh_rotation r = c->rot;
-    const double a = c->rot.alpha, b = c->rot.beta, g = c->rot.gamma;
-    const sh_rot_method m = c->band > 20 ? SH_ROT_REFERENCE : SH_ROT_WIGNER;
-    sh_convention conv = c->conv;
-    const double *in = c->input;
-    switch (t) {
-    case T_CONV: conv = conv == SH_CS ? SH_NOCS : SH_CS; break;
-    case T_INVERSE: sh_rotation_inverse(&c->rot, &r); break;
-    case T_SWAP: sh_rotation_from_euler(g, b, a, &r); break;
-    case T_BETA: sh_rotation_from_euler(a, -b, g, &r); break;
-    case T_DEG2RAD: sh_rotation_from_euler(a * M_PI / 180, b * M_PI / 180, g * M_PI / 180, &r); break;
-    case T_RAD2DEG: sh_rotation_from_euler(a * 180 / M_PI, b * 180 / M_PI, g * 180 / M_PI, &r); break;
-    case T_MDESC_BOTH:
-    case T_MDESC_IN: reverse_bands(c, c->input, tmp); in = tmp; break;
-    default: break;
-    }
-    int st = fx_apply(m, SH_PREC_DOUBLE, c, &r, conv, in, out);
-    if (st) return st;
-    if (t == T_MDESC_BOTH || t == T_MDESC_OUT) {
-        memcpy(tmp, out, (size_t)c->n * sizeof *tmp);
-        reverse_bands(c, tmp, out);
-    }
-    return SH_OK;
-}
-
-static double max_err(const double *a, const double *b, int n, int *at)
-{
-    double w = 0;
-    *at = 0;
-    for (int i = 0; i < n; i++) {
-        const double e = fabs(a[i] - b[i]);
-        if (!(e <= w)) { w = e; *at = i; } /* NaN counts as worst */
-        if (isnan(e)) { w = INFINITY; *at = i; break; }
-    }
-    return w;
-}
+#define SIM_FLOAT SH_MISTAKE_COUNT
+#define SIM_NONE (SH_MISTAKE_COUNT + 1)
 
 /* {"results": {"<id>": [...], ...}}, one case per line, into the temporary
  * file of the output (cli_out_open; cli_emit renames it onto `path`). */
-static int write_candidate(const char *tmp, const char *path, const fx_set *fx, double **got)
+static int write_candidate(const char *tmp, const char *path, const sh_fixture *fx, double **got,
+                           const unsigned char *not_run)
 {
     FILE *f = sh__temp_fopen(tmp, "w");
-    int bad = !f;
+    int bad = !f, first = 1;
     if (f) {
         fputs("{\"results\":{\n", f);
         for (int k = 0; k < fx->ncases && !bad; k++) {
+            if (not_run[k]) continue;
             json_t *id = json_string(fx->cases[k].id);
             json_t *a = cli_json_array(got[k], (size_t)fx->cases[k].n);
             char *si = id ? json_dumps(id, JSON_ENCODE_ANY) : NULL;
             char *s = a ? json_dumps(a, JSON_COMPACT | JSON_REAL_PRECISION(17)) : NULL;
             if (!s || !si) bad = 1;
-            else fprintf(f, "%s:%s%s\n", si, s, k + 1 < fx->ncases ? "," : "");
+            else fprintf(f, "%s%s:%s", first ? "" : ",\n", si, s);
+            first = 0;
             free(s);
             free(si);
             json_decref(a);
             json_decref(id);
         }
-        fputs("}}\n", f);
+        fputs("\n}}\n", f);
         bad |= ferror(f) != 0;
         bad |= fclose(f) != 0;
     }
@@ -112,10 +52,12 @@ static int write_candidate(const char *tmp, const char *path, const fx_set *fx, 
 
 
 typedef struct {
-    const char *fixture, *cand, *emit;
-    sh_rot_method method; /* SH_ROT_AUTO: none (a --candidate is verified) */
+    const char *fixture, *cand, *emit, *plugin, *orders, *cases;
+    sh_rot_method method; /* SH_ROT_AUTO: none (a --candidate or --plugin is verified) */
     sh_precision prec;
     sh_rot_kernel kernel;
+    int abi, conv;
+    double timeout;
     int diagnose, simulate, matrix_input, quiet, fmt;
 } verify_args;
 
@@ -123,35 +65,61 @@ typedef struct {
 #define NEEDS_FLAG(F, NAME, NEEDS, HELP)                                                           \
     {.type = CLI_T_FLAG, .name = NAME, .off = offsetof(verify_args, F), .help = HELP, .needs = NEEDS}
 
+static const char *const abi_choices[] = {"matrix-d", "matrix-f", "quat-d", "quat-f", "euler-d", "euler-f",
+                                          "matrix-batch-d", "matrix-batch-f", NULL};
+
 static const cli_opt verify_opts[] = {
     CLI_STRING(verify_args, fixture, "fixture", "F", "a fixture file (data/fixtures/rotation/*.json)"),
     CLI_STRING(verify_args, cand, "candidate", "C",
                "JSON {\"results\": {\"<case id>\": [outputs...], ...}}\n"
-               "from the kernel under test (every case id of F)"),
+               "from the kernel under test (every case id of F that\n"
+               "is run: see --orders, --cases)"),
+    CLI_STRING(verify_args, plugin, "plugin", "LIB.so:SYMBOL",
+               "the kernel itself: a function in a shared library\n"
+               "(shlab/kernel.h), run on every case in a child\n"
+               "process with a time limit and guarded buffers"),
     CLI_CUSTOM(verify_args, method, "method", "M", cli_parse_method, NULL,
                "instead of a candidate, run shlab's method M"),
     CLI_CUSTOM(verify_args, prec, "precision", "P", cli_parse_precision, "double",
-               "double (default) | float: the tolerance (and, with\n--method, the arithmetic) to use"),
+               "double (default; with a -f plug-in ABI: float) |\n"
+               "float: the tolerance (and, with --method, the\narithmetic) to use"),
+    CLI_STRING(verify_args, orders, "orders", "LIST",
+               "run only the cases of these orders, e.g. 1-6 or 1,2,4\n"
+               "(the rest are reported as not run)"),
+    CLI_STRING(verify_args, cases, "cases", "IDS", "run only these case ids, comma-separated"),
+    {.type = CLI_T_CHOICE, .name = "convention", .meta = "cs|nocs", .off = offsetof(verify_args, conv),
+     .choices = cli_convention_names, .def = "cs", .flags = CLI_NO_DEFAULT,
+     .help = "run only the cases in this phase convention (the\n"
+             "kernel's); default: every case, and with --plugin cs"},
+    CLI_FLAG(verify_args, quiet, "quiet", "no progress on stderr"),
+    CLI_FLAG(verify_args, diagnose, "diagnose",
+             "on failure, test what the kernel matches instead:\n"
+             "the other CS-phase convention, the inverse (frame)\n"
+             "rotation, α and γ swapped, β negated, degrees taken as\n"
+             "radians (or the reverse), m-descending order within a\n"
+             "band, or float precision only"),
+    CLI_FORMAT(verify_args, fmt),
+    CLI_HEADING("Plug-in (--plugin):"),
+    {.type = CLI_T_CHOICE, .name = "abi", .meta = "NAME", .off = offsetof(verify_args, abi), .choices = abi_choices,
+     .def = "matrix-d", .flags = CLI_NO_DEFAULT, .needs = "plugin",
+     .help = "the function's type (shlab/kernel.h): matrix-d |\n"
+             "matrix-f | quat-d | quat-f | euler-d | euler-f |\n"
+             "matrix-batch-d | matrix-batch-f (required)"},
+    {.type = CLI_T_REAL, .name = "timeout", .meta = "S", .off = offsetof(verify_args, timeout), .lo = 0.1,
+     .hi = 3600, .def = "10", .needs = "plugin",
+     .help = "wall-clock and CPU seconds the kernel may take over\nall cases (then it is stopped and reported)"},
+    CLI_HEADING("Method (--method):"),
     {.type = CLI_T_CUSTOM, .name = "kernel", .meta = "K", .off = offsetof(verify_args, kernel),
      .parse = cli_parse_kernel, .def = "auto", .needs = "method",
      .help = "with --method: auto (default) | scalar | unrolled |\n"
              "sse2 | avx2 | avx512, the code that runs (the fixture's\n"
              "Euler angles reach the plan as angles; --matrix-input:\n"
              "as the case's matrix, sh_rot_plan_set_matrix)"},
-    CLI_FLAG(verify_args, quiet, "quiet", "no progress on stderr"),
     NEEDS_FLAG(matrix_input, "matrix-input", "method", "with --method: give each case's rotation as its matrix"),
-    CLI_FLAG(verify_args, diagnose, "diagnose",
-             "on failure, test what the candidate matches instead:\n"
-             "the other CS-phase convention, the inverse (frame)\n"
-             "rotation, α and γ swapped, β negated, degrees taken as\n"
-             "radians (or the reverse), m-descending order within a\n"
-             "band, or float precision only"),
-    CLI_FORMAT(verify_args, fmt),
-    CLI_HEADING(""),
     {.type = CLI_T_STRING, .name = "emit-candidate", .meta = "F", .off = offsetof(verify_args, emit),
-     .needs = "method",
-     .help = "with --method: also write the outputs as a candidate\n"
-             "file (the format a kernel under test must produce)"},
+     .help = "with --method or --plugin: also write the outputs of\n"
+             "the cases run as a candidate file (the format a\n"
+             "kernel under test must produce)"},
     {.type = CLI_T_CHOICE, .name = "simulate", .meta = "MISTAKE", .off = offsetof(verify_args, simulate),
      .choices = t_short, .def = "none", .flags = CLI_NO_DEFAULT, .needs = "emit-candidate",
      .help = "with --emit-candidate: write what a kernel with this\n"
@@ -165,22 +133,27 @@ static const cli_opt verify_opts[] = {
 
 static const cli_cmd verify_decl = {
     .name = "verify",
-    .usage = "verify --fixture F (--candidate C | --method M) [OPTIONS]",
+    .usage = "verify --fixture F (--candidate C | --plugin LIB.so:SYMBOL --abi NAME | --method M) [OPTIONS]",
     .about = "Compare rotated coefficients with a golden fixture file (shlab fixtures).\n"
-             "A case passes if every |candidate_i - expected_i| <= the case's double\n"
+             "A case passes if every |output_i - expected_i| <= the case's double\n"
              "tolerance (--precision float: its float32 tolerance).  Exit 0 if all cases\n"
-             "pass, 1 if any fails (the worst case is printed), 2 on bad input.\n",
+             "run pass, 1 if any fails or the plug-in crashed, hung or wrote out of\n"
+             "bounds (the reason is printed), 2 on bad input.\n",
     .opts = verify_opts,
     .notes =
         "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
         "       \"worst_id\",\"worst_index\",\"worst_got\",\"worst_expected\",\"worst_error\",\n"
-        "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the fixture's\n"
-        "       cases mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
-        "       [\"simulated\" (with --simulate)],[\"skipped\"],\n"
+        "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the cases run\n"
+        "       mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
+        "       [\"simulated\" (with --simulate)],[\"skipped\",\"skipped_why\"],\n"
+        "       [\"abi\",\"kernel_failure\",\"kernel_errors\" (with --plugin)],\n"
         "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
         "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
-        "\"skipped\" (--method, when non-zero): the cases above the method's largest order\n"
-        "(direct: 3), neither rotated nor judged; \"cases\" counts them too.\n"
+        "\"skipped\" (when non-zero): the cases not run, neither rotated nor judged, and\n"
+        "\"skipped_why\" the reasons: not asked for (--orders, --cases), above the\n"
+        "method's largest order (direct: 3), in the other convention than the plug-in's,\n"
+        "declined by the plug-in (it returned SHLAB_KERNEL_UNSUPPORTED), or not reached\n"
+        "(the plug-in stopped before them: kernel_failure says why); \"cases\" counts them too.\n"
         "The diagnosis compares at each case's float32 tolerance (1e-6 and more), so its\n"
         "counts are not comparable with \"failed\": diagnosis_checked = the cases the\n"
         "mistake changes by more than their float32 tolerance (a mistake that changes a\n"
@@ -188,14 +161,20 @@ static const cli_cmd verify_decl = {
         "them the candidate equals within it; a diagnosis must explain all it checks.\n",
 };
 
-/* The fixture, the outputs under test (got[k]: case k's n values) and scratch
- * for the transformations (tmp: 2·maxn). */
+/* Why a case was not run (the bits of verify_work.skip). */
+enum { SKIP_ASKED = 1, SKIP_ORDER = 2, SKIP_CONV = 4, SKIP_DECLINED = 8, SKIP_UNREACHED = 16 };
+static const char *const skip_why[] = {"not asked for", "above the method's order", "other convention",
+                                       "declined by the kernel", "not reached"};
+
+/* The fixture, the outputs under test (got[k]: case k's n values), which
+ * cases were not run (skip[k]: SKIP_* bits; run[k]: skip[k] == 0 as the
+ * library takes it) and the plug-in's report. */
 typedef struct {
-    fx_set fx;
-    double **got, *tmp;
-    int maxn;
-    unsigned char *skip; /* case k above the method's largest order: not rotated, not judged */
+    sh_fixture fx;
+    double **got;
+    unsigned char *skip, *not_run;
     int nskip;
+    sh_plugin_report prep;
     cli_progress prog;
 } verify_work;
 
@@ -204,106 +183,198 @@ static void work_free(verify_work *w)
     if (w->got)
         for (int k = 0; k < w->fx.ncases; k++) free(w->got[k]);
     free(w->got);
-    free(w->tmp);
     free(w->skip);
-    fx_free(&w->fx);
+    free(w->not_run);
+    sh_fixture_free(&w->fx);
+}
+
+/* "1-6", "1,2,4", "2-3,7": order o in the list? */
+static int parse_orders(const char *s, unsigned char *want /* [1002] */)
+{
+    memset(want, 0, 1002);
+    const char *p = s;
+    while (*p) {
+        char *e;
+        long lo = strtol(p, &e, 10), hi = lo;
+        if (e == p || lo < 1 || lo > 1001) return cli_fail("verify: --orders '%s': expected orders 1..1001 like 1-6 or 1,2,4", s);
+        p = e;
+        if (*p == '-') {
+            hi = strtol(p + 1, &e, 10);
+            if (e == p + 1 || hi < lo || hi > 1001) return cli_fail("verify: --orders '%s': expected orders 1..1001 like 1-6 or 1,2,4", s);
+            p = e;
+        }
+        for (long o = lo; o <= hi; o++) want[o] = 1;
+        if (*p == ',') p++;
+        else if (*p) return cli_fail("verify: --orders '%s': expected orders 1..1001 like 1-6 or 1,2,4", s);
+    }
+    return 0;
+}
+
+/* Is id one of the comma-separated ids? */
+static int in_list(const char *list, const char *id)
+{
+    const size_t n = strlen(id);
+    for (const char *p = list; p && *p;) {
+        const char *e = strchr(p, ',');
+        const size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && !strncmp(p, id, n)) return 1;
+        p = e ? e + 1 : NULL;
+    }
+    return 0;
+}
+
+/* The cases asked for (--orders, --cases): the others get SKIP_ASKED; every
+ * id of --cases must exist. */
+static int select_cases(const verify_args *a, verify_work *w)
+{
+    unsigned char want[1002];
+    if (a->orders && parse_orders(a->orders, want)) return CLI_EXIT_USAGE;
+    for (const char *p = a->cases; p && *p;) {
+        const char *e = strchr(p, ',');
+        const size_t len = e ? (size_t)(e - p) : strlen(p);
+        int found = 0;
+        for (int k = 0; k < w->fx.ncases && !found; k++)
+            found = strlen(w->fx.cases[k].id) == len && !strncmp(w->fx.cases[k].id, p, len);
+        if (!found) return cli_fail("verify: --cases: no case '%.*s' in fixture '%s'", (int)len, p, a->fixture);
+        p = e ? e + 1 : NULL;
+    }
+    for (int k = 0; k < w->fx.ncases; k++) {
+        const sh_fixture_case *c = &w->fx.cases[k];
+        if ((a->orders && !want[c->order]) || (a->cases && !in_list(a->cases, c->id))) w->skip[k] |= SKIP_ASKED;
+        else if (a->conv >= 0 && (int)c->conv != a->conv) w->skip[k] |= SKIP_CONV;
+    }
+    return 0;
 }
 
 static int work_load(const verify_args *a, verify_work *w)
 {
-    *w = (verify_work){.maxn = 1};
-    if (fx_load(a->fixture, &w->fx)) return CLI_EXIT_USAGE;
-    for (int k = 0; k < w->fx.ncases; k++) w->maxn = w->fx.cases[k].n > w->maxn ? w->fx.cases[k].n : w->maxn;
-    w->got = calloc((size_t)w->fx.ncases + 1, sizeof *w->got);
-    w->tmp = malloc(2 * (size_t)w->maxn * sizeof *w->tmp);
-    w->skip = calloc((size_t)w->fx.ncases + 1, 1);
-    int ok = w->got && w->tmp && w->skip;
-    for (int k = 0; ok && k < w->fx.ncases; k++) ok = (w->got[k] = malloc((size_t)w->fx.cases[k].n * sizeof **w->got)) != NULL;
-    return ok ? 0 : cli_fail("out of memory");
+    memset(w, 0, sizeof *w);
+    /* inputs are registered: no output may overwrite them */
+    if (cli_input("fixture", a->fixture) || (a->cand && cli_input("candidate", a->cand))) return CLI_EXIT_USAGE;
+    if (sh_fixture_load(a->fixture, &w->fx)) return cli_fail_status(SH_EFORMAT);
+    const size_t nc = (size_t)w->fx.ncases;
+    w->got = calloc(nc + 1, sizeof *w->got);
+    w->skip = calloc(nc + 1, 1);
+    w->not_run = calloc(nc + 1, 1);
+    int ok = w->got && w->skip && w->not_run;
+    for (size_t k = 0; ok && k < nc; k++) ok = (w->got[k] = malloc((size_t)w->fx.cases[k].n * sizeof **w->got)) != NULL;
+    if (!ok) return cli_fail("out of memory");
+    return select_cases(a, w);
+}
+
+/* Count the cases not run, refuse a run with none left, and fill not_run
+ * (the library's skip). */
+static int count_skipped(const verify_args *a, verify_work *w, const char *what)
+{
+    w->nskip = 0;
+    for (int k = 0; k < w->fx.ncases; k++) {
+        w->not_run[k] = w->skip[k] != 0;
+        w->nskip += w->not_run[k];
+    }
+    if (w->nskip == w->fx.ncases && !w->prep.failed)
+        return cli_fail("verify: no case of fixture '%s' is run (%s)", a->fixture, what);
+    return 0;
 }
 
 /* Every case rotated by shlab's method (or as the simulated mistake does it).
  * Cases above the method's largest order (direct: 3) are skipped, and said
- * so (stderr and "skipped"); a fixture with none in reach is refused. */
+ * so (stderr and "skipped"). */
 static int run_method(const verify_args *a, verify_work *w)
 {
     const sh_rot_method m = a->method;
     const int top = sh_rot_method_max_order(m);
-    int st = 0;
-    for (int k = 0; k < w->fx.ncases; k++) {
-        w->skip[k] = w->fx.cases[k].order > top;
-        w->nskip += w->skip[k];
-    }
-    if (w->nskip == w->fx.ncases)
-        return cli_fail("verify: method %s is limited to order %d; every case of the fixture needs more",
-                        sh_rot_method_name(m), top);
-    if (w->nskip && a->emit)
+    int above = 0, st = 0;
+    for (int k = 0; k < w->fx.ncases; k++)
+        if (w->fx.cases[k].order > top && !w->skip[k]) w->skip[k] |= SKIP_ORDER, above++;
+    if (above && a->emit)
         return cli_fail("verify: method %s is limited to order %d: %d cases would be missing from "
-                        "--emit-candidate", sh_rot_method_name(m), top, w->nskip);
-    if (w->nskip)
+                        "--emit-candidate", sh_rot_method_name(m), top, above);
+    char why[96];
+    snprintf(why, sizeof why, "method %s is limited to order %d", sh_rot_method_name(m), top);
+    if (count_skipped(a, w, above ? why : "--orders, --cases")) return CLI_EXIT_USAGE;
+    if (above)
         fprintf(stderr, "verify: method %s is limited to order %d: %d of the %d cases skipped (higher orders)\n",
-                sh_rot_method_name(m), top, w->nskip, w->fx.ncases);
+                sh_rot_method_name(m), top, above, w->fx.ncases);
     for (int k = 0; k < w->fx.ncases && !st; k++) {
-        const fx_case *c = &w->fx.cases[k];
+        const sh_fixture_case *c = &w->fx.cases[k];
         if (w->skip[k]) continue;
         if (m == SH_ROT_Z && c->rot.beta != 0)
             return cli_fail("verify: method z rotates about z only; case '%s' has β = %.3g rad", c->id, c->rot.beta);
-        if (a->simulate < T_COUNT)
-            st = transformed((transform)a->simulate, c, w->got[k], w->tmp);
+        if (a->simulate < SH_MISTAKE_COUNT)
+            st = sh_fixture_simulate((sh_mistake)a->simulate, c, w->got[k]);
         else
-            st = fx_apply_kernel(m, a->simulate == SIM_FLOAT ? SH_PREC_FLOAT : a->prec, a->kernel, a->matrix_input, c,
-                                 &c->rot, c->conv, c->input, w->got[k]);
+            st = sh_fixture_apply(m, a->simulate == SIM_FLOAT ? SH_PREC_FLOAT : a->prec, a->kernel, a->matrix_input, c,
+                                  &c->rot, c->conv, c->input, w->got[k]);
         cli_progress_step(&w->prog, k + 1, w->fx.ncases, "cases rotated");
     }
     return st ? cli_fail("verify: %s", sh_last_error()) : 0;
 }
 
-/* The verdict: cases beyond their tolerance, and the worst one (by error
- * over tolerance). */
-typedef struct {
-    int failed, failed_near, worst_k, worst_i;
-} verdict;
-
-static verdict judge(const verify_args *a, const verify_work *w)
+/* Every case asked for, in the plug-in's convention, through the user's
+ * kernel in a child process; what it declined or never reached is not run. */
+static int run_plugin(const verify_args *a, verify_work *w)
 {
-    verdict v = {0};
-    double worst_ratio = -1;
-    v.worst_k = -1;
-    for (int k = 0; k < w->fx.ncases; k++) {
-        const fx_case *c = &w->fx.cases[k];
+    sh_plugin p;
+    if (sh_plugin_parse(a->plugin, (sh_plugin_abi)a->abi, &p)) return cli_fail_status(SH_EINVAL);
+    p.timeout_s = a->timeout;
+    if (count_skipped(a, w, "--convention, --orders, --cases")) return CLI_EXIT_USAGE;
+    unsigned char *status = calloc((size_t)w->fx.ncases + 1, 1);
+    if (!status) return cli_fail("out of memory");
+    int st = sh_plugin_run_fixture(&p, &w->fx, w->not_run, w->got, status, &w->prep);
+    for (int k = 0; !st && k < w->fx.ncases; k++) {
         if (w->skip[k]) continue;
-        if (v.worst_k < 0) v.worst_k = k;
-        const double tol = a->prec == SH_PREC_FLOAT ? c->tol_float : c->tol_double;
-        int at;
-        const double e = max_err(w->got[k], c->expected, c->n, &at);
-        if (!(e <= tol)) v.failed++;
-        if (!(e <= tol) && e <= c->tol_float) v.failed_near++;
-        if (!(e / tol <= worst_ratio)) worst_ratio = e / tol, v.worst_k = k, v.worst_i = at;
+        if (status[k] == SH_PLUGIN_CASE_DECLINED) w->skip[k] |= SKIP_DECLINED;
+        if (status[k] == SH_PLUGIN_CASE_NOT_RUN) w->skip[k] |= SKIP_UNREACHED;
     }
-    return v;
+    free(status);
+    if (st) return cli_fail_status(st);
+    if (w->prep.open_failed) return cli_fail("verify: %s", w->prep.failure);
+    for (int k = 0; k < w->fx.ncases; k++) w->not_run[k] = w->skip[k] != 0;
+    w->nskip = 0;
+    for (int k = 0; k < w->fx.ncases; k++) w->nskip += w->not_run[k];
+    if (w->nskip == w->fx.ncases && !w->prep.failed)
+        return cli_fail("verify: the kernel declined every case it was given (SHLAB_KERNEL_UNSUPPORTED)");
+    return 0;
 }
 
-static json_t *result(const verify_args *a, int have_kernel, const verify_work *w, const verdict *v)
+static void put_skipped(const verify_work *w, json_t **root)
 {
-    const fx_case *wc = &w->fx.cases[v->worst_k];
+    if (!w->nskip) return;
+    char why[200] = "";
+    for (int b = 0; b < 5; b++) {
+        int n = 0;
+        for (int k = 0; k < w->fx.ncases; k++) n += (w->skip[k] & (1 << b)) != 0;
+        if (n)
+            snprintf(why + strlen(why), sizeof why - strlen(why), "%s%d %s", *why ? ", " : "", n, skip_why[b]);
+    }
+    *root = cli_put(*root, "skipped", json_integer(w->nskip));
+    *root = cli_put(*root, "skipped_why", json_string(why));
+}
+
+static json_t *result(const verify_args *a, int have_kernel, const verify_work *w, const sh_verdict *v)
+{
     const int have_method = a->method != SH_ROT_AUTO, fl = a->prec == SH_PREC_FLOAT;
     json_t *root = json_object();
     root = cli_put(root, "fixture", json_string(a->fixture));
-    root = cli_put(root, "source", json_string(a->cand ? a->cand : sh_rot_method_name(a->method)));
+    root = cli_put(root, "source", json_string(a->cand ? a->cand : a->plugin ? a->plugin : sh_rot_method_name(a->method)));
     root = cli_put(root, "tolerance_kind", json_string(fl ? "float32" : "double"));
     root = cli_put(root, "cases", json_integer(w->fx.ncases));
     root = cli_put(root, "failed", json_integer(v->failed));
-    root = cli_put(root, "pass", json_boolean(v->failed == 0));
-    const double wg = w->got[v->worst_k][v->worst_i], we = fabs(wg - wc->expected[v->worst_i]);
-    root = cli_put(root, "worst_id", json_string(wc->id));
-    root = cli_put(root, "worst_index", json_integer(v->worst_i));
-    root = cli_put(root, "worst_got", isfinite(wg) ? json_real(wg) : json_string("not finite"));
-    root = cli_put(root, "worst_expected", json_real(wc->expected[v->worst_i]));
-    root = cli_put(root, "worst_error", isfinite(we) ? json_real(we) : json_string("not finite"));
-    root = cli_put(root, "worst_tolerance", json_real(fl ? wc->tol_float : wc->tol_double));
+    root = cli_put(root, "pass", json_boolean(v->failed == 0 && !w->prep.failed));
+    if (v->worst_case >= 0) {
+        const sh_fixture_case *wc = &w->fx.cases[v->worst_case];
+        const double wg = w->got[v->worst_case][v->worst_index];
+        root = cli_put(root, "worst_id", json_string(wc->id));
+        root = cli_put(root, "worst_index", json_integer(v->worst_index));
+        root = cli_put(root, "worst_got", isfinite(wg) ? json_real(wg) : json_string("not finite"));
+        root = cli_put(root, "worst_expected", json_real(wc->expected[v->worst_index]));
+        root = cli_put(root, "worst_error", isfinite(v->worst_error) ? json_real(v->worst_error) : json_string("not finite"));
+        root = cli_put(root, "worst_tolerance", json_real(v->worst_tolerance));
+    }
     /* after the fields above, so that their CSV columns keep their places */
     int have_cs = 0, have_nocs = 0;
     for (int k = 0; k < w->fx.ncases; k++) {
+        if (w->not_run[k]) continue;
         have_cs |= w->fx.cases[k].conv == SH_CS;
         have_nocs |= w->fx.cases[k].conv == SH_NOCS;
     }
@@ -312,65 +383,30 @@ static json_t *result(const verify_args *a, int have_kernel, const verify_work *
     if (a->simulate != SIM_NONE) root = cli_put(root, "simulated", json_string(t_short[a->simulate]));
     if (have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(a->kernel)));
     if (a->matrix_input) root = cli_put(root, "input", json_string("matrix"));
-    if (w->nskip) root = cli_put(root, "skipped", json_integer(w->nskip));
+    put_skipped(w, &root);
+    if (a->plugin) {
+        root = cli_put(root, "abi", json_string(abi_choices[a->abi]));
+        root = cli_put(root, "kernel_failure", w->prep.failed ? json_string(w->prep.failure) : json_null());
+        root = cli_put(root, "kernel_errors", json_integer(w->prep.errors));
+    }
     return root;
 }
 
-/* The mistake that explains every case it changes (at the float32
- * tolerance) and the most of them; -1 if none.  *n_ok, *n_seen: its counts. */
-static int best_mistake(verify_work *w, int *n_ok, int *n_seen)
+static void diag_progress(void *ctx, long done, long total)
 {
-    double *y = malloc((size_t)w->maxn * sizeof *y);
-    if (!y) return -2;
-    int best = -1;
-    *n_ok = *n_seen = 0;
-    for (int t = 0; t < T_COUNT; t++) {
-        /* β negated is the convention flip itself: d(-β) = S d(β) S with
-         * S = (-1)^m, and S commutes with the z rotations (see README) */
-        if (t == T_BETA) continue;
-        int ok = 0, seen = 0;
-        for (int k = 0; k < w->fx.ncases; k++) {
-            const fx_case *c = &w->fx.cases[k];
-            int at;
-            if (w->skip[k]) continue;
-            if (transformed((transform)t, c, y, w->tmp)) continue;
-            /* a transformation that changes nothing (β = 0, say) proves nothing */
-            if (max_err(y, c->expected, c->n, &at) <= c->tol_float) continue;
-            seen++;
-            if (max_err(w->got[k], y, c->n, &at) <= c->tol_float) ok++;
-            cli_progress_step(&w->prog, t * w->fx.ncases + k + 1, T_COUNT * w->fx.ncases,
-                              "cases tried under the known mistakes (--diagnose)");
-        }
-        /* the transformation must explain every case it changes */
-        if (ok > *n_ok && ok == seen) *n_ok = ok, best = t, *n_seen = seen;
-    }
-    free(y);
-    return best;
+    cli_progress_step(ctx, (int)done, (int)total, "cases tried under the known mistakes (--diagnose)");
 }
 
 /* --diagnose on a failure: the likely cause, into root, and one line on
  * stderr saying what its counts count. */
-static int diagnose(const verify_args *a, verify_work *w, const verdict *v, json_t **root)
+static int diagnose(const verify_args *a, verify_work *w, const sh_verdict *v, json_t **root)
 {
-    /* float precision only: every case within its float32 tolerance */
-    int float_ok = 0, best = -1, best_n = 0, best_seen = 0;
-    for (int k = 0; k < w->fx.ncases; k++) {
-        int at;
-        if (w->skip[k]) continue;
-        if (max_err(w->got[k], w->fx.cases[k].expected, w->fx.cases[k].n, &at) <= w->fx.cases[k].tol_float) float_ok++;
-    }
-    const char *cause = NULL;
-    if (a->prec == SH_PREC_DOUBLE && float_ok == w->fx.ncases - w->nskip) {
-        cause = "float precision only: every case matches within its float32 tolerance";
-        best_n = best_seen = float_ok;
-    } else if ((best = best_mistake(w, &best_n, &best_seen)) == -2) {
-        return cli_fail("out of memory");
-    } else if (best >= 0) {
-        cause = t_name[best];
-    }
-    *root = cli_put(*root, "diagnosis", json_string(cause ? cause : "no known transformation explains the mismatch"));
-    *root = cli_put(*root, "diagnosis_matches", json_integer(best_n));
-    *root = cli_put(*root, "diagnosis_checked", json_integer(best_seen));
+    sh_diagnosis d;
+    if (sh_verify_diagnose(&w->fx, w->not_run, w->got, a->prec, diag_progress, &w->prog, &d))
+        return cli_fail_status(SH_ENOMEM);
+    *root = cli_put(*root, "diagnosis", json_string(d.cause));
+    *root = cli_put(*root, "diagnosis_matches", json_integer(d.matches));
+    *root = cli_put(*root, "diagnosis_checked", json_integer(d.checked));
     *root = cli_put(*root, "diagnosis_tolerance", json_string("float32"));
     /* "failed" counts cases beyond the tolerance_kind tolerance (double:
      * 1e-13); the diagnosis compares at the float32 tolerance, so the two
@@ -380,17 +416,36 @@ static int diagnose(const verify_args *a, verify_work *w, const verdict *v, json
             "each case's float32 tolerance: diagnosis_checked = the %d cases the mistake changes "
             "by more than that, diagnosis_matches = the %d of them the candidate equals (%d of the "
             "%d failed cases are within their float32 tolerance: too close to tell)\n",
-            a->prec == SH_PREC_FLOAT ? "float32" : "double", best_seen, best_n, v->failed_near, v->failed);
+            a->prec == SH_PREC_FLOAT ? "float32" : "double", d.checked, d.matches, v->failed_near, v->failed);
     return 0;
 }
 
-/* The outputs under test: the candidate's, or shlab's method's (and then
- * the candidate file it writes with --emit-candidate). */
+/* The outputs under test: the candidate's, the plug-in's, or shlab's
+ * method's (and then the candidate file it writes with --emit-candidate). */
 static int outputs(const verify_args *a, const char *emit_tmp, verify_work *w)
 {
-    if (a->cand) return fx_load_candidate(a->cand, &w->fx, w->got);
+    if (a->plugin) {
+        int rc = run_plugin(a, w);
+        /* a candidate file holds numbers: refuse what JSON cannot carry */
+        for (int k = 0; !rc && a->emit && k < w->fx.ncases; k++)
+            for (int i = 0; !rc && !w->not_run[k] && i < w->fx.cases[k].n; i++)
+                if (!isfinite(w->got[k][i]))
+                    rc = cli_fail("verify: case '%s' has non-finite outputs (the kernel failed there): not "
+                                  "written to --emit-candidate, which holds numbers only", w->fx.cases[k].id);
+        return !rc && a->emit ? write_candidate(emit_tmp, a->emit, &w->fx, w->got, w->not_run) : rc;
+    }
+    if (a->cand) {
+        if (count_skipped(a, w, "--orders, --cases")) return CLI_EXIT_USAGE;
+        /* the cases asked for must be there; the others may be */
+        unsigned char *want = malloc((size_t)w->fx.ncases + 1);
+        if (!want) return cli_fail("out of memory");
+        for (int k = 0; k < w->fx.ncases; k++) want[k] = !w->not_run[k];
+        const int st = sh_fixture_load_candidate(a->cand, &w->fx, want, w->got, NULL);
+        free(want);
+        return st ? cli_fail_status(SH_EFORMAT) : 0;
+    }
     int rc = run_method(a, w);
-    if (!rc && a->emit) rc = write_candidate(emit_tmp, a->emit, &w->fx, w->got);
+    if (!rc && a->emit) rc = write_candidate(emit_tmp, a->emit, &w->fx, w->got, w->not_run);
     return rc;
 }
 
@@ -402,7 +457,15 @@ static int run(int argc, char **argv)
     if (rc >= 0) return rc;
     if (!a.fixture) return cli_fail("verify: --fixture F is required");
     /* --method auto is no method (the default) */
-    if (!a.cand == (a.method == SH_ROT_AUTO)) return cli_fail("verify: give exactly one of --candidate and --method");
+    if ((a.cand != NULL) + (a.plugin != NULL) + (a.method != SH_ROT_AUTO) != 1)
+        return cli_fail("verify: give exactly one of --candidate, --plugin and --method");
+    if (a.plugin && !cli_given(&seen, "abi"))
+        return cli_fail("verify: --plugin needs --abi NAME (the function's type, shlab/kernel.h)");
+    if (a.plugin && !cli_given(&seen, "precision")) a.prec = sh_plugin_abi_precision((sh_plugin_abi)a.abi);
+    /* not given: every case, but a plug-in has one convention (cs) */
+    if (!cli_given(&seen, "convention")) a.conv = a.plugin ? SH_CS : -1;
+    if (a.emit && !a.plugin && a.method == SH_ROT_AUTO)
+        return cli_fail("verify: --emit-candidate needs --method or --plugin");
     const char *emit_tmp = NULL;
     if (a.emit && cli_out_open("verify", a.emit, &emit_tmp)) return CLI_EXIT_USAGE;
     verify_work w;
@@ -413,7 +476,8 @@ static int run(int argc, char **argv)
         work_free(&w);
         return rc;
     }
-    const verdict v = judge(&a, &w);
+    sh_verdict v;
+    sh_verify_judge(&w.fx, w.not_run, w.got, a.prec, &v);
     json_t *root = result(&a, cli_given(&seen, "kernel"), &w, &v);
     if (a.diagnose && v.failed && (rc = diagnose(&a, &w, &v, &root))) {
         json_decref(root);
@@ -421,15 +485,21 @@ static int run(int argc, char **argv)
         return rc;
     }
     const int simulated = a.simulate != SIM_NONE;
+    if (w.prep.failed) fprintf(stderr, "verify: %s\n", w.prep.failure);
+    if (w.prep.errors)
+        fprintf(stderr, "verify: the kernel returned a failure code (not SHLAB_KERNEL_OK or _UNSUPPORTED) on %d "
+                        "cases: they fail\n", w.prep.errors);
     if (v.failed)
-        fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n", v.failed,
-                w.fx.ncases - w.nskip, a.prec == SH_PREC_FLOAT ? "float32" : "double", w.fx.cases[v.worst_k].id, v.worst_i,
+        fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n", v.failed, v.run,
+                a.prec == SH_PREC_FLOAT ? "float32" : "double", w.fx.cases[v.worst_case].id, v.worst_index,
                 simulated ? " (the simulated mistake, as asked)" : "");
+    if (w.nskip && !a.quiet && (a.cand || a.plugin))
+        fprintf(stderr, "verify: %d of the %d cases not run\n", w.nskip, w.fx.ncases);
     work_free(&w);
     rc = cli_emit(root, (cli_format)a.fmt);
     /* --simulate asks for a wrong kernel's outputs: they are meant to fail,
      * and the command succeeded once the candidate file is written */
-    return rc == 0 && v.failed && !simulated ? CLI_EXIT_CHECK : rc;
+    return rc == 0 && (v.failed || w.prep.failed) && !simulated ? CLI_EXIT_CHECK : rc;
 }
 
 const cli_command cmd_verify = {"verify", run, "check a kernel's rotated coefficients against golden fixtures", &verify_decl};

@@ -196,6 +196,41 @@ int sh_bench_instructions(const sh_bench_entry *e, int ne, long n, const char *c
                           double *ins);
 
 
+/* ---- plug-in kernels (plugin.c) ---------------------------------------------
+ * A user's rotation kernel in a shared library (shlab/kernel.h), run in a
+ * child process with a time limit and guarded buffers (plugin.c says how):
+ * a crash, a hang or an out-of-bounds write is reported, never suffered. */
+typedef enum {
+    SH_PLUGIN_MATRIX_D, SH_PLUGIN_MATRIX_F, SH_PLUGIN_QUAT_D, SH_PLUGIN_QUAT_F, SH_PLUGIN_EULER_D,
+    SH_PLUGIN_EULER_F, SH_PLUGIN_MATRIX_BATCH_D, SH_PLUGIN_MATRIX_BATCH_F, SH_PLUGIN_ABI_COUNT
+} sh_plugin_abi;
+const char *sh_plugin_abi_name(sh_plugin_abi a);
+int sh_plugin_abi_parse(const char *s, sh_plugin_abi *out);
+/* The arithmetic the ABI's type implies (…-f: float). */
+sh_precision sh_plugin_abi_precision(sh_plugin_abi a);
+typedef struct {
+    char lib[1024], symbol[256];
+    sh_plugin_abi abi;
+    double timeout_s; /* wall and CPU seconds for the whole run (default 10) */
+} sh_plugin;
+/* "LIB.so:SYMBOL" (a bare file name is taken in the current directory);
+ * the file must be a regular file.  Nothing is loaded here. */
+int sh_plugin_parse(const char *spec, sh_plugin_abi abi, sh_plugin *out);
+/* What happened to each case of a fixture run. */
+enum { SH_PLUGIN_CASE_NOT_RUN = 0, SH_PLUGIN_CASE_RAN, SH_PLUGIN_CASE_DECLINED, SH_PLUGIN_CASE_ERROR };
+typedef struct {
+    int ran, declined, errors; /* cases: returned OK, SHLAB_KERNEL_UNSUPPORTED, another code */
+    int failed;                /* the run ended early: failure says why */
+    int open_failed;           /* ... because the library or symbol did not load */
+    int current;               /* the case running when it ended (−1: none) */
+    char failure[320];
+} sh_plugin_report;
+/* Every case not skipped through the kernel: got[k] (outputs; NaN where it
+ * returned a failure code), status[k] (SH_PLUGIN_CASE_*).  SH_OK whatever
+ * the kernel did (rep says); SH_EIO if no child process could be started. */
+int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsigned char *skip, double **got,
+                          unsigned char *status, sh_plugin_report *rep);
+
 /* ---- the planner's choice (planner.c) ----------------------------------------
  * The path a user runs: how the rotation arrives (matrix, quaternion or
  * Euler angles) and how many vectors one call rotates. */

@@ -23,14 +23,11 @@
 
 #include "core/shlab_internal.h"
 
-/* Built with AddressSanitizer (gcc's or clang's): the sandbox limits memory
- * another way there, and the budget allows for the sanitizer's own use. */
-#if defined(__SANITIZE_ADDRESS__)
+/* Built with AddressSanitizer: the sandbox limits memory another way there,
+ * and the budget allows for the sanitizer's own use (core/sandbox.h). */
+#include "core/sandbox.h"
+#ifdef SH_SANDBOX_ASAN
 #define SH_MESH_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SH_MESH_ASAN 1
-#endif
 #endif
 
 /* ------------------------------------------------------------------ guard */

@@ -3,337 +3,77 @@
  *
  * assimp can abort (ai_assert), loop forever or allocate without bound on a
  * file the guard let through; none of that may take the calling process
- * down.  So the import runs in a child made by fork(2):
- *
- *  - before the fork every signal is blocked, so that no handler of the
- *    parent (the CLI's, which removes its temporary files) runs in the child;
- *    the child resets every signal to its default action, unblocks them, asks
- *    to be killed when its parent dies (Linux: PR_SET_PDEATHSIG), reads
- *    /dev/null as stdin, writes stdout to /dev/null and stderr to a pipe the
- *    parent reads (the first line names an assertion or a sanitizer report),
- *    and leaves by _exit(2): no atexit handler, no stdio flush of the
- *    parent's buffers, and so no LeakSanitizer report of what the importer
- *    leaked;
- *  - limits (setrlimit): RLIMIT_CPU (soft at the budget, hard one second
- *    later: SIGXCPU then SIGKILL), RLIMIT_CORE 0 (an abort dumps nothing),
- *    RLIMIT_FSIZE 0 (it writes no file), and RLIMIT_AS at its address space
- *    at the fork plus the memory budget: an allocation beyond it fails
- *    (assimp catches std::bad_alloc and says so).  Under AddressSanitizer an
- *    address-space limit cannot be used: the shadow memory and allocator
- *    regions take terabytes of it (reserved at start-up), and even a limit
- *    relative to them fails badly — the allocator's out-of-memory report
- *    itself needs memory, fails, and the process hangs in the sanitizer's
- *    CHECK handler until killed.  There the child counts instead: a malloc
- *    hook (__sanitizer_install_malloc_and_free_hooks) reads the allocator's
- *    live bytes (__sanitizer_get_current_allocated_bytes) after every
- *    allocation and leaves with CHILD_OVER_MEMORY once they pass the budget
- *    (an allocation is only reserved address space until touched, so one
- *    huge request costs nothing before the hook sees it);
- *  - the parent polls both pipes until the wall-clock limit, feeds the
- *    result pipe to the frame reader (mesh_frame.c), which checks every count
- *    against the bounds before allocating, and kills the child (SIGKILL) at
- *    the limit or on the first broken rule; it always reaps the child;
- *  - while it waits the parent also reads the child's resident memory
- *    (/proc/PID/statm) every 10 ms and kills it once it has grown by more
- *    than the budget over the parent's own at the fork (their pages are
- *    shared until written): the limit on real memory, which under
- *    AddressSanitizer also catches what the malloc hook cannot — one huge
- *    allocation, whose shadow the sanitizer fills (an eighth of its size)
- *    before the hook is called.
- *
- * The child is a copy of a process that may run threads (OpenMP, Embree):
- * only the forking thread exists in it.  glibc's malloc is safe after fork;
- * the child does nothing but the import and writing its pipe. */
+ * down.  So the import runs in the sandbox (src/core/sandbox.c: a child with
+ * CPU, memory and wall-clock limits; the reasons are listed there), which
+ * sends the mesh back as a frame (mesh_frame.c) that the parent checks
+ * against the guard's bounds as it arrives. */
 #include "scene/mesh_internal.h"
+#include "core/sandbox.h"
 
-#include <errno.h>
-#include <fcntl.h>
-#include <math.h>
-#include <poll.h>
 #include <signal.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
-#ifdef __linux__
-#include <sys/prctl.h>
-#endif
 
-#ifndef NSIG
-#define NSIG 65
-#endif
+/* the child's exit status when its pipe broke */
+enum { CHILD_WRITE_FAILED = SH_SANDBOX_CHILD_FIRST_FREE };
 
-/* the child's exit statuses besides 0 */
-enum { CHILD_ORPHAN = 3, CHILD_WRITE_FAILED = 4, CHILD_OVER_MEMORY = 5 };
+typedef struct {
+    const sh_mesh_job *job;
+    sh_mesh_frame_reader fr;
+} mesh_run;
 
-#ifdef SH_MESH_ASAN
-/* AddressSanitizer's allocator interface (sanitizer/allocator_interface.h,
- * which gcc does not install; libasan exports the functions) */
-size_t __sanitizer_get_current_allocated_bytes(void);
-int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void *, size_t),
-                                              void (*free_hook)(const volatile void *));
-static size_t asan_limit;
-static void asan_free_hook(const volatile void *p) {} /* the interface takes both hooks or none */
-static void asan_malloc_hook(const volatile void *p, size_t size)
+/* In the child: the import, its result as a frame on fd. */
+static int import_child(void *arg, int fd)
 {
-    if (__sanitizer_get_current_allocated_bytes() > asan_limit) {
-        static const char msg[] = "over the memory limit (AddressSanitizer's count of live bytes)\n";
-        if (write(2, msg, sizeof msg - 1) < 0) {}
-        _exit(CHILD_OVER_MEMORY);
-    }
-}
-#endif
-
-/* Monotonic time in seconds. */
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* Field k (0: size, 1: resident) of /proc/PID/statm in bytes (pid 0: this
- * process), or -1. */
-static long long statm(pid_t pid, int k)
-{
-    char path[64], buf[128];
-    if (pid) snprintf(path, sizeof path, "/proc/%d/statm", (int)pid);
-    else snprintf(path, sizeof path, "/proc/self/statm");
-    const int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return -1;
-    const ssize_t n = read(fd, buf, sizeof buf - 1);
-    close(fd);
-    if (n <= 0) return -1;
-    buf[n] = '\0';
-    char *p = buf;
-    for (int i = 0; i < k; i++) {
-        strtoll(p, &p, 10);
-    }
-    return strtoll(p, NULL, 10) * (long long)sysconf(_SC_PAGESIZE);
-}
-
-/* setrlimit, failure ignored (a limit the system refuses is not ours to raise). */
-static void set_limit(int which, rlim_t soft, rlim_t hard)
-{
-    struct rlimit rl = {soft, hard};
-    setrlimit(which, &rl);
-}
-
-/* The child: never returns. */
-static void child(const sh_mesh_job *job, int wfd, int efd, int devnull, pid_t parent)
-{
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = SIG_DFL;
-    for (int s = 1; s < NSIG; s++) sigaction(s, &sa, NULL); /* SIGKILL, SIGSTOP: refused, harmless */
-    sigset_t none;
-    sigemptyset(&none);
-    sigprocmask(SIG_SETMASK, &none, NULL);
-#ifdef __linux__
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(CHILD_ORPHAN); /* the parent died before the request */
-#endif
-    if (devnull >= 0) {
-        dup2(devnull, 0);
-        dup2(devnull, 1);
-    } else {
-        close(0);
-        close(1);
-    }
-    dup2(efd, 2);
-    set_limit(RLIMIT_CORE, 0, 0);
-    set_limit(RLIMIT_FSIZE, 0, 0);
-    const rlim_t cpu = (rlim_t)ceil(job->cpu_seconds > 0 ? job->cpu_seconds : 1);
-    set_limit(RLIMIT_CPU, cpu, cpu + 1);
-    if (job->mem_bytes > 0) {
-#ifdef SH_MESH_ASAN
-        asan_limit = __sanitizer_get_current_allocated_bytes() + (size_t)job->mem_bytes;
-        __sanitizer_install_malloc_and_free_hooks(asan_malloc_hook, asan_free_hook);
-#else
-        const long long vm = statm(0, 0);
-        if (vm > 0) set_limit(RLIMIT_AS, (rlim_t)(vm + job->mem_bytes), (rlim_t)(vm + job->mem_bytes));
-#endif
-    }
+    const sh_mesh_job *job = ((const mesh_run *)arg)->job;
     if (job->raw) {
-        job->raw(job->arg, wfd);
-        _exit(0);
+        job->raw(job->arg, fd);
+        return 0;
     }
     sh_mesh m;
     sh_mesh_report rep;
     memset(&m, 0, sizeof m);
     memset(&rep, 0, sizeof rep);
     const int st = job->run(job->arg, &m, &rep);
-    _exit(sh__mesh_frame_write(wfd, st, &m, &rep) ? CHILD_WRITE_FAILED : 0);
+    return sh__mesh_frame_write(fd, st, &m, &rep) ? CHILD_WRITE_FAILED : 0;
 }
 
-/* Reap the child (its wait status and resource use); past the deadline
- * kill it first.  1 if the deadline killed it, else 0. */
-static int reap(pid_t pid, double deadline, int *status, struct rusage *ru)
+/* In the parent: each chunk of the frame, checked as it arrives. */
+static int import_feed(void *fctx, const unsigned char *bytes, size_t n)
 {
-    double nap = 50e-6;
-    memset(ru, 0, sizeof *ru);
-    *status = 0;
-    for (;;) {
-        const pid_t r = wait4(pid, status, WNOHANG, ru);
-        if (r == pid) return 0;
-        if (r < 0 && errno != EINTR) {
-            *status = -1;
-            return 0;
-        }
-        if (now_s() > deadline) {
-            kill(pid, SIGKILL);
-            while (wait4(pid, status, 0, ru) < 0 && errno == EINTR) {}
-            return 1;
-        }
-        struct timespec ts = {0, (long)(nap * 1e9)};
-        nanosleep(&ts, NULL);
-        if (nap < 5e-3) nap *= 2;
-    }
+    return sh__mesh_frame_feed(&((mesh_run *)fctx)->fr, bytes, n) != 0;
 }
 
-/* The first line of what the child wrote to stderr, without a sanitizer's
- * "==PID==" prefix; "" if none. */
-static const char *first_line(char *err, size_t n)
+/* The import's outcome: the first failure that explains it, else the mesh
+ * into out. */
+static int import_result(const sh_mesh_job *job, mesh_run *mr, const sh_sandbox_result *r, sh_mesh *out,
+                         sh_mesh_report *rep)
 {
-    err[n] = '\0';
-    char *s = err;
-    while (*s == '\n' || *s == ' ') s++;
-    if (s[0] == '=' && s[1] == '=') {
-        char *e = strstr(s + 2, "==");
-        if (e) s = e + 2;
-    }
-    char *nl = strchr(s, '\n');
-    if (nl) *nl = '\0';
-    if (strlen(s) > 200) strcpy(s + 197, "...");
-    return s;
-}
-
-/* Mark fd close-on-exec (a program another thread starts must not hold the pipes open). */
-static int set_cloexec(int fd) { return fcntl(fd, F_SETFD, FD_CLOEXEC); }
-
-/* The result pipe and the stderr pipe, close-on-exec. */
-static int open_pipes(int res[2], int err[2])
-{
-    if (pipe(res) || pipe(err)) {
-        const int e = errno;
-        if (res[0] >= 0) close(res[0]), close(res[1]);
-        return sh_error(SH_EIO, "cannot start the mesh importer: pipe: %s", strerror(e));
-    }
-    for (int k = 0; k < 2; k++) set_cloexec(res[k]), set_cloexec(err[k]);
-    return SH_OK;
-}
-
-/* Fork the child with every signal blocked (see the top of this file); in
- * the parent keep the pipes' read ends.  *rss0: the parent's resident
- * memory at the fork (−1 without a memory budget), *t0: the time. */
-static int start_child(const sh_mesh_job *job, int res[2], int err[2], pid_t *pid, long long *rss0, double *t0)
-{
-    const int devnull = open("/dev/null", O_RDWR | O_CLOEXEC);
-    sigset_t all, old;
-    sigfillset(&all);
-    pthread_sigmask(SIG_SETMASK, &all, &old);
-    const pid_t parent = getpid();
-    *rss0 = job->mem_bytes > 0 ? statm(0, 1) : -1;
-    *t0 = now_s();
-    *pid = fork();
-    if (*pid == 0) child(job, res[1], err[1], devnull, parent);
-    const int fork_errno = errno;
-    pthread_sigmask(SIG_SETMASK, &old, NULL);
-    close(res[1]);
-    close(err[1]);
-    if (devnull >= 0) close(devnull);
-    if (*pid < 0) {
-        close(res[0]);
-        close(err[0]);
-        return sh_error(SH_EIO, "cannot start the mesh importer: fork: %s", strerror(fork_errno));
-    }
-    return SH_OK;
-}
-
-/* What the parent saw of the running child. */
-typedef struct {
-    sh_mesh_frame_reader fr; /* the result pipe's frame */
-    char errbuf[1024];       /* the start of what it wrote to stderr */
-    size_t errlen;
-    int fds[2];              /* result and stderr pipes, −1 once closed */
-    int bad, over;           /* the frame broke a rule; it outgrew its memory */
-} child_watch;
-
-/* Poll both pipes until both are closed, the deadline, a broken frame or
- * the child's resident memory more than its budget above rss0 (read every
- * 10 ms). */
-static void watch_child(const sh_mesh_job *job, pid_t pid, long long rss0, double deadline, child_watch *w)
-{
-    unsigned char chunk[1 << 16];
-    while ((w->fds[0] >= 0 || w->fds[1] >= 0) && !w->bad && !w->over) {
-        const double left = deadline - now_s();
-        if (left <= 0) break;
-        struct pollfd pf[2] = {{w->fds[0], POLLIN, 0}, {w->fds[1], POLLIN, 0}};
-        const int k = poll(pf, 2, rss0 >= 0 && left > 0.01 ? 10 : (int)ceil(left * 1000));
-        if (rss0 >= 0) {
-            const long long r = statm(pid, 1);
-            w->over = r > 0 && r - rss0 > job->mem_bytes;
-        }
-        if (k < 0 && errno == EINTR) continue;
-        if (k < 0) break;
-        for (int i = 0; i < 2; i++) {
-            if (w->fds[i] < 0 || !(pf[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-            const ssize_t r = read(w->fds[i], chunk, sizeof chunk);
-            if (r < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-            if (r <= 0) {
-                close(w->fds[i]);
-                w->fds[i] = -1;
-            } else if (i == 0) {
-                w->bad = sh__mesh_frame_feed(&w->fr, chunk, (size_t)r) != 0;
-            } else {
-                const size_t take = w->errlen + (size_t)r < sizeof w->errbuf - 1 ? (size_t)r
-                                                                                  : sizeof w->errbuf - 1 - w->errlen;
-                memcpy(w->errbuf + w->errlen, chunk, take);
-                w->errlen += take;
-            }
-        }
-    }
-}
-
-/* The import's outcome, from what was watched and the child's wait status
- * (status; −1 if it could not be reaped) and resource use: the first
- * failure that explains it, else the mesh into out. */
-static int import_result(const sh_mesh_job *job, child_watch *w, int unfinished, int late, int status,
-                         const struct rusage *ru, sh_mesh *out, sh_mesh_report *rep)
-{
-    const double cpu = (double)ru->ru_utime.tv_sec + 1e-6 * (double)ru->ru_utime.tv_usec + (double)ru->ru_stime.tv_sec +
-                       1e-6 * (double)ru->ru_stime.tv_usec;
-    const int complete = !w->bad && !unfinished && !w->over && sh__mesh_frame_complete(&w->fr);
-    const char *line = first_line(w->errbuf, w->errlen);
-    const double cpu_limit = ceil(job->cpu_seconds > 0 ? job->cpu_seconds : 1);
-    const sh_mesh_frame_reader *fr = &w->fr;
-    if (w->over || (status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == CHILD_OVER_MEMORY))
+    const char *line = r->first_line;
+    const sh_mesh_frame_reader *fr = &mr->fr;
+    switch (r->outcome) {
+    case SH_SANDBOX_MEMORY:
         return sh_error(SH_EFORMAT, "the importer went over its memory limit of %lld MB (stopped)", job->mem_bytes >> 20);
-    if (unfinished || late)
+    case SH_SANDBOX_WALL:
         return sh_error(SH_EFORMAT, "the importer did not finish within %g s (stopped)", job->wall_seconds);
-    if (w->bad) return sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr->why);
-    if (status >= 0 && WIFSIGNALED(status)) {
-        const int sig = WTERMSIG(status);
-        if (sig == SIGXCPU || (sig == SIGKILL && cpu >= cpu_limit - 0.05))
-            return sh_error(SH_EFORMAT, "the importer used more than its %g s of CPU time (stopped)", cpu_limit);
-        return sh_error(SH_EFORMAT, "the importer (assimp) was killed by signal %d (%s)%s%s", sig, strsignal(sig),
-                        *line ? ": " : "", line);
+    case SH_SANDBOX_BROKEN: return sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr->why);
+    case SH_SANDBOX_CPU:
+        return sh_error(SH_EFORMAT, "the importer used more than its %g s of CPU time (stopped)", r->cpu_limit);
+    case SH_SANDBOX_SIGNAL:
+        return sh_error(SH_EFORMAT, "the importer (assimp) was killed by signal %d (%s)%s%s", r->signal,
+                        strsignal(r->signal), *line ? ": " : "", line);
+    case SH_SANDBOX_DONE: break;
     }
-    if (status < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        return sh_error(SH_EFORMAT, "the importer exited with status %d%s%s", status < 0 ? -1 : WEXITSTATUS(status),
-                        *line ? ": " : "", line);
-    if (!complete) return sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr->why);
+    if (r->exit_status != 0)
+        return sh_error(SH_EFORMAT, "the importer exited with status %d%s%s", r->exit_status, *line ? ": " : "", line);
+    if (!sh__mesh_frame_complete(&mr->fr)) return sh_error(SH_EFORMAT, "the importer's answer broke the protocol: %s", fr->why);
     if (fr->hdr.kind == SH_FRAME_ERROR) {
         const int oom = strstr(fr->msg, "bad_alloc") != NULL;
         if (oom && job->mem_bytes > 0)
             return sh_error(fr->hdr.status, "%s (over the importer's memory limit of %lld MB)", fr->msg, job->mem_bytes >> 20);
         return sh_error(fr->hdr.status, "%s", fr->msg);
     }
-    *out = w->fr.mesh;
-    memset(&w->fr.mesh, 0, sizeof w->fr.mesh);
+    *out = mr->fr.mesh;
+    memset(&mr->fr.mesh, 0, sizeof mr->fr.mesh);
     rep->submeshes = fr->hdr.submeshes;
     rep->skipped_primitives = fr->hdr.skipped;
     return SH_OK;
@@ -342,25 +82,14 @@ static int import_result(const sh_mesh_job *job, child_watch *w, int unfinished,
 int sh__mesh_sandbox(const sh_mesh_job *job, sh_mesh *out, sh_mesh_report *rep)
 {
     memset(out, 0, sizeof *out);
-    int res[2] = {-1, -1}, err[2] = {-1, -1};
-    int st = open_pipes(res, err);
-    if (st) return st;
-    pid_t pid;
-    long long rss0;
-    double t0;
-    if ((st = start_child(job, res, err, &pid, &rss0, &t0))) return st;
-    const double deadline = t0 + (job->wall_seconds > 0 ? job->wall_seconds : 1);
-    child_watch w = {.errlen = 0, .fds = {res[0], err[0]}, .bad = 0, .over = 0};
-    sh__mesh_frame_begin(&w.fr, job->max_vertices, job->max_triangles);
-    watch_child(job, pid, rss0, deadline, &w);
-    const int unfinished = w.fds[0] >= 0 && !w.bad && !w.over; /* the deadline came first */
-    if (w.bad || unfinished || w.over) kill(pid, SIGKILL);
-    for (int i = 0; i < 2; i++)
-        if (w.fds[i] >= 0) close(w.fds[i]);
-    int status;
-    struct rusage ru;
-    const int late = reap(pid, deadline, &status, &ru);
-    st = import_result(job, &w, unfinished, late, status, &ru, out, rep);
-    sh__mesh_frame_end(&w.fr);
+    mesh_run mr = {.job = job};
+    sh__mesh_frame_begin(&mr.fr, job->max_vertices, job->max_triangles);
+    const sh_sandbox_job sj = {.child = import_child, .feed = import_feed, .arg = &mr, .fctx = &mr,
+                               .cpu_seconds = job->cpu_seconds, .wall_seconds = job->wall_seconds,
+                               .mem_bytes = job->mem_bytes, .what = "the mesh importer"};
+    sh_sandbox_result r;
+    int st = sh__sandbox_run(&sj, &r);
+    if (!st) st = import_result(job, &mr, &r, out, rep);
+    sh__mesh_frame_end(&mr.fr);
     return st;
 }

@@ -1,9 +1,9 @@
 /* fuzz_candidate.c — candidate files of `shlab verify --candidate`
- * (fx_load_candidate_mem) against a small fixed fixture: an order-3 case,
+ * (sh_fixture_load_candidate_mem) against a small fixed fixture: an order-3 case,
  * a band-2 case and an order-1 case with a non-ASCII id. */
 #include "fuzz.h"
 
-static fx_set fx;
+static sh_fixture fx;
 static int loaded;
 
 static const char fixture[] =
@@ -21,7 +21,7 @@ static const char fixture[] =
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (!loaded) {
-        if (fx_load_mem(fixture, sizeof fixture - 1, "built-in fixture", &fx)) abort();
+        if (sh_fixture_load_mem(fixture, sizeof fixture - 1, "built-in fixture", &fx)) abort();
         loaded = 1;
     }
     char *s = fuzz_cstr(data, size);
@@ -30,8 +30,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         out[k] = malloc((size_t)fx.cases[k].n * sizeof **out);
         if (!out[k]) abort();
     }
-    const int rc = fx_load_candidate_mem(s, size, "fuzz.json", &fx, out);
-    FUZZ_CHECK(rc == 0 || rc == CLI_EXIT_USAGE, "exit code %d", rc);
+    /* every case wanted, then only the first (the others may be absent) */
+    static const unsigned char first_only[3] = {1, 0, 0};
+    unsigned char present[3];
+    int rc = sh_fixture_load_candidate_mem(s, size, "fuzz.json", &fx, NULL, out, NULL);
+    FUZZ_CHECK(rc == SH_OK || rc == SH_EFORMAT, "status %d", rc);
+    if (rc) fuzz_check_reason();
+    rc = sh_fixture_load_candidate_mem(s, size, "fuzz.json", &fx, first_only, out, present);
+    FUZZ_CHECK(rc == SH_OK || rc == SH_EFORMAT, "status %d", rc);
+    if (rc) fuzz_check_reason();
     for (int k = 0; k < fx.ncases; k++) free(out[k]);
     free(s);
     return 0;
