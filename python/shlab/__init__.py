@@ -11,6 +11,9 @@ One module per concept; the main calls are re-exported here:
 - rotate:   Rotator, Plan (apply_many, rotate_many), Stream, rotate_band, rotation_matrix
 - verify:   load_fixture, verify, simulate, load_candidate, apply_method, mistakes
 
+Convention detection (identify, src/shlab/convention.h) is not bound yet; it
+will be one more module here, re-exported below like the others.
+
 Every failing shlab call raises :class:`shlab.Error` (message from
 sh_last_error(), ``status`` the code).  Conventions: docs/CONVENTIONS.md
 (installed as share/doc/shlab/CONVENTIONS.md); this package: docs/python.md.
