@@ -435,3 +435,37 @@ bench-peers::
 	@echo "peer_healpix_bench: skipped: HEALPix C++ not found (pkg-config healpix_cxx; Debian libhealpix-cxx-dev, make deps)"
 endif
 # ---- end peer_healpix block --------------------------------------------------
+
+# ---- python: the shlab package (begin python block) --------------------------
+# python/shlab: ctypes over libshlab.so (docs/python.md); tests in python/tests
+# (pytest), run by `make check` against this build's libshlab.so.
+# PYTHON: Debian's interpreter, which has python3-numpy and python3-pytest (a
+# python3 earlier on PATH, pyenv's say, may lack them); else python3 on PATH.
+PYTHON ?= $(shell if [ -x /usr/bin/python3 ]; then echo /usr/bin/python3; else command -v python3 || echo python3; fi)
+# `make install` puts the package in PY_SITE/shlab: for PREFIX=/usr/local (or
+# /usr) a directory that interpreter searches (Debian's python3.11:
+# /usr/local/lib/python3.11/dist-packages); for another PREFIX set
+# PYTHONPATH=PREFIX/lib/python3.X/dist-packages (docs/python.md).  The
+# package records PREFIX/lib (shlab/_install.py) to load libshlab.so.0 from.
+PY_VERSION := $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null || echo 3)
+PY_SITE  ?= $(PREFIX)/lib/python$(PY_VERSION)/dist-packages
+PY_SRC   := $(filter-out python/shlab/_install.py,$(wildcard python/shlab/*.py))
+.PHONY: check-python install-python
+check: check-python
+install: install-python
+ifeq ($(SANITIZE),1)
+check-python:
+	@echo "python tests: skipped under SANITIZE=1 (an ASan libshlab.so loads into python only with libasan in LD_PRELOAD; the plain make check runs them)"
+else
+check-python: $(BUILD)/libshlab.so
+	@if ! $(PYTHON) -c 'import numpy, pytest' 2>/dev/null; then \
+	  echo "python tests: skipped: $(PYTHON) lacks numpy or pytest (Debian python3-numpy python3-pytest; make deps)"; \
+	else SHLAB_LIBRARY=$(abspath $(BUILD))/libshlab.so SHLAB_BUILD=$(BUILD) PYTHON=$(PYTHON) \
+	  $(PYTHON) -m pytest -q -p no:cacheprovider python/tests; fi
+endif
+install-python:
+	install -d $(DESTDIR)$(PY_SITE)/shlab
+	install -m 644 $(PY_SRC) $(DESTDIR)$(PY_SITE)/shlab/
+	printf '"""Written by make install: the directory of libshlab.so.0."""\nLIBDIR = %s\n' "'$(PREFIX)/lib'" \
+	  > $(DESTDIR)$(PY_SITE)/shlab/_install.py
+# ---- end python block --------------------------------------------------------

@@ -12,6 +12,7 @@ PKGS="$PKGS libfftw3-dev"  # fast transforms (FFTW3 in φ)
 # scenes: meshes (assimp), ray casting (Embree 3), PNG pictures
 PKGS="$PKGS libassimp-dev libembree-dev libpng-dev"
 PKGS="$PKGS parallel" # GNU parallel: sweeps run as shards on one machine (README, make check)
+PKGS="$PKGS python3-numpy python3-pytest" # the Python package's tests (python/tests, make check)
 # peers: HEALPix C++ (rotation oracle), libsharp (transform oracle)
 OPT_PKGS="libhealpix-cxx-dev libsharp-dev"
 OPT_PKGS="$OPT_PKGS valgrind" # bench --instructions (make bench-count) and its test
