@@ -148,6 +148,22 @@ $(BUILD)/tests/test_sht_sharp: tests/project/test_sht_sharp.c tests/testutil.h $
 bench-peers:: all
 	$(BUILD)/shlab bench --peers
 # ---- sht (end) ----
+# ---- shaders: Vulkan compute (src/lab/vk_compute.c, shader.c) ----
+# With the Vulkan loader and shaderc (Debian: libvulkan-dev, libshaderc-dev;
+# mesa-vulkan-drivers gives lavapipe, a CPU device), `verify --shader` and
+# `bench --shader` run; without them they say so.  Only the lab (CLI, tests,
+# experiments) uses them: linked as needed, libshlab never depends on them.
+HAVE_VULKAN := $(shell pkg-config --exists vulkan shaderc 2>/dev/null && echo 1)
+ifeq ($(HAVE_VULKAN),1)
+$(BUILD)/obj/lab/vk_compute.o $(BUILD)/obj/lab/shader.o: CFLAGS += -DSHLAB_HAVE_VULKAN
+# Debian's libshaderc.so.1 lacks its glslang dependency (and crashes when
+# given the system's): the combined static archive is linked with glslang's
+# and SPIRV-Tools' static libraries, where the shader code is used.
+SHADERC_LIBS := -l:libshaderc_combined.a -Wl,--start-group -lglslang -lMachineIndependent -lGenericCodeGen \
+  -lOSDependent -lOGLCompiler -lHLSL -lSPIRV -lSPIRV-Tools-opt -lSPIRV-Tools -Wl,--end-group
+LDLIBS   += -Wl,--push-state,--as-needed $(SHADERC_LIBS) $(shell pkg-config --libs vulkan) -Wl,--pop-state
+endif
+# ---- shaders (end) ----
 
 .PHONY: all deps deps-quiet check report examples plots list-experiments experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so

@@ -16,6 +16,9 @@ PKGS="$PKGS python3-numpy python3-pytest" # the Python package's tests (python/t
 # peers: HEALPix C++ (rotation oracle), libsharp (transform oracle)
 OPT_PKGS="libhealpix-cxx-dev libsharp-dev"
 OPT_PKGS="$OPT_PKGS valgrind" # bench --instructions (make bench-count) and its test
+# shaders: the Vulkan loader, lavapipe (a CPU device: mesa-vulkan-drivers),
+# shaderc with glslang and SPIRV-Tools (verify/bench --shader and their tests)
+OPT_PKGS="$OPT_PKGS libvulkan-dev mesa-vulkan-drivers libshaderc-dev glslang-dev spirv-tools"
 missing_of() {
     m=""
     for p in $1; do

@@ -52,11 +52,11 @@ static int write_candidate(const char *tmp, const char *path, const sh_fixture *
 
 
 typedef struct {
-    const char *fixture, *cand, *emit, *plugin, *orders, *cases;
+    const char *fixture, *cand, *emit, *plugin, *shader, *entry, *defines, *abi_s, *orders, *cases;
     sh_rot_method method; /* SH_ROT_AUTO: none (a --candidate or --plugin is verified) */
     sh_precision prec;
     sh_rot_kernel kernel;
-    int abi, conv;
+    int abi, conv, device, device_given;
     double timeout;
     int diagnose, simulate, matrix_input, quiet, fmt;
 } verify_args;
@@ -65,8 +65,6 @@ typedef struct {
 #define NEEDS_FLAG(F, NAME, NEEDS, HELP)                                                           \
     {.type = CLI_T_FLAG, .name = NAME, .off = offsetof(verify_args, F), .help = HELP, .needs = NEEDS}
 
-static const char *const abi_choices[] = {"matrix-d", "matrix-f", "quat-d", "quat-f", "euler-d", "euler-f",
-                                          "matrix-batch-d", "matrix-batch-f", NULL};
 
 static const cli_opt verify_opts[] = {
     CLI_STRING(verify_args, fixture, "fixture", "F", "a fixture file (data/fixtures/rotation/*.json)"),
@@ -78,6 +76,10 @@ static const cli_opt verify_opts[] = {
                "the kernel itself: a function in a shared library\n"
                "(shlab/kernel.h), run on every case in a child\n"
                "process with a time limit and guarded buffers"),
+    CLI_STRING(verify_args, shader, "shader", "FILE",
+               "a compute shader (.glsl, .comp, .hlsl or .spv) under\n"
+               "the convention of docs/check-your-kernel.md, run on\n"
+               "a Vulkan device (lavapipe without a GPU), float32"),
     CLI_CUSTOM(verify_args, method, "method", "M", cli_parse_method, NULL,
                "instead of a candidate, run shlab's method M"),
     CLI_CUSTOM(verify_args, prec, "precision", "P", cli_parse_precision, "double",
@@ -99,15 +101,20 @@ static const cli_opt verify_opts[] = {
              "radians (or the reverse), m-descending order within a\n"
              "band, or float precision only"),
     CLI_FORMAT(verify_args, fmt),
-    CLI_HEADING("Plug-in (--plugin):"),
-    {.type = CLI_T_CHOICE, .name = "abi", .meta = "NAME", .off = offsetof(verify_args, abi), .choices = abi_choices,
-     .def = "matrix-d", .flags = CLI_NO_DEFAULT, .needs = "plugin",
-     .help = "the function's type (shlab/kernel.h): matrix-d |\n"
-             "matrix-f | quat-d | quat-f | euler-d | euler-f |\n"
-             "matrix-batch-d | matrix-batch-f (required)"},
+    CLI_HEADING("Plug-in (--plugin) and shader (--shader):"),
+    {.type = CLI_T_STRING, .name = "abi", .meta = "NAME", .off = offsetof(verify_args, abi_s),
+     .help = "the kernel's type (required): a plug-in's function\n"
+             "(shlab/kernel.h) matrix-d | matrix-f | quat-d | quat-f\n"
+             "| euler-d | euler-f | matrix-batch-d | matrix-batch-f;\n"
+             "a shader's rotation input matrix | quat | euler"},
+    CLI_STRING(verify_args, entry, "entry", "NAME", "a shader's entry point (default main)"),
+    CLI_STRING(verify_args, defines, "define", "NAME[=V],...", "a shader's preprocessor macros"),
+    CLI_INT(verify_args, device, "device", "N", 0, 64, NULL,
+            "the Vulkan device for a shader (default: the first\nGPU, else the first device)"),
     {.type = CLI_T_REAL, .name = "timeout", .meta = "S", .off = offsetof(verify_args, timeout), .lo = 0.1,
-     .hi = 3600, .def = "10", .needs = "plugin",
-     .help = "wall-clock and CPU seconds the kernel may take over\nall cases (then it is stopped and reported)"},
+     .hi = 3600, .def = "10",
+     .help = "seconds a plug-in may take over all cases, or a\n"
+             "shader over one dispatch (then it is stopped and\nreported)"},
     CLI_HEADING("Method (--method):"),
     {.type = CLI_T_CUSTOM, .name = "kernel", .meta = "K", .off = offsetof(verify_args, kernel),
      .parse = cli_parse_kernel, .def = "auto", .needs = "method",
@@ -133,12 +140,14 @@ static const cli_opt verify_opts[] = {
 
 static const cli_cmd verify_decl = {
     .name = "verify",
-    .usage = "verify --fixture F (--candidate C | --plugin LIB.so:SYMBOL --abi NAME | --method M) [OPTIONS]",
+    .usage = "verify --fixture F (--candidate C | --plugin LIB.so:SYMBOL --abi NAME |\n"
+             "       --shader FILE --abi matrix|quat|euler | --method M) [OPTIONS]",
     .about = "Compare rotated coefficients with a golden fixture file (shlab fixtures).\n"
              "A case passes if every |output_i - expected_i| <= the case's double\n"
              "tolerance (--precision float: its float32 tolerance).  Exit 0 if all cases\n"
-             "run pass, 1 if any fails or the plug-in crashed, hung or wrote out of\n"
-             "bounds (the reason is printed), 2 on bad input.\n",
+             "run pass, 1 if any fails or the plug-in or shader crashed, hung or wrote\n"
+             "out of bounds (the reason is printed), 2 on bad input (a shader that does\n"
+             "not compile, no Vulkan device).\n",
     .opts = verify_opts,
     .notes =
         "JSON: {\"fixture\",\"source\",\"tolerance_kind\",\"cases\",\"failed\",\"pass\",\n"
@@ -146,7 +155,8 @@ static const cli_cmd verify_decl = {
         "       \"worst_tolerance\",\"convention\" (cs, nocs, or cs+nocs when the cases run\n"
         "       mix both),[\"method\" (with --method)],[\"kernel\"],[\"input\"],\n"
         "       [\"simulated\" (with --simulate)],[\"skipped\",\"skipped_why\"],\n"
-        "       [\"abi\",\"kernel_failure\",\"kernel_errors\" (with --plugin)],\n"
+        "       [\"abi\",\"kernel_failure\",\"kernel_errors\" (with --plugin, --shader)],\n"
+        "       [\"device\",\"driver\" (with --shader)],\n"
         "       [\"diagnosis\",\"diagnosis_matches\",\"diagnosis_checked\",\"diagnosis_tolerance\"]}\n"
         "\"failed\" counts the cases beyond the tolerance of tolerance_kind (double: 1e-13).\n"
         "\"skipped\" (when non-zero): the cases not run, neither rotated nor judged, and\n"
@@ -175,6 +185,7 @@ typedef struct {
     unsigned char *skip, *not_run;
     int nskip;
     sh_plugin_report prep;
+    char device[256], driver[256]; /* --shader: where it ran */
     cli_progress prog;
 } verify_work;
 
@@ -337,6 +348,44 @@ static int run_plugin(const verify_args *a, verify_work *w)
     return 0;
 }
 
+/* Every case asked for, in the shader's convention, one dispatch per order
+ * on the Vulkan device, in a child process. */
+static int run_shader(const verify_args *a, verify_work *w)
+{
+    sh_shader s;
+    if (cli_input("shader", a->shader)) return CLI_EXIT_USAGE;
+    sh_shader_form form;
+    if (sh_shader_form_parse(a->abi_s, &form)) return cli_fail("verify: --abi: %s", sh_last_error());
+    if (sh_shader_load(a->shader, a->entry, a->defines, &s)) return cli_fail_status(SH_EFORMAT);
+    s.form = form;
+    s.device = a->device_given ? a->device : -1;
+    s.timeout_s = a->timeout;
+    int rc = count_skipped(a, w, "--convention, --orders, --cases");
+    unsigned char *status = rc ? NULL : calloc((size_t)w->fx.ncases + 1, 1);
+    if (!rc && !status) rc = cli_fail("out of memory");
+    sh_shader_report rep;
+    if (!rc && sh_shader_run_fixture(&s, &w->fx, w->not_run, w->got, status, &rep)) rc = cli_fail_status(SH_EIO);
+    sh_shader_free(&s);
+    if (!rc) {
+        w->prep = rep.cases;
+        snprintf(w->device, sizeof w->device, "%s", rep.device);
+        snprintf(w->driver, sizeof w->driver, "%s", rep.driver);
+        for (int k = 0; k < w->fx.ncases; k++) {
+            if (w->skip[k]) continue;
+            if (status[k] == SH_PLUGIN_CASE_DECLINED) w->skip[k] |= SKIP_DECLINED;
+            if (status[k] == SH_PLUGIN_CASE_NOT_RUN) w->skip[k] |= SKIP_UNREACHED;
+        }
+        w->nskip = 0;
+        for (int k = 0; k < w->fx.ncases; k++) w->nskip += (w->not_run[k] = w->skip[k] != 0);
+        /* no device, a pipeline the driver refuses: bad input, as a plug-in that does not load */
+        if (w->prep.open_failed) rc = cli_fail("verify: %s", w->prep.failure);
+        else if (w->nskip == w->fx.ncases && !w->prep.failed)
+            rc = cli_fail("verify: the shader declined every case it was given (status 1)");
+    }
+    free(status);
+    return rc;
+}
+
 static void put_skipped(const verify_work *w, json_t **root)
 {
     if (!w->nskip) return;
@@ -356,7 +405,10 @@ static json_t *result(const verify_args *a, int have_kernel, const verify_work *
     const int have_method = a->method != SH_ROT_AUTO, fl = a->prec == SH_PREC_FLOAT;
     json_t *root = json_object();
     root = cli_put(root, "fixture", json_string(a->fixture));
-    root = cli_put(root, "source", json_string(a->cand ? a->cand : a->plugin ? a->plugin : sh_rot_method_name(a->method)));
+    root = cli_put(root, "source", json_string(a->cand     ? a->cand
+                                               : a->plugin ? a->plugin
+                                               : a->shader ? a->shader
+                                                           : sh_rot_method_name(a->method)));
     root = cli_put(root, "tolerance_kind", json_string(fl ? "float32" : "double"));
     root = cli_put(root, "cases", json_integer(w->fx.ncases));
     root = cli_put(root, "failed", json_integer(v->failed));
@@ -384,10 +436,14 @@ static json_t *result(const verify_args *a, int have_kernel, const verify_work *
     if (have_kernel) root = cli_put(root, "kernel", json_string(sh_rot_kernel_name(a->kernel)));
     if (a->matrix_input) root = cli_put(root, "input", json_string("matrix"));
     put_skipped(w, &root);
-    if (a->plugin) {
-        root = cli_put(root, "abi", json_string(abi_choices[a->abi]));
+    if (a->plugin || a->shader) {
+        root = cli_put(root, "abi", json_string(a->abi_s));
         root = cli_put(root, "kernel_failure", w->prep.failed ? json_string(w->prep.failure) : json_null());
         root = cli_put(root, "kernel_errors", json_integer(w->prep.errors));
+    }
+    if (a->shader) {
+        root = cli_put(root, "device", json_string(w->device));
+        root = cli_put(root, "driver", json_string(w->driver));
     }
     return root;
 }
@@ -424,8 +480,8 @@ static int diagnose(const verify_args *a, verify_work *w, const sh_verdict *v, j
  * method's (and then the candidate file it writes with --emit-candidate). */
 static int outputs(const verify_args *a, const char *emit_tmp, verify_work *w)
 {
-    if (a->plugin) {
-        int rc = run_plugin(a, w);
+    if (a->plugin || a->shader) {
+        int rc = a->plugin ? run_plugin(a, w) : run_shader(a, w);
         /* a candidate file holds numbers: refuse what JSON cannot carry */
         for (int k = 0; !rc && a->emit && k < w->fx.ncases; k++)
             for (int i = 0; !rc && !w->not_run[k] && i < w->fx.cases[k].n; i++)
@@ -457,15 +513,28 @@ static int run(int argc, char **argv)
     if (rc >= 0) return rc;
     if (!a.fixture) return cli_fail("verify: --fixture F is required");
     /* --method auto is no method (the default) */
-    if ((a.cand != NULL) + (a.plugin != NULL) + (a.method != SH_ROT_AUTO) != 1)
-        return cli_fail("verify: give exactly one of --candidate, --plugin and --method");
-    if (a.plugin && !cli_given(&seen, "abi"))
-        return cli_fail("verify: --plugin needs --abi NAME (the function's type, shlab/kernel.h)");
-    if (a.plugin && !cli_given(&seen, "precision")) a.prec = sh_plugin_abi_precision((sh_plugin_abi)a.abi);
+    if ((a.cand != NULL) + (a.plugin != NULL) + (a.shader != NULL) + (a.method != SH_ROT_AUTO) != 1)
+        return cli_fail("verify: give exactly one of --candidate, --plugin, --shader and --method");
+    if ((a.plugin || a.shader) && !a.abi_s)
+        return cli_fail("verify: %s needs --abi NAME (the kernel's type: docs/check-your-kernel.md)",
+                        a.plugin ? "--plugin" : "--shader");
+    if (a.abi_s && !a.plugin && !a.shader) return cli_fail("verify: --abi applies to --plugin and --shader");
+    if (!a.shader && (a.entry || a.defines || cli_given(&seen, "device")))
+        return cli_fail("verify: --entry, --define and --device apply to --shader");
+    if (!a.plugin && !a.shader && cli_given(&seen, "timeout"))
+        return cli_fail("verify: --timeout applies to --plugin and --shader");
+    a.device_given = cli_given(&seen, "device");
+    if (a.plugin) {
+        sh_plugin_abi abi;
+        if (sh_plugin_abi_parse(a.abi_s, &abi)) return cli_fail("verify: --abi: %s", sh_last_error());
+        a.abi = (int)abi;
+        if (!cli_given(&seen, "precision")) a.prec = sh_plugin_abi_precision(abi);
+    }
+    if (a.shader && !cli_given(&seen, "precision")) a.prec = SH_PREC_FLOAT; /* shaders compute in float32 */
     /* not given: every case, but a plug-in has one convention (cs) */
-    if (!cli_given(&seen, "convention")) a.conv = a.plugin ? SH_CS : -1;
-    if (a.emit && !a.plugin && a.method == SH_ROT_AUTO)
-        return cli_fail("verify: --emit-candidate needs --method or --plugin");
+    if (!cli_given(&seen, "convention")) a.conv = a.plugin || a.shader ? SH_CS : -1;
+    if (a.emit && !a.plugin && !a.shader && a.method == SH_ROT_AUTO)
+        return cli_fail("verify: --emit-candidate needs --method, --plugin or --shader");
     const char *emit_tmp = NULL;
     if (a.emit && cli_out_open("verify", a.emit, &emit_tmp)) return CLI_EXIT_USAGE;
     verify_work w;
@@ -487,13 +556,13 @@ static int run(int argc, char **argv)
     const int simulated = a.simulate != SIM_NONE;
     if (w.prep.failed) fprintf(stderr, "verify: %s\n", w.prep.failure);
     if (w.prep.errors)
-        fprintf(stderr, "verify: the kernel returned a failure code (not SHLAB_KERNEL_OK or _UNSUPPORTED) on %d "
-                        "cases: they fail\n", w.prep.errors);
+        fprintf(stderr, "verify: the kernel returned a failure code (not SHLAB_KERNEL_OK or _UNSUPPORTED; a "
+                        "shader's status other than 0 or 1) on %d cases: they fail\n", w.prep.errors);
     if (v.failed)
         fprintf(stderr, "verify: %d of %d cases exceed the %s tolerance; worst: case %s, index %d%s\n", v.failed, v.run,
                 a.prec == SH_PREC_FLOAT ? "float32" : "double", w.fx.cases[v.worst_case].id, v.worst_index,
                 simulated ? " (the simulated mistake, as asked)" : "");
-    if (w.nskip && !a.quiet && (a.cand || a.plugin))
+    if (w.nskip && !a.quiet && (a.cand || a.plugin || a.shader))
         fprintf(stderr, "verify: %d of the %d cases not run\n", w.nskip, w.fx.ncases);
     work_free(&w);
     rc = cli_emit(root, (cli_format)a.fmt);

@@ -261,6 +261,57 @@ typedef struct {
 } sh_plugin_bench_result;
 int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin_bench_result *res);
 
+/* ---- shader kernels (shader.c) ------------------------------------------------
+ * A user's compute shader (GLSL, HLSL or SPIR-V) under the convention of
+ * docs/check-your-kernel.md ("Shaders"), compiled by shaderc's library and
+ * run on a Vulkan device (lavapipe, a CPU device, where there is no GPU) in
+ * the sandbox.  Built without Vulkan, the calls are SH_ENOTSUP. */
+typedef enum { SH_SHADER_MATRIX = 0, SH_SHADER_QUAT, SH_SHADER_EULER } sh_shader_form;
+#define SH_SHADER_NFORMS 3
+const char *sh_shader_form_name(sh_shader_form f);
+int sh_shader_form_parse(const char *s, sh_shader_form *out);
+typedef struct {
+    char path[1024], entry[128];
+    uint32_t *spirv;
+    size_t nwords;
+    sh_shader_form form; /* how the rotations reach it */
+    int device;          /* Vulkan device index, −1: the first GPU, else the first device */
+    double timeout_s;    /* per dispatch (default 10) */
+} sh_shader;
+/* Read and compile (by the name: .glsl/.comp GLSL, .hlsl HLSL, .spv
+ * SPIR-V as is); entry: the entry point (NULL: "main"); defines: the
+ * preprocessor's macros, "NAME[=VALUE],..." (NULL: none).  A source that
+ * does not compile is SH_EFORMAT with the compiler's message on one line. */
+int sh_shader_load(const char *path, const char *entry, const char *defines, sh_shader *out);
+void sh_shader_free(sh_shader *s);
+typedef struct {
+    sh_plugin_report cases; /* as a plug-in's: ran, declined, errors, failure */
+    char device[256], driver[256];
+    int is_cpu;
+} sh_shader_report;
+/* Every case not skipped, one dispatch per order; status[k] as a plug-in's
+ * (a shader's status 1 declines an order, other non-zero values fail). */
+int sh_shader_run_fixture(const sh_shader *s, const sh_fixture *fx, const unsigned char *skip, double **got,
+                          unsigned char *status, sh_shader_report *rep);
+/* Dispatches of K rotations (each k of k[]) timed interleaved with shlab's
+ * CPU kernel cpu_method rotating K rotations at once in float
+ * (sh_rot_plan_rotate_many_f, at most 4096 per call). */
+#define SH_SHADER_BENCH_MAX_K 24
+typedef struct {
+    int order;
+    int nk, k[SH_SHADER_BENCH_MAX_K];
+    sh_rot_method cpu_method;
+    sh_bench_opts bench; /* seed, β range, convention */
+    sh_bench_cfg cfg;
+} sh_shader_bench_opts;
+typedef struct {
+    sh_bench_stats shader[SH_SHADER_BENCH_MAX_K], cpu[SH_SHADER_BENCH_MAX_K]; /* ns per rotation */
+    sh_bench_ratio ratio[SH_SHADER_BENCH_MAX_K]; /* shader / cpu, paired by round */
+    sh_bench_noise noise[SH_SHADER_BENCH_MAX_K];
+    sh_shader_report report;
+} sh_shader_bench_result;
+int sh_shader_bench(const sh_shader *s, const sh_shader_bench_opts *o, sh_shader_bench_result *res);
+
 /* ---- the planner's choice (planner.c) ----------------------------------------
  * The path a user runs: how the rotation arrives (matrix, quaternion or
  * Euler angles) and how many vectors one call rotates. */
