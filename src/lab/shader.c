@@ -158,6 +158,13 @@ static int child_open(const sh_shader *s, int fd, sh_vk **v)
         sh__rec_send_text(fd, SH_REC_INFO, info);
         st = sh_vk_pipeline(*v, s->spirv, s->nwords, s->entry);
     }
+    /* a dispatch of nothing: the driver's compilation, outside the timeouts */
+    if (!st) {
+        const size_t bytes[4] = {64, 64, 64, 64};
+        void *map[4];
+        if (!(st = sh_vk_buffers(*v, bytes, map)) && !(st = sh_vk_record(*v, 1, 0, (int)s->form, 1)))
+            st = sh_vk_submit(*v, 120);
+    }
     if (st) sh__rec_send_text(fd, SH_REC_OPEN, sh_last_error());
     return st;
 }
@@ -193,7 +200,9 @@ static int dispatch_order(const fixture_job *j, sh_vk *v, int fd, int order, con
     }
     /* the dispatch's first case names it if it hangs or crashes */
     if (sh__rec_send(fd, SH_REC_START, ks[0], 0, NULL, 0)) return SH_EIO;
-    if ((st = sh_vk_record(v, order, K, (int)j->s->form, 1)) || (st = sh_vk_submit(v, j->s->timeout_s))) return st;
+    if ((st = sh_vk_record(v, order, K, (int)j->s->form, 1)) || (st = sh_vk_submit(v, j->s->timeout_s)))
+        return sh_error(st, "%s, on the dispatch of order %d (%d cases from '%s')", sh_last_error(), order, K,
+                        j->fx->cases[ks[0]].id);
     for (int i = 0; i < K; i++) {
         const sh_fixture_case *c = &j->fx->cases[ks[i]];
         const int off = c->band >= 0 ? c->band * c->band : 0;
@@ -257,8 +266,8 @@ int sh_shader_run_fixture(const sh_shader *s, const sh_fixture *fx, const unsign
     const fixture_job j = {s, fx, skip};
     sh_case_reader r = {.fx = fx, .got = got, .rep = &rep->cases, .status = status, .who = "the shader"};
     /* the child's limits: the device's start-up (a CPU device compiles the
-     * shader with LLVM) and every dispatch's own timeout */
-    const double wall = 30 + 2 * s->timeout_s;
+     * shader with LLVM, up to 120 s) and every dispatch's own timeout */
+    const double wall = 150 + 2 * s->timeout_s;
     const sh_sandbox_job sj = {.child = fixture_child, .feed = sh__case_reader_feed, .arg = (void *)&j, .fctx = &r,
                                .cpu_seconds = wall, .wall_seconds = wall, .mem_bytes = 0, .what = "the shader"};
     sh_sandbox_result sr;

@@ -246,7 +246,8 @@ int sh_vk_record(sh_vk *v, int order, int count, int form, int repeat)
         if (k)
             vkCmdPipelineBarrier(v->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
                                  &mb, 0, NULL, 0, NULL);
-        vkCmdDispatch(v->cmd, ((uint32_t)count + SH_VK_LOCAL_SIZE - 1) / SH_VK_LOCAL_SIZE, 1, 1);
+        /* count 0: one group whose invocations all return at once (k ≥ count) */
+        vkCmdDispatch(v->cmd, count > 0 ? ((uint32_t)count + SH_VK_LOCAL_SIZE - 1) / SH_VK_LOCAL_SIZE : 1, 1, 1);
     }
     const VkMemoryBarrier host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
                                   .dstAccessMask = VK_ACCESS_HOST_READ_BIT};

@@ -25,7 +25,9 @@ int sh_vk_pipeline(sh_vk *v, const uint32_t *spirv, size_t nwords, const char *e
 /* The four buffers (bytes each; host-visible, mapped into map[]). */
 int sh_vk_buffers(sh_vk *v, const size_t bytes[4], void *map[4]);
 /* Record `repeat` dispatches of count rotations of the order (push
- * constants order, count, form), then submit and wait up to timeout_s. */
+ * constants order, count, form), then submit and wait up to timeout_s.
+ * count 0 dispatches one group that does nothing: a driver that compiles
+ * the shader at its first dispatch (lavapipe) does it then. */
 int sh_vk_record(sh_vk *v, int order, int count, int form, int repeat);
 int sh_vk_submit(sh_vk *v, double timeout_s);
 void sh_vk_close(sh_vk *v);

@@ -12,7 +12,9 @@
 // Deliberate mistakes for the tests (verify --shader F --define NAME):
 // MISTAKE_INVERSE (transposed matrix), MISTAKE_CONVENTION (no cs sign),
 // MISTAKE_SWAP (α and γ swapped; euler form), MISTAKE_DEG2RAD (angles taken
-// as degrees; euler form), MISTAKE_MDESC (m descending within each band).
+// as degrees; euler form), MISTAKE_MDESC (m descending within each band);
+// and misbehaviour: HANG_ORDER_3 (never finishes at order 3), BROKEN (does
+// not compile).
 layout(local_size_x = 64) in;
 layout(push_constant) uniform Params { uint order; uint count; uint form; uint pad; } pc;
 layout(std430, set = 0, binding = 0) readonly buffer Rotations { float rot[]; };
@@ -94,6 +96,17 @@ void main()
     if (k >= pc.count) return;
     const int order = int(pc.order);
     if (order < 1 || order > MAXO) { status[k] = 1u; return; }
+#ifdef HANG_ORDER_3
+    // lavapipe ends every loop of an invocation after 65535 turns in all, so
+    // a hang is work: 10³ dependent sines a turn, about 6.6·10⁷ in all
+#define X10(s) s s s s s s s s s s
+    float h = float(k);
+    for (int i = 0; i < 65535 && order == 3; i++) { X10(X10(X10(h = sin(h) + 1.0;))) }
+    if (h == 12345.0) status[k] = 2u; // keeps h alive
+#endif
+#ifdef BROKEN
+    this is not GLSL;
+#endif
     const uint base = k * uint(order * order);
     y[base] = x[base];
     if (order == 1) return;

@@ -1,0 +1,68 @@
+#!/bin/sh
+# Shader kernels (docs/check-your-kernel.md, "Shaders"; tests/shaders/):
+# `verify --shader` compiles GLSL and HLSL with shaderc's library, runs every
+# fixture case on the Vulkan device (lavapipe where there is no GPU) and
+# judges at float32; the example shaders — the Ivanic-Ruedenberg recurrence
+# written independently of shlab, so their passing checks both — pass orders
+# 1-10 in both languages and every rotation input, each deliberate mistake is
+# diagnosed by name as the simulated candidate's, and a shader that does not
+# compile, does not finish or names a missing device is reported in one line.
+# Without Vulkan the whole script is one skip line.
+. tests/cli/lib.inc
+FX=data/fixtures/rotation/orders_1_10.json
+SH=tests/shaders
+
+"$SHLAB" verify --quiet --fixture $FX --shader $SH/rotate_ivanic.glsl --abi matrix --orders 1 >"$TMP/out" 2>"$TMP/err"; rc=$?
+if grep -q "built without Vulkan\|no device\|no Vulkan driver\|Vulkan: " "$TMP/err"; then
+    ok "# skip shader tests: $(head -1 "$TMP/err")"
+    exit 0
+fi
+
+field() { sed -n "s/.*\"$2\":\(\"\([^\"]*\)\"\|\([^,}]*\)\).*/\2\3/p" "$1"; }
+ncs=$(grep -c '"convention":"cs"' $FX)
+
+# the correct kernels: GLSL and HLSL, every rotation input, all cs cases
+for f in rotate_ivanic.glsl:matrix rotate_ivanic.glsl:quat rotate_ivanic.glsl:euler rotate_ivanic.hlsl:matrix \
+         rotate_ivanic.hlsl:euler; do
+    file=${f%%:*}; abi=${f#*:}
+    "$SHLAB" verify --quiet --fixture $FX --shader "$SH/$file" --abi $abi --format json >"$TMP/p.json" 2>"$TMP/err"; rc=$?
+    run=$(( $(field "$TMP/p.json" cases) - $(field "$TMP/p.json" skipped) ))
+    if [ "$rc" = 0 ] && [ "$(field "$TMP/p.json" tolerance_kind)" = float32 ] && [ "$run" = "$ncs" ] &&
+       [ -n "$(field "$TMP/p.json" device)" ]; then
+        ok "$file ($abi): the $run cs cases pass at float32 on '$(field "$TMP/p.json" device)'"
+    else notok "$file ($abi): exit $rc $(head -c 300 "$TMP/p.json") $(head -c 200 "$TMP/err")"; fi
+done
+
+# each deliberate mistake, diagnosed as the simulated candidate with that
+# mistake is (float32 outputs: judged at the float32 tolerance)
+for ms in INVERSE:matrix:inverse CONVENTION:matrix:convention SWAP:euler:swap DEG2RAD:euler:deg2rad MDESC:matrix:mdesc; do
+    def=MISTAKE_${ms%%:*}; rest=${ms#*:}; abi=${rest%%:*}; sim=${rest#*:}
+    "$SHLAB" verify --quiet --fixture $FX --method wigner --convention cs --emit-candidate "$TMP/sim.json" --simulate "$sim" >/dev/null 2>&1
+    "$SHLAB" verify --quiet --fixture $FX --candidate "$TMP/sim.json" --convention cs --precision float --diagnose --format json >"$TMP/s.json" 2>/dev/null
+    "$SHLAB" verify --quiet --fixture $FX --shader $SH/rotate_ivanic.glsl --abi $abi --define $def --diagnose --format json >"$TMP/p.json" 2>/dev/null; rc=$?
+    want=$(field "$TMP/s.json" diagnosis); got=$(field "$TMP/p.json" diagnosis)
+    if [ "$rc" = 1 ] && [ -n "$want" ] && [ "$got" = "$want" ]; then ok "--define $def: diagnosed '$got'"
+    else notok "--define $def: exit $rc, shader '$got', simulated '$want'"; fi
+done
+
+# orders the shader declines (status 1) are not run
+"$SHLAB" verify --quiet --fixture data/fixtures/rotation/bands_50_200.json --shader $SH/rotate_ivanic.glsl --abi matrix --format json >"$TMP/p.json" 2>"$TMP/err"; rc=$?
+if [ "$rc" = 2 ] && grep -q "declined every case" "$TMP/err"; then ok "bands 50 and 200: declined (status 1), refused as nothing to judge"; else notok "bands: exit $rc $(cat "$TMP/err")"; fi
+
+# misbehaviour: one line each
+expect_refused "a shader that does not compile" "does not compile: .*rotate_ivanic.glsl:[0-9]+: error" verify --fixture $FX --shader $SH/rotate_ivanic.glsl --abi matrix --define BROKEN
+expect_refused "--device beyond the machine's" "device 63: this machine has" verify --fixture $FX --shader $SH/rotate_ivanic.glsl --abi matrix --device 63
+expect_refused "--abi of a plug-in given to a shader" "unknown shader input" verify --fixture $FX --shader $SH/rotate_ivanic.glsl --abi matrix-d
+printf 'not SPIR-V at all' >"$TMP/x.spv"
+expect_refused "a .spv that is not SPIR-V" "not SPIR-V" verify --fixture $FX --shader "$TMP/x.spv" --abi matrix
+expect_refused "--define without --shader" "apply to --shader" verify --fixture $FX --method zxzxz --define X
+"$SHLAB" verify --quiet --fixture $FX --shader $SH/rotate_ivanic.glsl --abi matrix --define HANG_ORDER_3 --timeout 0.5 --format json >"$TMP/p.json" 2>"$TMP/err"; rc=$?
+if [ "$rc" = 1 ] && grep -q "^verify: the shader did not finish within 0.5 s, on the dispatch of order 3" "$TMP/err" &&
+   [ "$(field "$TMP/p.json" failed)" = 0 ]; then
+    ok "a shader that does not finish: stopped after 0.5 s at order 3, the orders before judged"
+else notok "hang: exit $rc $(head -c 300 "$TMP/err") $(head -c 300 "$TMP/p.json")"; fi
+
+# SPIR-V as is: the same verdict as its source
+if command -v glslc >/dev/null 2>&1 && glslc -fshader-stage=compute -o "$TMP/k.spv" $SH/rotate_ivanic.glsl 2>/dev/null; then
+    expect_success "a .spv compiled by glslc passes" verify --quiet --fixture $FX --shader "$TMP/k.spv" --abi matrix
+else ok "# skip .spv check: no glslc"; fi
