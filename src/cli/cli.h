@@ -128,6 +128,8 @@ int cli_mem_check(const char *cmd, double bytes, const char *what);
 int cli_bench_peers(const cli_command *bench, int argc, char **argv);
 /* `shlab bench --plugin`: a user's kernel on the frontier (cmd_bench_plugin.c). */
 int cli_bench_plugin(const cli_command *bench, int argc, char **argv);
+/* `shlab bench --shader`: a compute shader beside the CPU kernels (cmd_bench_shader.c). */
+int cli_bench_shader(const cli_command *bench, int argc, char **argv);
 
 /* Render `root` in `fmt` on stdout and release it; then, if stdout took it
  * all, rename the output files (cli_out_open) onto their targets, else

@@ -52,7 +52,7 @@ typedef struct {
     double target_ms, max_beta;
     long seed;
     int degrees, conv, instructions, quiet, fmt, peers;
-    const char *plugin; /* declared for --help; handled by cmd_bench_plugin.c */
+    const char *plugin, *shader; /* declared for --help; handled by cmd_bench_plugin.c, cmd_bench_shader.c */
 } bench_args;
 
 static int parse_orders(const char *opt, const char *s, void *field)
@@ -225,6 +225,10 @@ static const cli_opt bench_opts[] = {
      .help = "instead: your kernel (shlab/kernel.h) on the cost/error\n"
              "frontier beside shlab's choice at its error (see\n"
              "'shlab bench --plugin X --help')"},
+    {.type = CLI_T_STRING, .name = "shader", .meta = "FILE", .off = offsetof(bench_args, shader),
+     .help = "instead: a compute shader's rotations per second on the\n"
+             "Vulkan device beside shlab's CPU kernel (see\n"
+             "'shlab bench --shader X --help')"},
     CLI_END,
 };
 
@@ -232,7 +236,8 @@ static const cli_cmd bench_decl = {
     .name = "bench",
     .usage = "bench [--order LIST] [--methods LIST] [OPTIONS]\n"
              "       shlab bench --peers [OPTIONS]   (see 'shlab bench --peers --help')\n"
-             "       shlab bench --plugin LIB.so:SYMBOL --abi NAME [OPTIONS]   (see 'shlab bench --plugin X --help')",
+             "       shlab bench --plugin LIB.so:SYMBOL --abi NAME [OPTIONS]   (see 'shlab bench --plugin X --help')\n"
+             "       shlab bench --shader FILE --abi matrix|quat|euler [OPTIONS]   (see 'shlab bench --shader X --help')",
     .about =
         "Time the rotation of one coefficient vector by each method and order.\n"
         "  per-rotation  for every vector a new rotation, given as an orthonormal\n"
@@ -894,6 +899,8 @@ static int run(int argc, char **argv)
         if (!strcmp(argv[k], "--peers")) return cli_bench_peers(&cmd_bench, argc, argv);
     for (int k = 1; k < argc; k++)
         if (!strcmp(argv[k], "--plugin")) return cli_bench_plugin(&cmd_bench, argc, argv);
+    for (int k = 1; k < argc; k++)
+        if (!strcmp(argv[k], "--shader")) return cli_bench_shader(&cmd_bench, argc, argv);
     bench_args a = {.max_beta = M_PI, .base = {SH_ROT_Z, -1, -1, -1}};
     cli_parsed seen;
     int rc = cli_args_parse(&bench_decl, argc, argv, &a, &seen), rerun;

@@ -66,3 +66,20 @@ else notok "hang: exit $rc $(head -c 300 "$TMP/err") $(head -c 300 "$TMP/p.json"
 if command -v glslc >/dev/null 2>&1 && glslc -fshader-stage=compute -o "$TMP/k.spv" $SH/rotate_ivanic.glsl 2>/dev/null; then
     expect_success "a .spv compiled by glslc passes" verify --quiet --fixture $FX --shader "$TMP/k.spv" --abi matrix
 else ok "# skip .spv check: no glslc"; fi
+
+# bench --shader: the device named, CPU figures said to be so on lavapipe,
+# one row per K with both times; no timing is asserted
+"$SHLAB" bench --quiet --shader $SH/rotate_ivanic.glsl --abi matrix --order 3 --count 1,256 --repeat 3 --target-ms 1 --format json >"$TMP/b.json" 2>"$TMP/err"; rc=$?
+rows=$(grep -o '"k":' "$TMP/b.json" | wc -l)
+if [ "$rc" = 0 ] && [ "$rows" = 2 ] && [ -n "$(field "$TMP/b.json" device)" ] &&
+   { [ "$(field "$TMP/b.json" device_is_cpu)" = false ] || grep -q '"note":"a CPU device (lavapipe): the shader' "$TMP/b.json"; }; then
+    ok "bench --shader: 2 rows on '$(field "$TMP/b.json" device)', CPU device said so"
+else notok "bench --shader: exit $rc $(head -c 400 "$TMP/b.json") $(head -c 200 "$TMP/err")"; fi
+for f in shader_ns_per_rotation cpu_ns_per_rotation ratio; do
+    v=$(field "$TMP/b.json" $f)
+    if awk -v x="$v" 'BEGIN { exit !(x > 0) }'; then ok "bench --shader: $f = $v > 0"; else notok "bench --shader: $f '$v'"; fi
+done
+expect_refused "bench --shader without --abi" "needs --abi" bench --shader $SH/rotate_ivanic.glsl
+expect_refused "bench --shader, K beyond 2^20" "count" bench --shader $SH/rotate_ivanic.glsl --abi matrix --count 2000000
+"$SHLAB" bench --quiet --shader $SH/rotate_ivanic.glsl --abi matrix --order 12 --count 4 --repeat 3 >"$TMP/out" 2>"$TMP/err"; rc=$?
+if [ "$rc" = 2 ] && grep -q "does not rotate this order" "$TMP/err"; then ok "bench --shader at an order the shader declines: one line"; else notok "bench declined order: exit $rc $(cat "$TMP/err")"; fi
