@@ -10,9 +10,9 @@ One module per concept; the main calls are re-exported here:
 - rotation: Rotation (from_euler / from_quat / from_matrix / from_axis_angle)
 - rotate:   Rotator, Plan (apply_many, rotate_many), Stream, rotate_band, rotation_matrix
 - verify:   load_fixture, verify, simulate, load_candidate, apply_method, mistakes
-
-Convention detection (identify, src/shlab/convention.h) is not bound yet; it
-will be one more module here, re-exported below like the others.
+- identify: Convention (parse, str, preset), convert_convention, to_shlab, from_shlab,
+            eval_convention, identify_basis, identify_projection, fixture_directions,
+            fixture_light, fixture_light_coeffs (sh_conv_*, sh_identify_*: `shlab identify`)
 
 Every failing shlab call raises :class:`shlab.Error` (message from
 sh_last_error(), ``status`` the code).  Conventions: docs/CONVENTIONS.md
@@ -29,6 +29,10 @@ from .rotation import Rotation
 from .verify import (Fixture, VerifyResult, apply_method, load_candidate, load_fixture, mistake_description,
                      mistakes, simulate, verify)
 from .verify import available as verify_available
+from .identify import (Candidate, Convention, IdentifyResult, convert_convention, eval_convention,
+                       fixture_directions, fixture_light, fixture_light_coeffs, from_shlab, identify_basis,
+                       identify_projection, to_shlab)
+from .identify import available as identify_available
 
 __version__ = "0.1.0"  # SHLAB_VERSION of src/shlab.h
 
@@ -38,4 +42,6 @@ __all__ = ["Error", "library_path", "eval_angles", "eval_dir", "dir_from_angles"
            "green_reference", "cap_zonal", "lobe_zonal", "image_max_order", "Rotation", "Rotator", "Plan",
            "Stream", "rotate_band", "rotation_matrix", "method_max_order", "kernel_available", "load_fixture",
            "verify", "simulate", "load_candidate", "apply_method", "mistakes", "mistake_description",
-           "Fixture", "VerifyResult", "verify_available"]
+           "Fixture", "VerifyResult", "verify_available", "Convention", "convert_convention", "to_shlab",
+           "from_shlab", "eval_convention", "identify_basis", "identify_projection", "fixture_directions",
+           "fixture_light", "fixture_light_coeffs", "IdentifyResult", "Candidate", "identify_available"]
