@@ -177,6 +177,176 @@ START_TEST(convert_top)
 }
 END_TEST
 
+/* ------------------------------------ conversions between convention specs */
+
+/* A user's real basis at direction u, by the spec's definitions written out
+ * here (docs/CONVENTIONS.md, "Other conventions"): the coordinates the
+ * shlab formulas see are s with s[axis_i] = sign_i·u_i (the axes string
+ * "+x+z-y" lists, for the user's x, y, z, the sign and the shlab axis);
+ * nocs = orthonormal real functions without the phase; 4pi ×√(4π), schmidt
+ * ×√(4π/(2l+1)); m < 0 ↔ sin (neg-sin) or cos (neg-cos); index acn
+ * l(l+1)+m, mdesc l(l+1)−m, cossin l² + (0, cos1, sin1, cos2, ...).  The
+ * function f(u) = Σ c_k y_k(u), summed in long double from truth Legendre. */
+typedef struct {
+    const char *spec, *axes;
+    int cs, norm, neg_cos, index; /* norm 0 ortho 1 4pi 2 schmidt; index 0 acn 1 mdesc 2 cossin */
+} user_real;
+
+static long double user_real_point(const user_real *ur, int L, const double *c, const double u[3])
+{
+    double s[3];
+    for (int i = 0; i < 3; i++) {
+        const int ax = ur->axes[2 * i + 1] - 'x';
+        s[ax] = (ur->axes[2 * i] == '-' ? -1.0 : 1.0) * u[i];
+    }
+    const double x = s[2], ph = atan2(s[1], s[0]);
+    double *q = malloc(sizeof(double) * (L + 1));
+    ck_assert_ptr_nonnull(q);
+    long double f = 0.0L;
+    for (int m = 0; m <= L; m++) {
+        truth_qlm_column(L, m, x, q); /* orthonormal, Condon-Shortley phase inside */
+        const long double cm = cosl((long double)m * ph), sm = sinl((long double)m * ph);
+        const long double ph_sign = !ur->cs && (m & 1) ? -1.0L : 1.0L;
+        for (int l = m; l <= L; l++) {
+            const long double nl = ur->norm == 1 ? sqrtl(4.0L * M_PI) : ur->norm == 2 ? sqrtl(4.0L * M_PI / (2 * l + 1)) : 1.0L;
+            const long double qq = (long double)q[l - m] * (m ? M_SQRT2 : 1.0) * ph_sign * nl;
+            /* the functions of m and −m: cos(mφ) and sin(mφ) */
+            const long double fc = qq * (m ? cm : 1.0L), fs = qq * sm;
+            int kc, ks; /* where the cos and the sin function sit */
+            if (ur->index == 2) kc = l * l + (m ? 2 * m - 1 : 0), ks = l * l + 2 * m;
+            else {
+                const int mc = m == 0 ? 0 : ur->neg_cos ? -m : m, msn = -mc; /* the m each function carries */
+                kc = ur->index == 1 ? l * (l + 1) - mc : l * (l + 1) + mc;
+                ks = ur->index == 1 ? l * (l + 1) - msn : l * (l + 1) + msn;
+            }
+            f += c[kc] * fc;
+            if (m) f += c[ks] * fs;
+        }
+    }
+    free(q);
+    return f;
+}
+
+/* The HEALPix-style complex layout (complex-half): a_lm for m ≥ 0 at
+ * m(2L+1−m)/2 + l, interleaved re, im, of a real function
+ * f = Σ_l [a_l0 Y_l0 + Σ_{m>0} 2 Re(a_lm Y_lm)], Y_lm = Q_l^m e^{imφ} with
+ * the Condon-Shortley phase in Q (cs) or not (nocs: (−1)^m Q). */
+static long double user_half_point(int cs, int L, const double *a, const double u[3])
+{
+    const double x = u[2], ph = atan2(u[1], u[0]);
+    double *q = malloc(sizeof(double) * (L + 1));
+    ck_assert_ptr_nonnull(q);
+    long double f = 0.0L;
+    for (int m = 0; m <= L; m++) {
+        truth_qlm_column(L, m, x, q);
+        const long double cm = cosl((long double)m * ph), sm = sinl((long double)m * ph);
+        const long double sg = !cs && (m & 1) ? -1.0L : 1.0L;
+        for (int l = m; l <= L; l++) {
+            const size_t e = (size_t)m * (2 * L + 1 - m) / 2 + l;
+            const long double re = a[2 * e], im = a[2 * e + 1], qq = sg * q[l - m];
+            f += m ? 2.0L * qq * (re * cm - im * sm) : qq * re;
+        }
+    }
+    free(q);
+    return f;
+}
+
+/* convert --from SPEC for the real kinds at the top order: shlab's
+ * coefficients converted to the user's convention (axes through an SH
+ * rotation, the layout, the norm, the phase) represent the same function at
+ * the same coordinates, against the definitions above. */
+START_TEST(convert_specs_top)
+{
+    const int order = SHLAB_MAX_ORDER, L = order - 1;
+    const size_t n = (size_t)order * order;
+    static const user_real U[] = {
+        {"real,nocs,4pi,mdesc,neg-cos,y-up", "+x+z-y", 0, 1, 1, 1},
+        {"real,cs,schmidt,cossin,+y+x-z", "+y+x-z", 1, 2, 0, 2},
+        {"real,cs,ortho,acn,y-up-lh", "+x+z+y", 1, 0, 0, 0},
+    };
+    double *c = malloc(sizeof(double) * n), *d = malloc(sizeof(double) * n);
+    ck_assert(c && d);
+    for (size_t i = 0; i < n; i++) c[i] = nrand();
+    static const double dirs[2][3] = {{0.31, -0.52, 0.79}, {-0.66, 0.24, -0.71}};
+    double worst = 0.0;
+    for (size_t t = 0; t < sizeof U / sizeof *U; t++) {
+        sh_conv cv;
+        ck_assert_int_eq(sh_conv_parse(U[t].spec, &cv), SH_OK);
+        ck_assert_int_eq(sh_conv_from_shlab(&cv, order, c, d), SH_OK);
+        for (int j = 0; j < 2; j++) {
+            const double nn = sqrt(dirs[j][0] * dirs[j][0] + dirs[j][1] * dirs[j][1] + dirs[j][2] * dirs[j][2]);
+            const double u[3] = {dirs[j][0] / nn, dirs[j][1] / nn, dirs[j][2] / nn};
+            /* shlab's function at the same coordinates, the user's in their basis */
+            const long double f = truth_point(L, c, u[2], atan2(u[1], u[0]));
+            const long double g = user_real_point(&U[t], L, d, u);
+            /* scale: Σ|c y| ≈ √n·max|y| for unit random c; |y| ≤ √((2L+1)/4π) */
+            const double scale = sqrt((double)n) * sqrt((2.0 * L + 1) / (4 * M_PI));
+            worst = fmax(worst, (double)fabsl(f - g) / scale);
+        }
+    }
+    /* the complex half layout, both phases (healpix = complex-half,cs) */
+    double *a = malloc(sizeof(double) * (size_t)order * (order + 1));
+    ck_assert_ptr_nonnull(a);
+    for (int cs = 0; cs <= 1; cs++) {
+        sh_conv cv;
+        ck_assert_int_eq(sh_conv_parse(cs ? "healpix" : "complex-half,nocs", &cv), SH_OK);
+        ck_assert_int_eq(sh_conv_from_shlab(&cv, order, c, a), SH_OK);
+        for (int j = 0; j < 2; j++) {
+            const double nn = sqrt(dirs[j][0] * dirs[j][0] + dirs[j][1] * dirs[j][1] + dirs[j][2] * dirs[j][2]);
+            const double u[3] = {dirs[j][0] / nn, dirs[j][1] / nn, dirs[j][2] / nn};
+            const long double f = truth_point(L, c, u[2], atan2(u[1], u[0])), g = user_half_point(cs, L, a, u);
+            const double scale = sqrt((double)n) * sqrt((2.0 * L + 1) / (4 * M_PI));
+            worst = fmax(worst, (double)fabsl(f - g) / scale);
+        }
+    }
+    free(a);
+    printf("test_ranges: convert shlab -> real specs (axes, layouts, norms, phase) and complex-half at order %d: "
+           "function kept to %.3g of sqrt(n) max|y|\n", order, worst);
+    ck_assert_msg(worst <= 1e-12, "convert specs at order %d: %.3g", order, worst);
+    free(c);
+    free(d);
+}
+END_TEST
+
+/* identify at its largest order (SH_IDENTIFY_MAX_ORDER): a user's basis
+ * built from the definitions above at the fixture's 32 directions is named,
+ * for a convention that only the top bands' values pin down no better than
+ * the others (ambix-like y-up with m-descending order and neg-cos). */
+START_TEST(identify_top)
+{
+    const int order = SH_IDENTIFY_MAX_ORDER, L = order - 1, n = order * order;
+    static const user_real U[] = {
+        {"real,nocs,4pi,mdesc,neg-cos,y-up", "+x+z-y", 0, 1, 1, 1},
+        {"real,cs,schmidt,cossin,+y+x-z", "+y+x-z", 1, 2, 0, 2},
+    };
+    double d[3 * SH_IDENTIFY_NDIRS], *v = malloc(sizeof(double) * SH_IDENTIFY_NDIRS * n), *e = calloc((size_t)n, sizeof(double));
+    ck_assert(v && e);
+    sh_identify_directions(d, NULL);
+    for (size_t t = 0; t < sizeof U / sizeof *U; t++) {
+        for (int j = 0; j < SH_IDENTIFY_NDIRS; j++)
+            for (int k = 0; k < n; k++) {
+                e[k] = 1.0;
+                v[(size_t)j * n + k] = (double)user_real_point(&U[t], L, e, d + 3 * j);
+                e[k] = 0.0;
+            }
+        sh_id_result r;
+        ck_assert_int_eq(sh_identify_basis(SH_IDENTIFY_NDIRS, d, (size_t)n, v, order, 1e-4, &r), SH_OK);
+        sh_conv want;
+        ck_assert_int_eq(sh_conv_parse(U[t].spec, &want), SH_OK);
+        int named = r.verdict == SH_ID_IDENTIFIED && !memcmp(&r.cand[0].conv, &want, sizeof want);
+        for (int a = 0; r.verdict == SH_ID_IDENTIFIED && a < r.cand[0].naliases; a++)
+            named |= !memcmp(&r.cand[0].aliases[a], &want, sizeof want);
+        char got[96];
+        printf("test_ranges: identify at order %d: '%s' named '%s' (residual %.3g)\n", order, U[t].spec,
+               r.ncand ? sh_conv_format(&r.cand[0].conv, got, sizeof got) : "none", r.ncand ? r.cand[0].residual : -1.0);
+        ck_assert_msg(named, "identify at order %d did not name %s", order, U[t].spec);
+        sh_identify_free(&r);
+    }
+    free(v);
+    free(e);
+}
+END_TEST
+
 /* ------------------------------------------- closed forms of the lights */
 
 /* Gauss-Legendre nodes and weights on [−1, 1] in long double: Newton on
@@ -1347,7 +1517,8 @@ static Suite *suite(void)
         {"threads", threads_top}, {"batch", batch_top}, {"wigner3j", wigner3j_top}, {"stability", stability_top},
         {"scale", scale_top},         {"deriv", deriv_top},   {"taylor", taylor_top},
         {"triple", triple_top},       {"scene", scene_top},   {"image", image_top},
-        {"green", green_top},
+        {"green", green_top},         {"convert_specs", convert_specs_top},
+        {"identify", identify_top},
     };
     for (size_t k = 0; k < sizeof T / sizeof *T; k++) {
         TCase *tc = tcase_create(T[k].name);
