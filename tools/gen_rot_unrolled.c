@@ -72,15 +72,62 @@ static unsigned long count_mults(const char *s)
     return k;
 }
 
-/* a literal: 17 significant digits reproduce the double exactly */
+/* ---- the target language: one emitter writes the C kernels (shk_t, the
+ * SHK_* macros of rot_simd.h) and the compute shaders (GLSL, HLSL; float,
+ * one rotation and one vector per invocation) --------------------------- */
+enum { L_C, L_GLSL, L_HLSL };
+static int lang = L_C;
+/* the value type */
+static const char *T(void) { return lang == L_C ? "shk_t" : "float"; }
+
+/* a literal.  C: SHK_C(v) with 17 significant digits, which reproduce the
+ * double exactly (a float kernel gets (float) of it).  Shaders: (float)v
+ * with 9 significant digits, which reproduce that float exactly — the same
+ * value the C float kernels use — always with a '.' or an exponent so that
+ * GLSL reads a float, not an int. */
 static const char *lit(double v)
 {
     static char b[8][40];
     static int i;
     i = (i + 1) & 7;
-    snprintf(b[i], sizeof b[i], "SHK_C(%.17g)", v);
+    if (lang == L_C) snprintf(b[i], sizeof b[i], "SHK_C(%.17g)", v);
+    else {
+        snprintf(b[i], sizeof b[i], "%.9g", (double)(float)v);
+        if (!strpbrk(b[i], ".e")) strcat(b[i], ".0");
+    }
     return b[i];
 }
+/* the constants 1 and 0.5 */
+static const char *one(void) { return lang == L_C ? "SHK_C(1)" : "1.0"; }
+static const char *half(void) { return lang == L_C ? "SHK_C(0.5)" : "0.5"; }
+/* coefficient i of the input vector; entry j of par */
+static const char *ldin(int i)
+{
+    static char b[8][40];
+    static int k;
+    k = (k + 1) & 7;
+    if (lang == L_C) snprintf(b[k], sizeof b[k], "SHK_LD(in, %d, K)", i);
+    else snprintf(b[k], sizeof b[k], "x[b + %du]", i);
+    return b[k];
+}
+static const char *ldpar(int j)
+{
+    static char b[8][40];
+    static int k;
+    k = (k + 1) & 7;
+    if (lang == L_C) snprintf(b[k], sizeof b[k], "SHK_LD(par, %d, KP)", j);
+    else snprintf(b[k], sizeof b[k], "par[%d]", j);
+    return b[k];
+}
+/* a store of coefficient i of the output: st_open(i) EXPR st_close() */
+static const char *st_open(int i)
+{
+    static char b[40];
+    if (lang == L_C) snprintf(b, sizeof b, "SHK_ST(out, %d, K, ", i);
+    else snprintf(b, sizeof b, "y[b + %du] = ", i);
+    return b;
+}
+static const char *st_close(void) { return lang == L_C ? ")" : ""; }
 
 /* names: x<l>_<m> (input of band l), u, t, v, w (intermediates of the band
  * in hand) of coefficient m; n for a negative m */
@@ -108,10 +155,10 @@ static const char *nm(char v, int m)
 static void emit_angles(char a, int mmax)
 {
     if (mmax < 2) return;
-    out("    const shk_t t%c = c%c1 + c%c1;\n", a, a, a);
-    out("    const shk_t c%c2 = t%c * c%c1 - SHK_C(1), s%c2 = t%c * s%c1;\n", a, a, a, a, a, a);
+    out("    const %s t%c = c%c1 + c%c1;\n", T(), a, a, a);
+    out("    const %s c%c2 = t%c * c%c1 - %s, s%c2 = t%c * s%c1;\n", T(), a, a, a, one(), a, a, a);
     for (int m = 3; m <= mmax; m++)
-        out("    const shk_t c%c%d = t%c * c%c%d - c%c%d, s%c%d = t%c * s%c%d - s%c%d;\n", a, m, a, a,
+        out("    const %s c%c%d = t%c * c%c%d - c%c%d, s%c%d = t%c * s%c%d - s%c%d;\n", T(), a, m, a, a,
             m - 1, a, m - 2, a, m, a, a, m - 1, a, m - 2);
 }
 
@@ -124,11 +171,11 @@ static void emit_zpair(char a, int m, int flip, const char *am, const char *bm, 
     const char *ng = flip ? "-" : "";
     if (store) {
         const int ip = l * (l + 1) + m, in = l * (l + 1) - m;
-        out("        SHK_ST(out, %d, K, %s(c%c%d * %s - s%c%d * %s));\n", ip, ng, a, m, am, a, m, bm);
-        out("        SHK_ST(out, %d, K, %s(s%c%d * %s + c%c%d * %s));\n", in, ng, a, m, am, a, m, bm);
+        out("        %s%s(c%c%d * %s - s%c%d * %s)%s;\n", st_open(ip), ng, a, m, am, a, m, bm, st_close());
+        out("        %s%s(s%c%d * %s + c%c%d * %s)%s;\n", st_open(in), ng, a, m, am, a, m, bm, st_close());
     } else {
-        out("        const shk_t %s = %s(c%c%d * %s - s%c%d * %s);\n", nm(dst, m), ng, a, m, am, a, m, bm);
-        out("        const shk_t %s = %s(s%c%d * %s + c%c%d * %s);\n", nm(dst, -m), ng, a, m, am, a, m,
+        out("        const %s %s = %s(c%c%d * %s - s%c%d * %s);\n", T(), nm(dst, m), ng, a, m, am, a, m, bm);
+        out("        const %s %s = %s(s%c%d * %s + c%c%d * %s);\n", T(), nm(dst, -m), ng, a, m, am, a, m,
             bm);
     }
 }
@@ -137,7 +184,7 @@ static void emit_zpair(char a, int m, int flip, const char *am, const char *bm, 
 static void emit_zgamma(int l)
 {
     char xp[32], xm[32];
-    out("        const shk_t u_0 = %s;\n", nmx(l, 0));
+    out("        const %s u_0 = %s;\n", T(), nmx(l, 0));
     for (int m = 1; m <= l; m++) {
         snprintf(xp, sizeof xp, "%s", nmx(l, m));
         snprintf(xm, sizeof xm, "%s", nmx(l, -m));
@@ -164,7 +211,7 @@ static void emit_xmul(int l, const double *X, char src, char dst)
                 fprintf(stderr, "gen_rot_unrolled: band %d row %d: both m and -m non-zero\n", l, mp);
                 exit(2);
             }
-        out("        const shk_t %s = ", nm(dst, mp));
+        out("        const %s %s = ", T(), nm(dst, mp));
         if (nc == 0) { fprintf(stderr, "gen_rot_unrolled: band %d row %d is zero\n", l, mp); exit(2); }
         for (int i = 0; i < nc; i++) {
             const double v = X[(size_t)(mp + l) * w + (size_t)(cols[i] + l)];
@@ -185,32 +232,38 @@ static void emit_xmul(int l, const double *X, char src, char dst)
 
 static void emit_head(int meth, int n)
 {
-    out("/* %s, order %d (bands 0..%d) */\n", mlabel[meth], n, n - 1);
-    out("static void %s_%d(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)\n{\n",
-        mname[meth], n);
+    if (lang == L_C) {
+        out("/* %s, order %d (bands 0..%d) */\n", mlabel[meth], n, n - 1);
+        out("static void %s_%d(const sh_real *par, size_t KP, const sh_real *in, sh_real *out, size_t K)\n{\n",
+            mname[meth], n);
+        out("    (void)KP;\n");
+    } else {
+        /* par as in C; the vector at x[b..], y[b..] (the convention's buffers) */
+        out("// %s, order %d (bands 0..%d)\n", mlabel[meth], n, n - 1);
+        out("void %s_%d(float par[7], uint b)\n{\n", mname[meth], n);
+    }
 }
 
 /* the inputs of band l, loaded when the band starts: every store of a band
  * comes after all loads of that band, so in == out is safe */
 static void emit_loads(int l)
 {
-    for (int m = -l; m <= l; m++) out("        const shk_t %s = SHK_LD(in, %d, K);\n", nmx(l, m), l * (l + 1) + m);
+    for (int m = -l; m <= l; m++) out("        const %s %s = %s;\n", T(), nmx(l, m), ldin(l * (l + 1) + m));
 }
 
 /* ZXZXZ of one vector: out = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ) in, band by band */
 static void gen_zxzxz(int n, double *X)
 {
     emit_head(M_ZXZXZ, n);
-    out("    (void)KP;\n");
     if (n > 1) {
-        out("    const shk_t ca1 = SHK_LD(par, 0, KP), sa1 = SHK_LD(par, 1, KP);\n");
-        out("    const shk_t cb1 = SHK_LD(par, 2, KP), sb1 = SHK_LD(par, 3, KP);\n");
-        out("    const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);\n");
+        out("    const %s ca1 = %s, sa1 = %s;\n", T(), ldpar(0), ldpar(1));
+        out("    const %s cb1 = %s, sb1 = %s;\n", T(), ldpar(2), ldpar(3));
+        out("    const %s cg1 = %s, sg1 = %s;\n", T(), ldpar(4), ldpar(5));
         emit_angles('a', n - 1);
         emit_angles('b', n - 1);
         emit_angles('g', n - 1);
     }
-    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
+    out("    %s%s%s;\n", st_open(0), ldin(0), st_close());
     for (int l = 1; l < n; l++) {
         if (sh__rot_zxzxz_xplus_band(l, X)) { fprintf(stderr, "gen_rot_unrolled: X+90 band %d\n", l); exit(2); }
         char xm[32], xp[32];
@@ -220,7 +273,7 @@ static void gen_zxzxz(int n, double *X)
         emit_zgamma(l);
         emit_xmul(l, X, 'u', 't'); /* X₊₉₀ */
         /* Z(β+π): t → v */
-        out("        const shk_t v_0 = t_0;\n");
+        out("        const %s v_0 = t_0;\n", T());
         for (int m = 1; m <= l; m++) {
             snprintf(xp, sizeof xp, "%s", nm('t', m));
             snprintf(xm, sizeof xm, "%s", nm('t', -m));
@@ -228,7 +281,7 @@ static void gen_zxzxz(int n, double *X)
         }
         emit_xmul(l, X, 'v', 'w'); /* X₊₉₀ */
         /* Z(α+π): w → out */
-        out("        SHK_ST(out, %d, K, w_0);\n", l * (l + 1));
+        out("        %sw_0%s;\n", st_open(l * (l + 1)), st_close());
         for (int m = 1; m <= l; m++) {
             snprintf(xp, sizeof xp, "%s", nm('w', m));
             snprintf(xm, sizeof xm, "%s", nm('w', -m));
@@ -247,16 +300,15 @@ static void gen_zxzxz(int n, double *X)
 static void gen_taylor(int meth, int n)
 {
     emit_head(meth, n);
-    out("    (void)KP;\n");
     if (n > 1) {
-        out("    const shk_t ca1 = SHK_LD(par, 0, KP), sa1 = SHK_LD(par, 1, KP);\n");
-        out("    const shk_t cg1 = SHK_LD(par, 4, KP), sg1 = SHK_LD(par, 5, KP);\n");
-        out("    const shk_t beta = SHK_LD(par, 6, KP);\n");
-        if (meth != M_TAYLOR1) out("    const shk_t bb = SHK_C(0.5) * beta * beta;\n");
+        out("    const %s ca1 = %s, sa1 = %s;\n", T(), ldpar(0), ldpar(1));
+        out("    const %s cg1 = %s, sg1 = %s;\n", T(), ldpar(4), ldpar(5));
+        out("    const %s beta = %s;\n", T(), ldpar(6));
+        if (meth != M_TAYLOR1) out("    const %s bb = %s * beta * beta;\n", T(), half());
         emit_angles('a', n - 1);
         emit_angles('g', n - 1);
     }
-    out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
+    out("    %s%s%s;\n", st_open(0), ldin(0), st_close());
     double sd[2 * MAXN + 3];
     for (int l = 1; l < n; l++) {
         const int w = 2 * l + 1;
@@ -272,9 +324,9 @@ static void gen_taylor(int meth, int n)
             const double d = -sd[j] * sd[j] - sd[j + 1] * sd[j + 1];
             const double q0 = j >= 2 ? sd[j] * sd[j - 1] : 0;
             const double q2 = j + 2 < w ? sd[j + 2] * sd[j + 1] : 0;
-            out("        const shk_t %s = ", nm('t', m));
+            out("        const %s %s = ", T(), nm('t', m));
             if (meth == M_TAYLOR1) out("%s", nm('u', m));
-            else out("%s * (SHK_C(1) + bb * %s)", nm('u', m), lit(d));
+            else out("%s * (%s + bb * %s)", nm('u', m), one(), lit(d));
             /* β (s_j x_{j−1} − s_{j+1} x_{j+1}), zero products left out */
             const int h0 = j > 0 && s0 != 0, h1 = j + 1 < w && s1 != 0;
             if (h0 && h1)
@@ -290,7 +342,7 @@ static void gen_taylor(int meth, int n)
             }
             out(";\n");
         }
-        out("        SHK_ST(out, %d, K, t_0);\n", l * (l + 1));
+        out("        %st_0%s;\n", st_open(l * (l + 1)), st_close());
         for (int m = 1; m <= l; m++) {
             snprintf(xp, sizeof xp, "%s", nm('t', m));
             snprintf(xm, sizeof xm, "%s", nm('t', -m));
@@ -336,8 +388,7 @@ static int term(int first, double c, const char *expr)
 }
 static void gen_ivanic(int n)
 {
-    emit_head(M_IVANIC, n);
-    out("    (void)KP;\n");
+    emit_head(M_IVANIC, n); /* C only */
     out("    SHK_ST(out, 0, K, SHK_LD(in, 0, K));\n");
     if (n < 2) { out("}\n\n"); return; }
     /* band 1: M1[i][j] = (−1)^{i+j} R[π(i)][π(j)], π(−1, 0, 1) = (y, z, x) */
