@@ -465,6 +465,242 @@ static void gen_ivanic(int n)
     out("}\n\n");
 }
 
+
+/* ---- compute shaders (--shader glsl|hlsl --method M) -----------------------
+ * One file per method and language under shlab's shader convention
+ * (src/lab/shader.c; docs/check-your-kernel.md): local_size_x = 64, push
+ * constants {order, count, form, pad}, set 0 bindings 0 rotations, 1 inputs,
+ * 2 outputs, 3 status.  The per-order functions are the C kernels' bodies
+ * from the same emitter, in float; main computes the rotation's par from
+ * any of the three forms and dispatches on the order. */
+
+/* The rotation's par, in the shader: the formulas of rot_fast.c
+ * (SHK_PAR_MATRIX, shk_par_quat) in float, or cos and sin of the angles. */
+static const char *const shader_par =
+    "// β = atan2(s, c) ∈ [0, π] for s ≥ 0, as rot_fast.c's shk_beta: Abramowitz &\n"
+    "// Stegun 4.4.49 (Hastings), atan x = x(1 + a₂x² + … + a₁₆x¹⁶) + ε with\n"
+    "// |ε| ≤ 2·10⁻⁸ on [0, 1], on x = min(s, |c|)/max(s, |c|), then atan x,\n"
+    "// π/2 − atan x, or π minus those for c < 0.  The device's atan is not\n"
+    "// used: Vulkan allows it 4096 ulp, and lavapipe's was measured several\n"
+    "// ulp off, which the Taylor kernels (output error ~ l·δβ) turned into\n"
+    "// errors past the fixtures' float32 tolerance.\n"
+    "float beta_of(float s, float c)\n"
+    "{\n"
+    "    const float ac = abs(c);\n"
+    "    const bool swap = s > ac;\n"
+    "    const float num = swap ? ac : s, den = swap ? s : ac;\n"
+    "    const float xr = den > 0.0 ? num / den : 0.0, x2 = xr * xr;\n"
+    "    const float a = ((((((((0.0028662257 * x2 - 0.0161657367) * x2 + 0.0429096138) * x2 - 0.0752896400) * x2 +\n"
+    "                          0.1065626393) * x2 - 0.1420889944) * x2 + 0.1999355085) * x2 - 0.3333314528) * x2 + 1.0) * xr;\n"
+    "    const float t = swap ? 1.57079633 - a : a;\n"
+    "    return c >= 0.0 ? t : 3.14159265 - t;\n"
+    "}\n\n"
+    "// par = (cos α, sin α, cos β, sin β, cos γ, sin γ, β) of R = Rz(α) Ry(β) Rz(γ)\n"
+    "// (ZYZ, active; docs/CONVENTIONS.md), what the kernels above read, from\n"
+    "// the rotation in any of the convention's forms (pc.form).  The formulas\n"
+    "// are those of shlab's C kernels (src/rotate/rot_fast.c), in float:\n"
+    "//  matrix (form 0), no trigonometric call: cβ = R22 and\n"
+    "//    sβ e^{iα} = R02 + i R12,\n"
+    "//    (1 + cβ) e^{i(α+γ)} = (R00 + R11) + i (R10 − R01)   (taken when cβ ≥ 0),\n"
+    "//    (1 − cβ) e^{i(α−γ)} = (R11 − R00) − i (R10 + R01)   (taken when cβ < 0),\n"
+    "//    γ relative to the same α, so near β = 0 or π, where α alone is\n"
+    "//    ill-conditioned, its error cancels in R; at sβ = 0 exactly α = 0.\n"
+    "//  quaternion (w, x, y, z) (form 1): A = w + iz = cos(β/2) e^{i(α+γ)/2},\n"
+    "//    B = y − ix = sin(β/2) e^{i(α−γ)/2}: cβ = (|A|² − |B|²)/|q|²,\n"
+    "//    sβ = 2|A||B|/|q|², e^{iα} = AB/(|A||B|), e^{iγ} = AB̄/(|A||B|);\n"
+    "//    |B| = 0: α = 0, e^{iγ} = A²/|A|²; |A| = 0: α = 0, e^{iγ} = B̄²/|B|².\n"
+    "//  ZYZ angles α, β, γ in radians (form 2): cos and sin of each.\n"
+    "// β itself (read by the Taylor kernels only): the given angle, or\n"
+    "// beta_of(sβ, cβ) = atan2(sβ, cβ) ∈ [0, π] from a matrix or a quaternion.\n"
+    "@TAYLOR_DOC@"
+    "// SHLAB_NOCS (no Condon-Shortley phase): R_nocs = S R_cs S with\n"
+    "// S = diag((−1)^m) = R_sh(Rz(π)), and Rz(π) Ry(β) Rz(π) = Ry(−β): the\n"
+    "// same kernels with sβ and β negated.\n"
+    "// Returns false for a form it does not know.\n"
+    "bool rot_par(uint k, out float par[7])\n"
+    "{\n"
+    "    if (pc.form == 0u) {\n"
+    "        const uint o = 9u * k;\n"
+    "        const float r00 = rot[o], r01 = rot[o + 1u], r02 = rot[o + 2u];\n"
+    "        const float r10 = rot[o + 3u], r11 = rot[o + 4u], r12 = rot[o + 5u], r22 = rot[o + 8u];\n"
+    "        const float s2 = r02 * r02 + r12 * r12, sb = sqrt(s2);\n"
+    "        const bool has = s2 > 0.0;\n"
+    "        const float inv = has ? 1.0 / sb : 0.0;\n"
+    "        const float ca = has ? r02 * inv : 1.0, sa = r12 * inv;\n"
+    "        const bool up = r22 >= 0.0;\n"
+    "        const float p = up ? r00 + r11 : r11 - r00, q = up ? r10 - r01 : -(r10 + r01);\n"
+    "        const float nrm = 1.0 / sqrt(p * p + q * q);\n"
+    "        const float cs = p * nrm, ss = q * nrm; // e^{i(α+γ)} or e^{i(α−γ)}\n"
+    "        const float t = ss * ca - cs * sa;\n"
+    "        par[0] = ca; par[1] = sa; par[2] = r22; par[3] = sb;\n"
+    "        par[4] = cs * ca + ss * sa; par[5] = up ? t : -t;\n"
+    "@TAYLOR_ROW@"
+    "        par[6] = beta_of(sb, r22);\n"
+    "    } else if (pc.form == 1u) {\n"
+    "        const uint o = 4u * k;\n"
+    "        const float qw = rot[o], qx = rot[o + 1u], qy = rot[o + 2u], qz = rot[o + 3u];\n"
+    "        const float ww = qw * qw, zz = qz * qz, xx = qx * qx, yy = qy * qy;\n"
+    "        const float a2 = ww + zz, b2 = xx + yy, in2 = 1.0 / (a2 + b2);\n"
+    "        const float ab = sqrt(a2 * b2);\n"
+    "        const bool has = ab > 0.0;\n"
+    "        const float iab = has ? 1.0 / ab : 0.0;\n"
+    "        const float wy = qw * qy, zx = qz * qx, zy = qz * qy, wx = qw * qx;\n"
+    "        const bool up = a2 >= b2;\n"
+    "        const float dn = 1.0 / (up ? a2 : b2);\n"
+    "        const float dc = (up ? ww - zz : yy - xx) * dn;\n"
+    "        const float ds = (up ? qw : qx) * (up ? qz : qy) * (dn + dn);\n"
+    "        par[0] = has ? (wy + zx) * iab : 1.0;\n"
+    "        par[1] = (zy - wx) * iab;\n"
+    "        par[2] = (a2 - b2) * in2;\n"
+    "        par[3] = (ab + ab) * in2;\n"
+    "        par[4] = has ? (wy - zx) * iab : dc;\n"
+    "        par[5] = has ? (wx + zy) * iab : ds;\n"
+    "        par[6] = beta_of(par[3], par[2]);\n"
+    "    } else if (pc.form == 2u) {\n"
+    "        const uint o = 3u * k;\n"
+    "        const float al = rot[o], be = rot[o + 1u], ga = rot[o + 2u];\n"
+    "        par[0] = cos(al); par[1] = sin(al);\n"
+    "        par[2] = cos(be); par[3] = sin(be);\n"
+    "        par[4] = cos(ga); par[5] = sin(ga);\n"
+    "        par[6] = be;\n"
+    "    } else {\n"
+    "        return false;\n"
+    "    }\n"
+    "#ifdef SHLAB_NOCS\n"
+    "    par[3] = -par[3];\n"
+    "    par[6] = -par[6];\n"
+    "#endif\n"
+    "    return true;\n"
+    "}\n\n";
+
+static int write_shader(int meth, int N, const char *langname)
+{
+    const int glsl = lang == L_GLSL;
+    const char *ext = glsl ? "glsl" : "hlsl";
+    double *X = malloc((size_t)(2 * N + 1) * (2 * N + 1) * sizeof *X);
+    char *body[MAXN + 1] = {0};
+    unsigned long mults[MAXN + 1] = {0};
+    if (!X) return 2;
+    for (int n = 1; n <= N; n++) {
+        blen = 0;
+        bcap = 0;
+        buf = NULL;
+        out("%s", "");
+        if (meth == M_ZXZXZ) gen_zxzxz(n, X);
+        else gen_taylor(meth, n);
+        body[n] = buf;
+        mults[n] = count_mults(buf);
+    }
+    free(X);
+    if (glsl) printf("#version 450\n");
+    printf("// rot_%s.%s — GENERATED FILE, DO NOT EDIT.\n"
+           "//\n"
+           "// Written by tools/gen_rot_unrolled.c:\n"
+           "//   build/tools/gen_rot_unrolled --shader %s --method %s --max-order %d > data/shaders/rot_%s.%s\n"
+           "// (`make regen`; `make check` fails if this file differs from the output).\n"
+           "//\n",
+           mname[meth], ext, langname, mlabel[meth], N, mname[meth], ext);
+    if (meth == M_ZXZXZ)
+        printf("// SH rotation by ZXZXZ (Kautz, Sloan, Snyder, EGWR 2002; shlab's zxzxz,\n"
+               "// src/rotate/rot_zxzxz.c), exact:\n"
+               "//   R_sh(Rz(α)Ry(β)Rz(γ)) = Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ),\n"
+               "// Z(θ) turning each pair (m, −m) by mθ, X₊₉₀ = R_sh(Rx(90°)) a constant\n"
+               "// table (its non-zeros folded in as literals, computed from d^l(π/2)),\n"
+               "// the +π a sign (−1)^m of the odd-m pairs.\n");
+    else
+        printf("// SH rotation by Křivánek et al.'s Taylor approximation (IRISA PI 1728,\n"
+               "// 2005; shlab's %s, src/rotate/rot_taylor.c), NOT exact (error\n"
+               "// O(β²) for taylor1 and taylor1.5, O(β³) for taylor2):\n"
+               "//   R_sh ≈ Z(α) T(β) Z(γ),  T = I + βJ%s\n"
+               "// with J = dR_Y/dβ at 0 (the closed form of rotation_deriv.c), per band,\n"
+               "// positions j = m + l, s_j = J[m][m−1]:\n"
+               "//   y_j = x_j%s + β (s_j x_{j−1} − s_{j+1} x_{j+1})%s\n",
+               mlabel[meth],
+               meth == M_TAYLOR1 ? "" : meth == M_TAYLOR15 ? " + (β²/2) diag(J²)" : " + (β²/2) J²",
+               meth == M_TAYLOR1 ? "" : " (1 + (β²/2) J²_jj)",
+               meth == M_TAYLOR2 ? "\n//         + (β²/2) (s_j s_{j−1} x_{j−2} + s_{j+2} s_{j+1} x_{j+2})" : "");
+    printf("// The per-order functions are those of src/rotate/rot_unrolled_gen.h (the\n"
+           "// same emitter), in float: the same operations in the same order, the\n"
+           "// table values rounded to float as shlab's float kernels round them.\n"
+           "//\n"
+           "// shlab's shader convention (docs/check-your-kernel.md): one invocation\n"
+           "// rotates vector k = gl_GlobalInvocationID.x < count of order² real\n"
+           "// orthonormal SH coefficients (index l(l+1)+m; the rotation acts on\n"
+           "// functions, g(s) = f(R⁻¹s)) by rotation k, given as a 3×3 matrix (row-\n"
+           "// major), a quaternion (w, x, y, z) or ZYZ angles (form 0, 1, 2).  Phase:\n"
+           "// Condon-Shortley (cs), or without it (nocs) when compiled with SHLAB_NOCS.\n"
+           "// Orders 1..%d; another order sets status 1 (not handled), an unknown\n"
+           "// form status 2.\n"
+           "// Checked against shlab's golden fixtures by tests/cli/test_shaders_shlab.sh:\n"
+           "//   shlab verify --fixture data/fixtures/rotation/orders_1_10%s.json \\\n"
+           "//     --shader data/shaders/rot_%s.%s --abi matrix --orders 1-%d [--define SHLAB_NOCS --convention nocs]\n"
+           "//\n"
+           "// Multiplications per vector (counted \" * \" in each function):",
+           N, meth == M_ZXZXZ ? "" : meth == M_TAYLOR1 ? "_taylor1" : meth == M_TAYLOR15 ? "_taylor1.5" : "_taylor2",
+           mname[meth], ext, N);
+    for (int n = 1; n <= N; n++) printf(" %d:%lu", n, mults[n]);
+    printf("\n\n");
+    if (glsl)
+        printf("layout(local_size_x = 64) in;\n"
+               "layout(push_constant) uniform Params { uint order; uint count; uint form; uint pad; } pc;\n"
+               "layout(std430, set = 0, binding = 0) readonly buffer Rotations { float rot[]; };\n"
+               "layout(std430, set = 0, binding = 1) readonly buffer Inputs { float x[]; };\n"
+               "layout(std430, set = 0, binding = 2) writeonly buffer Outputs { float y[]; };\n"
+               "layout(std430, set = 0, binding = 3) buffer Status { uint status[]; };\n\n");
+    else
+        printf("struct Params { uint order; uint count; uint form; uint pad; };\n"
+               "[[vk::push_constant]] ConstantBuffer<Params> pc;\n"
+               "[[vk::binding(0, 0)]] StructuredBuffer<float> rot;\n"
+               "[[vk::binding(1, 0)]] StructuredBuffer<float> x;\n"
+               "[[vk::binding(2, 0)]] RWStructuredBuffer<float> y;\n"
+               "[[vk::binding(3, 0)]] RWStructuredBuffer<uint> status;\n\n");
+    for (int n = 1; n <= N; n++) {
+        fputs(body[n], stdout);
+        free(body[n]);
+    }
+    /* the Taylor kernels, from a matrix with cβ < 0: γ from the third row */
+    static const char *const taylor_doc =
+        "// Taylor kernels, matrix with cβ < 0: e^{iγ} = (−R20 + i R21)/|(R20, R21)|\n"
+        "//    (R20 = −sβ cγ, R21 = sβ sγ) instead of (c).  Z(α) T(β) Z(γ) is not a\n"
+        "//    function of R alone: away from β = 0 α and γ each matter (near\n"
+        "//    β = 0, T ≈ I and only α + γ does, which (b) gives well), and the third\n"
+        "//    column and row give each to the relative accuracy of those entries.\n"
+        "//    Through (c), γ = α − (α−γ) carried 1-2 float ulps more, which T(β)\n"
+        "//    amplifies near β = π (by ~l·|T|) past the Taylor fixtures' float32\n"
+        "//    tolerance (measured on lavapipe: 3.4e-6 against 3.2e-6 at\n"
+        "//    β = π − 1e-9).  (c) stays the fallback when R20 = R21 = 0.\n";
+    static const char *const taylor_row =
+        "        const float r20 = rot[o + 6u], r21 = rot[o + 7u], h2 = r20 * r20 + r21 * r21;\n"
+        "        if (!up && h2 > 0.0) {\n"
+        "            const float ih = 1.0 / sqrt(h2);\n"
+        "            par[4] = -r20 * ih;\n"
+        "            par[5] = r21 * ih;\n"
+        "        }\n";
+    for (const char *c = shader_par; *c;) {
+        if (!strncmp(c, "@TAYLOR_ROW@", 12)) fputs(meth == M_ZXZXZ ? "" : taylor_row, stdout), c += 12;
+        else if (!strncmp(c, "@TAYLOR_DOC@", 12)) fputs(meth == M_ZXZXZ ? "" : taylor_doc, stdout), c += 12;
+        else putchar(*c++);
+    }
+    if (glsl) printf("void main()\n{\n    const uint k = gl_GlobalInvocationID.x;\n");
+    else printf("[numthreads(64, 1, 1)]\nvoid main(uint3 id : SV_DispatchThreadID)\n{\n    const uint k = id.x;\n");
+    printf("    if (k >= pc.count) return;\n"
+           "    if (pc.order < 1u || pc.order > %du) {\n"
+           "        status[k] = 1u;\n"
+           "        return;\n"
+           "    }\n"
+           "    float par[7];\n"
+           "    if (!rot_par(k, par)) {\n"
+           "        status[k] = 2u;\n"
+           "        return;\n"
+           "    }\n"
+           "    const uint b = k * pc.order * pc.order;\n"
+           "    switch (pc.order) {\n",
+           N);
+    for (int n = 1; n <= N; n++) printf("    case %du: %s_%d(par, b); break;\n", n, mname[meth], n);
+    printf("    default: break;\n    }\n}\n");
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     /* --max-order N: zxzxz and the Taylor kernels; --ivanic-max-order NI
@@ -472,13 +708,30 @@ int main(int argc, char **argv)
      * than the loop kernel once it outgrows the instruction cache (measured:
      * README "Rotation speed") */
     int N = 10, NI = 6;
+    const char *shader = NULL, *method = NULL;
     for (int i = 1; i < argc; i++) {
         if (i + 1 < argc && !strcmp(argv[i], "--max-order")) N = atoi(argv[++i]);
         else if (i + 1 < argc && !strcmp(argv[i], "--ivanic-max-order")) NI = atoi(argv[++i]);
+        else if (i + 1 < argc && !strcmp(argv[i], "--shader")) shader = argv[++i];
+        else if (i + 1 < argc && !strcmp(argv[i], "--method")) method = argv[++i];
         else {
-            fprintf(stderr, "usage: gen_rot_unrolled [--max-order N] [--ivanic-max-order NI]   (1 <= NI <= N <= %d)\n", MAXN);
+            fprintf(stderr, "usage: gen_rot_unrolled [--max-order N] [--ivanic-max-order NI]   (1 <= NI <= N <= %d)\n"
+                            "       gen_rot_unrolled --shader glsl|hlsl --method zxzxz|taylor1|taylor1.5|taylor2 [--max-order N]\n",
+                    MAXN);
             return 2;
         }
+    }
+    /* a compute shader: one method, one language, orders 1..N */
+    if (shader || method) {
+        int meth = -1;
+        for (int m = 0; method && m < M_IVANIC; m++)
+            if (!strcmp(method, mlabel[m])) meth = m;
+        if (!shader || (strcmp(shader, "glsl") && strcmp(shader, "hlsl")) || meth < 0 || N < 1 || N > MAXN) {
+            fprintf(stderr, "gen_rot_unrolled: --shader glsl|hlsl needs --method zxzxz|taylor1|taylor1.5|taylor2 and 1 <= --max-order <= %d\n", MAXN);
+            return 2;
+        }
+        lang = strcmp(shader, "glsl") ? L_HLSL : L_GLSL;
+        return write_shader(meth, N, shader);
     }
     if (N < 1 || N > MAXN || NI < 1 || NI > N) {
         fprintf(stderr, "gen_rot_unrolled: need 1 <= --ivanic-max-order <= --max-order <= %d\n", MAXN);
