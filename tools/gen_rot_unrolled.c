@@ -4,7 +4,14 @@
  *
  *   make regen          rewrites src/rotate/rot_unrolled_gen.h
  *   make check          regenerates into build/ and fails if the committed
- *                       file differs (tests/cli/test_unrolled.sh)
+ *                       file differs (tests/cli/test_kernels.sh)
+ *
+ * With --shader glsl|hlsl --method M [--max-order N] it writes instead one
+ * compute shader under shlab's shader convention (data/shaders/rot_*.glsl,
+ * .hlsl; `make regen` rewrites them, tests/cli/test_shader_gen.sh compares
+ * them): the same per-order bodies from the same emitter (the target
+ * language is a parameter of every emit_* function's helpers), in float,
+ * with the rotation's par computed in the shader (write_shader).
  *
  * The kernels are the loop kernels of rot_zxzxz.c and rot_taylor.c laid out
  * straight, with every table value folded into the code as a literal:
