@@ -298,15 +298,25 @@ fuzz:
 # ---- generated code ---------------------------------------------------------
 # src/rotate/rot_unrolled_gen.h is written by tools/gen_rot_unrolled.c (its
 # banner records the command); `make regen` rewrites it, `make check` fails
-# if it differs from what the generator writes (tests/cli/test_unrolled.sh).
+# if it differs from what the generator writes (tests/cli/test_kernels.sh).
 GEN_UNROLLED := $(BUILD)/tools/gen_rot_unrolled
 $(GEN_UNROLLED): tools/gen_rot_unrolled.c $(BUILD)/libshlab.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -o $@ $< $(BUILD)/libshlab.a $(LDLIBS)
 
+# The same generator writes shlab's compute shaders, data/shaders/rot_*.glsl
+# and .hlsl (--shader), each with its command in its banner; `make check`
+# compares them too (tests/cli/test_shader_gen.sh).
+GEN_SHADERS := $(foreach m,zxzxz taylor1 taylor15 taylor2,$(foreach e,glsl hlsl,data/shaders/rot_$(m).$(e)))
 regen: $(GEN_UNROLLED)
 	$(GEN_UNROLLED) $$(sed -n 's|^ \*   build/tools/gen_rot_unrolled \(.*\) > src/rotate/rot_unrolled_gen.h$$|\1|p' src/rotate/rot_unrolled_gen.h) > $(BUILD)/rot_unrolled_gen.h
 	mv $(BUILD)/rot_unrolled_gen.h src/rotate/rot_unrolled_gen.h
+	@for f in $(GEN_SHADERS); do \
+	  args=$$(sed -n "s|^//   build/tools/gen_rot_unrolled \(.*\) > $$f\$$|\1|p" $$f); \
+	  [ -n "$$args" ] || { echo "regen: no command in the banner of $$f" >&2; exit 1; }; \
+	  echo "$(GEN_UNROLLED) $$args > $$f"; \
+	  $(GEN_UNROLLED) $$args > $(BUILD)/shader.tmp && mv $(BUILD)/shader.tmp $$f || exit 1; \
+	done
 
 check: $(GEN_UNROLLED)
 
