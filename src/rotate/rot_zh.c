@@ -242,7 +242,15 @@ int SH_R(sh__rot_zh_set_mat)(int order, const sh_real *R, void *state, uint64_t 
     if (!SH_R(zh_finite)(R)) return sh_error(SH_EINVAL, "method zh: matrix entries must be finite");
     sh_real r[9];
     SH_R(zh_signs)(R, 0, r);
-    SH_R(zh_eval)(order, sh__rot_zh_tables(), r, state);
+    const sh__zh_tables *T = sh__rot_zh_tables();
+    switch (order) { /* each order a constant: the loops unroll */
+    case 6: SH_R(zh_eval)(6, T, r, state); break;
+    case 5: SH_R(zh_eval)(5, T, r, state); break;
+    case 4: SH_R(zh_eval)(4, T, r, state); break;
+    case 3: SH_R(zh_eval)(3, T, r, state); break;
+    case 2: SH_R(zh_eval)(2, T, r, state); break;
+    default: break;
+    }
     if (mults) *mults += zh_set_mults(order);
     return SH_OK;
 }
