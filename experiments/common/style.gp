@@ -27,10 +27,10 @@ set linetype cycle NCYC
 # Every rotation method keeps its colour, point type and dash type in every
 # figure: exact methods solid, the Taylor approximations dashed (each its own
 # dash type).
-mname = "z ivanic zxzxz choi blanco wigner reference taylor1 taylor1.5 taylor2 zxzxz_dense matrix_to_angles halfpi direct"
-mcols = "#56B4E9 #E69F00 #0072B2 #009E73 #CC79A7 #882255 #777777 #D55E00 #000000 #999933 #0072B2 #777777 #332288 #44AA99"
-mpts  = "4 5 7 9 11 13 1 6 8 10 3 2 15 12"
-mdts  = "1 1 1 1 1 1 1 2 5 4 3 4 1 1"
+mname = "z ivanic zxzxz choi blanco wigner reference taylor1 taylor1.5 taylor2 zxzxz_dense matrix_to_angles halfpi direct zh"
+mcols = "#56B4E9 #E69F00 #0072B2 #009E73 #CC79A7 #882255 #777777 #D55E00 #000000 #999933 #0072B2 #777777 #332288 #44AA99 #AA4499"
+mpts  = "4 5 7 9 11 13 1 6 8 10 3 2 15 12 14"
+mdts  = "1 1 1 1 1 1 1 2 5 4 3 4 1 1 1"
 midx(m) = sum [k = 1:words(mname)] (word(mname, k) eq m ? k : 0)
 mcol(m) = word(mcols, midx(m) > 0 ? midx(m) : 7)
 mpt(m) = int(word(mpts, midx(m) > 0 ? midx(m) : 7))

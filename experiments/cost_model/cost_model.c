@@ -51,6 +51,10 @@ static const struct {
     {"--order 1,2,3 --methods direct --input matrix,quat,euler --mode per-rotation", 16},
     {"--order 1,2,3 --methods direct --input matrix,quat --mode k-rotations --batch 256", 1},
     {"--order 1,2,3 --methods direct --input matrix --mode batched --batch 256", 1},
+    /* zh (orders ≤ 6): the same paths */
+    {"--order 1,2,3,4,5,6 --methods zh --input matrix,quat,euler --mode per-rotation", 16},
+    {"--order 1,2,3,4,5,6 --methods zh --input matrix,quat --mode k-rotations --batch 256", 1},
+    {"--order 1,2,3,4,5,6 --methods zh --input matrix --mode batched --batch 256", 1},
     {"--order 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16 --input matrix,quat --mode k-rotations --batch 256 " BATCH_METHODS, 1},
     {"--order 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16 --input matrix --mode batched --batch 256 " BATCH_METHODS, 1},
     {"--order 20,24,32 --input matrix --mode per-rotation "

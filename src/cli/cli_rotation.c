@@ -82,8 +82,9 @@ int cli_parse_kernel(const char *opt, const char *s, void *field)
 const cli_opt cli_method_opts[] = {
     CLI_CUSTOM(cli_method_args, method, "method", "M", cli_parse_method, "auto",
                "auto (default) | z | ivanic | zxzxz | choi | blanco | wigner |\n"
-               "reference | halfpi | direct (orders ≤ 3; exact) or taylor1 |\n"
-               "taylor1.5 | taylor2 (Krivánek et al.'s approximations)"),
+               "reference | halfpi | direct (orders ≤ 3) | zh (orders ≤ 6;\n"
+               "exact) or taylor1 | taylor1.5 | taylor2 (Krivánek et al.'s\n"
+               "approximations)"),
     CLI_CUSTOM(cli_method_args, prec, "precision", "P", cli_parse_precision, "double",
                "double (default) | float (computed in float)"),
     CLI_CUSTOM(cli_method_args, kernel, "kernel", "K", cli_parse_kernel, "auto",

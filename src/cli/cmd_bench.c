@@ -176,7 +176,8 @@ static const cli_opt bench_opts[] = {
     CLI_CUSTOM(bench_args, orders, "order", "LIST", parse_orders, "2,4,6,8,10,16", "orders (comma separated)"),
     CLI_CUSTOM(bench_args, methods, "methods", "LIST", parse_methods, NULL,
                "z, ivanic, zxzxz, choi, blanco, wigner, reference, halfpi,\n"
-               "direct (orders ≤ 3), taylor1, taylor1.5, taylor2, or\n"
+               "direct (orders ≤ 3), zh (orders ≤ 6), taylor1, taylor1.5,\n"
+               "taylor2, or\n"
                "'all' (default: every method built in except\n"
                "reference, which is MPFR, and those limited below the\n"
                "largest --order, e.g. direct beyond 3)"),

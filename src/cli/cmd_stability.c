@@ -52,7 +52,8 @@ static int bands_value(const char *opt, const char *s, void *field)
 static const cli_opt stability_opts[] = {
     CLI_CUSTOM(stability_args, method, "method", "M", cli_parse_method, NULL,
                "z | ivanic | zxzxz | choi | blanco | wigner | halfpi\n"
-               "| direct (bands ≤ 2) | reference | taylor1 | taylor1.5\n"
+               "| direct (bands ≤ 2) | zh (bands ≤ 5) | reference | taylor1\n"
+               "| taylor1.5\n"
                "| taylor2 (halfpi forms\n"
                "no block above --exact-max and --ref-max: O(l²) a band)"),
     CLI_INT(stability_args, lmax, "lmax", "L", 0, STABILITY_MAX_BAND, NULL,

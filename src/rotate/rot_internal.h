@@ -233,6 +233,7 @@ extern const sh__rot_ops sh__rot_z_ops, sh__rot_ivanic_ops, sh__rot_zxzxz_ops, s
 extern const sh__rot_ops sh__rot_taylor1_ops, sh__rot_taylor15_ops, sh__rot_taylor2_ops;
 extern const sh__rot_ops sh__rot_halfpi_ops;
 extern const sh__rot_ops sh__rot_direct_ops;
+extern const sh__rot_ops sh__rot_zh_ops;
 
 /* ---- rot_halfpi.c: the band kernel of `halfpi`, shared with the threaded
  * all-band rotation (rotation_stream.c).  Band l of nj vectors (job j: the

@@ -16,6 +16,7 @@ static const sh__rot_ops *const methods[SH_ROT_NMETHODS] = {
     [SH_ROT_TAYLOR1] = &sh__rot_taylor1_ops, [SH_ROT_TAYLOR15] = &sh__rot_taylor15_ops, [SH_ROT_TAYLOR2] = &sh__rot_taylor2_ops,
     [SH_ROT_HALFPI] = &sh__rot_halfpi_ops,
     [SH_ROT_DIRECT] = &sh__rot_direct_ops,
+    [SH_ROT_ZH] = &sh__rot_zh_ops,
 };
 
 static const char *const method_names[SH_ROT_NMETHODS] = {
@@ -23,7 +24,7 @@ static const char *const method_names[SH_ROT_NMETHODS] = {
     [SH_ROT_CHOI] = "choi",     [SH_ROT_BLANCO] = "blanco", [SH_ROT_WIGNER] = "wigner",
     [SH_ROT_REFERENCE] = "reference", [SH_ROT_TAYLOR1] = "taylor1", [SH_ROT_TAYLOR15] = "taylor1.5",
     [SH_ROT_TAYLOR2] = "taylor2", [SH_ROT_HALFPI] = "halfpi",
-    [SH_ROT_DIRECT] = "direct",
+    [SH_ROT_DIRECT] = "direct", [SH_ROT_ZH] = "zh",
 };
 
 const char *sh_rot_method_name(sh_rot_method m)
@@ -41,7 +42,7 @@ int sh_rot_method_parse(const char *s, sh_rot_method *out)
         }
     return sh_error(SH_EINVAL,
                     "unknown method '%s' (z, ivanic, zxzxz, choi, blanco, wigner, reference, "
-                    "halfpi, direct, taylor1, taylor1.5, taylor2)",
+                    "halfpi, direct, zh, taylor1, taylor1.5, taylor2)",
                     s ? s : "");
 }
 

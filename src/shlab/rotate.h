@@ -66,6 +66,7 @@ typedef enum {
     SH_ROT_TAYLOR2,   /* approximate: Z(α)·(I + βJ + β²/2·J²)·Z(γ) */
     SH_ROT_HALFPI,    /* d^l(π/2) generated band by band (O(l²) each), Z·Δ·Z(β)·Δ·Z; high bands */
     SH_ROT_DIRECT,    /* bands 0..2 straight from the matrix: a permutation, quadratic forms */
+    SH_ROT_ZH,        /* zonal-harmonic factorisation: the basis at 2l+1 rotated directions (orders ≤ 6) */
     SH_ROT_NMETHODS
 } sh_rot_method;
 typedef enum { SH_PREC_DOUBLE = 0, SH_PREC_FLOAT = 1 } sh_precision;
@@ -91,7 +92,10 @@ int sh_precision_parse(const char *s, sh_precision *out);
  *   taylor*     SH_TAYLOR_MAX_ORDER (taylor.h; tests/core/test_ranges.c)
  *   direct      order 3 (bands 0..2): its closed forms exist for these bands
  *               only (rot_direct.c); tests/rotate/test_rot_direct.c against
- *               the MPFR reference */
+ *               the MPFR reference
+ *   zh          order 6 (bands 0..5): its directions and their condition
+ *               numbers (≤ 4.5) are chosen for these bands (rot_zh.c);
+ *               tests/rotate/test_rot_zh.c against the MPFR reference */
 #define SH_ROT_BLANCO_MAX_ORDER 4001
 #define SH_ROT_ZXZXZ_MAX_ORDER 1401
 #define SH_ROT_IVANIC_MAX_ORDER 201
@@ -99,6 +103,7 @@ int sh_precision_parse(const char *s, sh_precision *out);
 #define SH_ROT_WIGNER_MAX_ORDER 61
 #define SH_ROT_REFERENCE_MAX_ORDER 401
 #define SH_ROT_DIRECT_MAX_ORDER 3
+#define SH_ROT_ZH_MAX_ORDER 6
 int sh_rot_method_max_order(sh_rot_method m);
 /* 1 for the exact methods, 0 for the Taylor approximations. */
 int sh_rot_method_is_exact(sh_rot_method m);

@@ -102,3 +102,19 @@ grep -q '"skipped"' "$TMP/dz.json" && notok "zxzxz reports skipped cases" || ok 
 } >"$TMP/o10.json"
 expect_usage_error "verify direct, every case above order 3" verify --fixture "$TMP/o10.json" --method direct
 expect_usage_error "verify direct --emit-candidate with skipped cases" verify --fixture $FX/orders_1_10.json --method direct --emit-candidate "$TMP/dc.json"
+# zh stops at order 6: the cases of orders 1-6 pass in double and float,
+# from the angles and from the matrix; the others are skipped and counted
+lo=$(grep -c '"order":[1-6],' $FX/orders_1_10.json)
+hi=$(grep -c '"order":\([7-9]\|[1-9][0-9]\),' $FX/orders_1_10.json)
+for p in double float; do
+    for mi in "" --matrix-input; do
+        "$SHLAB" verify --fixture $FX/orders_1_10.json --method zh --precision $p $mi --format json >"$TMP/zv.json" 2>"$TMP/zv.err"; rc=$?
+        if [ "$rc" = 0 ] && [ "$lo" -gt 0 ] && [ "$hi" -gt 0 ] && grep -q "\"failed\":0," "$TMP/zv.json" \
+            && grep -q "\"skipped\":$hi[,}]" "$TMP/zv.json" && grep -q "$hi of the $((lo + hi)) cases skipped" "$TMP/zv.err"; then
+            ok "verify zh $p $mi: the $lo cases of orders 1-6 pass, $hi skipped"
+        else
+            notok "verify zh $p $mi: rc $rc $(head -c 300 "$TMP/zv.json") $(cat "$TMP/zv.err")"
+        fi
+    done
+done
+expect_usage_error "verify zh, every case above order 6" verify --fixture "$TMP/o10.json" --method zh
