@@ -205,10 +205,6 @@ int sh_rot_choose_grid(const sh_rot_choose_opts *o, sh_rot_method ms[SH_ROT_NMET
     for (int m = 0; m < SH_ROT_NMETHODS; m++) {
         if (m == SH_ROT_REFERENCE || sh_rot_method_max_order((sh_rot_method)m) < o->order) continue;
         if (m == SH_ROT_Z && o->max_beta > 0) continue; /* z only rotates about z */
-        /* zh has no rows in data/cost_model.tsv yet (its sets are in
-         * experiments/cost_model; the calibration needs a quiet `make report`):
-         * a live measurement would make the plan's answer vary between runs */
-        if (m == SH_ROT_ZH) continue;
         ms[(*nm)++] = (sh_rot_method)m;
     }
     *nsteps = 1 + (o->max_beta > 0 ? (int)ceil(o->max_beta / o->beta_step - 1e-9) : 0);
