@@ -36,8 +36,11 @@ static const int TABLE_ORDERS[] = {3, 6, 10, 16};
 
 /* errors[p][n][j·nm + k]: method k at step j (1° steps 0..180°) */
 static double *ERR[2][NO + 1];
-static sh_rot_method MS[SH_ROT_NMETHODS];
-static int NM, NSTEPS;
+/* the methods of each order's β grid (sh_rot_choose_grid: a method limited
+ * below the order is not in it, so the lists differ: direct to 3, zh to 6),
+ * and ERR[p][n] laid out by that order's list */
+static sh_rot_method MS[NO + 1][SH_ROT_NMETHODS];
+static int NM[NO + 1], NSTEPS;
 
 static sh_rot_choose_opts opts_for(int n, int p, double beta_deg, double budget)
 {
@@ -58,8 +61,8 @@ static void measure_errors(void)
         for (int n = 1; n <= NO; n++) {
             exp_progress("trade_atlas: errors, %s, order %d", PREC[p], n);
             sh_rot_choose_opts o = opts_for(n, p, 180, 1);
-            exp_check(sh_rot_choose_grid(&o, MS, &NM, &NSTEPS), "grid");
-            ERR[p][n] = malloc(sizeof(double) * (size_t)NSTEPS * NM);
+            exp_check(sh_rot_choose_grid(&o, MS[n], &NM[n], &NSTEPS), "grid");
+            ERR[p][n] = malloc(sizeof(double) * (size_t)NSTEPS * NM[n]);
             if (!ERR[p][n]) exp_check(SH_ENOMEM, "errors");
             exp_check(sh_rot_choose_errors(&o, NULL, ERR[p][n]), "errors");
         }
@@ -69,7 +72,7 @@ static void measure_errors(void)
 static double worst(int p, int n, int k, double beta_deg)
 {
     double w = 0;
-    for (int j = 0; j <= (int)lround(beta_deg); j++) w = fmax(w, ERR[p][n][(size_t)j * NM + k]);
+    for (int j = 0; j <= (int)lround(beta_deg); j++) w = fmax(w, ERR[p][n][(size_t)j * NM[n] + k]);
     return w;
 }
 
@@ -87,15 +90,15 @@ static int choose(int n, int p, int path, double beta_deg, double budget, double
     exp_check(sh_rot_choose(&o, &rp, c, &nc, &ch, &ru, NULL), "choose");
     if (ch < 0) return -1;
     *ns = c[ch].ns_per_rotation;
-    for (int k = 0; k < NM; k++)
-        if (MS[k] == c[ch].method) return k;
+    for (int k = 0; k < NM[n]; k++)
+        if (MS[n][k] == c[ch].method) return k;
     return -1;
 }
 
 static double model_ns(int n, int p, int path, int k)
 {
     sh_cost c;
-    if (sh_cost_model(n, MS[k], p ? SH_PREC_DOUBLE : SH_PREC_FLOAT, SH_BENCH_INPUT_MATRIX, PATHS[path], &c)) return NAN;
+    if (sh_cost_model(n, MS[n][k], p ? SH_PREC_DOUBLE : SH_PREC_FLOAT, SH_BENCH_INPUT_MATRIX, PATHS[path], &c)) return NAN;
     return c.ns;
 }
 
@@ -114,24 +117,24 @@ static void write_atlas(int p, int path)
         for (int n = 2; n <= NO; n++) {
             double e[SH_ROT_NMETHODS], c[SH_ROT_NMETHODS];
             int on[SH_ROT_NMETHODS], nf = 0, cheapest = -1;
-            for (int k = 0; k < NM; k++) {
+            for (int k = 0; k < NM[n]; k++) {
                 e[k] = fmax(worst(p, n, k, BETAS[b]), 1e-16);
                 c[k] = model_ns(n, p, path, k);
             }
-            for (int k = 0; k < NM; k++) {
+            for (int k = 0; k < NM[n]; k++) {
                 on[k] = isfinite(c[k]) && e[k] < 1; /* an error ≥ 1 (100 %) is no answer */
-                for (int q = 0; q < NM && on[k]; q++)
+                for (int q = 0; q < NM[n] && on[k]; q++)
                     if (q != k && isfinite(c[q]) && c[q] <= c[k] && e[q] <= e[k] && (c[q] < c[k] || e[q] < e[k]))
                         on[k] = 0;
             }
             /* the frontier by increasing error */
-            for (int done = 0; done < NM; done++) {
+            for (int done = 0; done < NM[n]; done++) {
                 int best = -1;
-                for (int k = 0; k < NM; k++)
+                for (int k = 0; k < NM[n]; k++)
                     if (on[k] == 1 && (best < 0 || e[k] < e[best])) best = k;
                 if (best < 0) break;
                 on[best] = 2;
-                fprintf(f, "%g %d %s %.4g %.4g\n", BETAS[b], n, sh_rot_method_name(MS[best]), e[best], c[best]);
+                fprintf(f, "%g %d %s %.4g %.4g\n", BETAS[b], n, sh_rot_method_name(MS[n][best]), e[best], c[best]);
                 if (cheapest < 0 || c[best] < c[cheapest]) cheapest = best;
                 nf++;
             }
@@ -162,7 +165,7 @@ static void table(int n, int p, int path, char *out, size_t cap)
             double ns = 0;
             const int k = choose(n, p, path, BETAS[b], E, &ns);
             l += k < 0 ? (size_t)snprintf(out + l, cap - l, " – |")
-                       : (size_t)snprintf(out + l, cap - l, " %s (%.3g) |", sh_rot_method_name(MS[k]), ns);
+                       : (size_t)snprintf(out + l, cap - l, " %s (%.3g) |", sh_rot_method_name(MS[n][k]), ns);
         }
         l += (size_t)snprintf(out + l, cap - l, "\n");
     }
@@ -188,8 +191,8 @@ static void check_frontier(int n, int p, int path, FILE *f, frontier_check *fc)
     bo.batch = path ? 256 : 1;
     sh_bench_entry ent[SH_ROT_NMETHODS];
     int idx[SH_ROT_NMETHODS], ne = 0;
-    for (int k = 0; k < NM; k++)
-        if (sh_rot_bench_entry(n, MS[k], p ? SH_PREC_DOUBLE : SH_PREC_FLOAT, PATHS[path], &bo, &ent[ne]) == SH_OK)
+    for (int k = 0; k < NM[n]; k++)
+        if (sh_rot_bench_entry(n, MS[n][k], p ? SH_PREC_DOUBLE : SH_PREC_FLOAT, PATHS[path], &bo, &ent[ne]) == SH_OK)
             idx[ne++] = k;
     sh_bench_cfg cfg = SH_BENCH_CFG_DEFAULT;
     cfg.samples = 11;
@@ -203,8 +206,8 @@ static void check_frontier(int n, int p, int path, FILE *f, frontier_check *fc)
     for (int i = 0; i < ne; i++) {
         const double model = model_ns(n, p, path, idx[i]);
         fprintf(f, "%d %s %s %s %.4g %.4g %.3f %d\n", n, PREC[p], sh_bench_mode_name(PATHS[path]),
-                sh_rot_method_name(MS[idx[i]]), st[i].ns_median, model, st[i].ns_median / model, nz.noisy);
-        if (n == 6 && p == 0 && MS[idx[i]] == SH_ROT_ZXZXZ) {
+                sh_rot_method_name(MS[n][idx[i]]), st[i].ns_median, model, st[i].ns_median / model, nz.noisy);
+        if (n == 6 && p == 0 && MS[n][idx[i]] == SH_ROT_ZXZXZ) {
             fc->fid[path] = st[i].ns_median / model;
             fc->fid_noisy[path] = nz.noisy;
         }
@@ -230,7 +233,7 @@ static void check_frontier(int n, int p, int path, FILE *f, frontier_check *fc)
                         fc->worst_ratio = r.median;
                         snprintf(fc->worst_what, sizeof fc->worst_what, "order %d %s %s, β ≤ %g°, budget %g: %s "
                                  "%.2f× the time of the choice %s", n, PREC[p], sh_bench_mode_name(PATHS[path]),
-                                 BETAS[b], E, sh_rot_method_name(MS[idx[i]]), r.median, sh_rot_method_name(MS[ch]));
+                                 BETAS[b], E, sh_rot_method_name(MS[n][idx[i]]), r.median, sh_rot_method_name(MS[n][ch]));
                     }
                 }
             }
@@ -273,7 +276,12 @@ int main(int argc, char **argv)
     }
     measure_errors();
     FILE *fm = exp_data("methods.txt", "methods in the atlas", "name");
-    for (int k = 0; k < NM; k++) fprintf(fm, "%s\n", sh_rot_method_name(MS[k]));
+    for (int m = 0; m < SH_ROT_NMETHODS; m++) {
+        int in = 0; /* every method of any order's grid, in the table's order */
+        for (int n = 1; n <= NO; n++)
+            for (int k = 0; k < NM[n]; k++) in |= MS[n][k] == (sh_rot_method)m;
+        if (in) fprintf(fm, "%s\n", sh_rot_method_name((sh_rot_method)m));
+    }
     fclose(fm);
     for (int p = 0; p < 2; p++)
         for (int path = 0; path < 2; path++) write_atlas(p, path);
