@@ -149,3 +149,12 @@ void sh__case_describe(double timeout_s, const sh_fixture *fx, const sh_sandbox_
     }
 }
 
+
+int sh__byte_sink_feed(void *fctx, const unsigned char *bytes, size_t n)
+{
+    sh_byte_sink *s = fctx;
+    if (s->have + n > s->cap) return -1;
+    memcpy(s->buf + s->have, bytes, n);
+    s->have += n;
+    return 0;
+}

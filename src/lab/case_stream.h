@@ -52,4 +52,12 @@ int sh__case_reader_feed(void *fctx, const unsigned char *bytes, size_t n);
 void sh__case_describe(double timeout_s, const sh_fixture *fx, const sh_sandbox_result *sr, const sh_case_reader *r,
                        sh_plugin_report *rep);
 
+/* A child's whole answer kept as bytes (the timing runs: a few records),
+ * refused once it outgrows cap. */
+typedef struct {
+    unsigned char *buf;
+    size_t have, cap;
+} sh_byte_sink;
+int sh__byte_sink_feed(void *fctx, const unsigned char *bytes, size_t n);
+
 #endif

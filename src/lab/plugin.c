@@ -477,19 +477,6 @@ static int bench_child(void *arg, int fd)
     return w ? CHILD_WRITE : 0;
 }
 
-typedef struct {
-    unsigned char *buf;
-    size_t have, cap;
-} byte_sink;
-
-static int sink_feed(void *fctx, const unsigned char *bytes, size_t n)
-{
-    byte_sink *s = fctx;
-    if (s->have + n > s->cap) return -1;
-    memcpy(s->buf + s->have, bytes, n);
-    s->have += n;
-    return 0;
-}
 
 int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin_bench_result *res)
 {
@@ -497,10 +484,10 @@ int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin
     if (o->nmethods < 0 || o->nmethods > SH_PLUGIN_BENCH_MAX_METHODS)
         return sh_error(SH_EINVAL, "plug-in bench: at most %d methods beside the plug-in", SH_PLUGIN_BENCH_MAX_METHODS);
     const int nd = (int)((sizeof(bench_answer) + sizeof(double) - 1) / sizeof(double));
-    byte_sink sink = {.cap = sizeof(sh_rec_hdr) + SH_REC_MAX_TEXT + (size_t)nd * sizeof(double)};
+    sh_byte_sink sink = {.cap = sizeof(sh_rec_hdr) + SH_REC_MAX_TEXT + (size_t)nd * sizeof(double)};
     if (!(sink.buf = malloc(sink.cap))) return sh_error(SH_ENOMEM, "out of memory");
     const bench_job j = {p, o};
-    const sh_sandbox_job sj = {.child = bench_child, .feed = sink_feed, .arg = (void *)&j, .fctx = &sink,
+    const sh_sandbox_job sj = {.child = bench_child, .feed = sh__byte_sink_feed, .arg = (void *)&j, .fctx = &sink,
                                .cpu_seconds = p->timeout_s, .wall_seconds = p->timeout_s, .mem_bytes = 1LL << 30,
                                .what = "the plug-in"};
     sh_sandbox_result sr;

@@ -386,31 +386,17 @@ static int bench_child(void *arg, int fd)
     return w ? SH_CASE_CHILD_WRITE : 0;
 }
 
-/* The timing child's records: INFO, then OPEN or one DONE with the answer. */
-typedef struct {
-    unsigned char *buf;
-    size_t have, cap;
-} byte_sink;
-
-static int sink_feed(void *fctx, const unsigned char *bytes, size_t n)
-{
-    byte_sink *s = fctx;
-    if (s->have + n > s->cap) return -1;
-    memcpy(s->buf + s->have, bytes, n);
-    s->have += n;
-    return 0;
-}
 
 int sh_shader_bench(const sh_shader *s, const sh_shader_bench_opts *o, sh_shader_bench_result *res)
 {
     memset(res, 0, sizeof *res);
     if (o->nk < 1 || o->nk > SH_SHADER_BENCH_MAX_K) return sh_error(SH_EINVAL, "shader bench: 1..%d values of K", SH_SHADER_BENCH_MAX_K);
     const size_t nd = (sizeof(bench_answer) + sizeof(double) - 1) / sizeof(double);
-    byte_sink sink = {.cap = 3 * (sizeof(sh_rec_hdr) + SH_REC_MAX_TEXT) + sizeof(sh_rec_hdr) + nd * sizeof(double)};
+    sh_byte_sink sink = {.cap = 3 * (sizeof(sh_rec_hdr) + SH_REC_MAX_TEXT) + sizeof(sh_rec_hdr) + nd * sizeof(double)};
     if (!(sink.buf = malloc(sink.cap))) return sh_error(SH_ENOMEM, "out of memory");
     const bench_job j = {s, o};
     const double wall = 60 + 4 * s->timeout_s * o->nk;
-    const sh_sandbox_job sj = {.child = bench_child, .feed = sink_feed, .arg = (void *)&j, .fctx = &sink,
+    const sh_sandbox_job sj = {.child = bench_child, .feed = sh__byte_sink_feed, .arg = (void *)&j, .fctx = &sink,
                                .cpu_seconds = wall, .wall_seconds = wall, .mem_bytes = 0, .what = "the shader"};
     sh_sandbox_result sr;
     int st = sh__sandbox_run(&sj, &sr);
