@@ -195,7 +195,7 @@ static void first_line(char *err, size_t n, char *out, size_t cap)
     char *nl = strchr(s, '\n');
     if (nl) *nl = '\0';
     if (strlen(s) > 200) strcpy(s + 197, "...");
-    snprintf(out, cap, "%s", s);
+    snprintf(out, cap, "%.200s", s);
 }
 
 /* Mark fd close-on-exec (a program another thread starts must not hold the pipes open). */

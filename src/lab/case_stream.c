@@ -88,7 +88,7 @@ static void rec_end(sh_case_reader *r)
 int sh__case_reader_feed(void *fctx, const unsigned char *bytes, size_t n)
 {
     sh_case_reader *r = fctx;
-    while (n) {
+    while (n || (r->in_body && r->have == r->body_bytes)) {
         if (!r->in_body) {
             const size_t take = sizeof r->h - r->have < n ? sizeof r->h - r->have : n;
             memcpy((unsigned char *)&r->h + r->have, bytes, take);
@@ -100,7 +100,7 @@ int sh__case_reader_feed(void *fctx, const unsigned char *bytes, size_t n)
             r->in_body = 1;
         }
         const size_t take = r->body_bytes - r->have < n ? r->body_bytes - r->have : n;
-        memcpy((unsigned char *)r->body + r->have, bytes, take);
+        if (take) memcpy((unsigned char *)r->body + r->have, bytes, take); /* a START has no body */
         r->have += take, bytes += take, n -= take;
         if (r->have < r->body_bytes) return 0;
         rec_end(r);
@@ -141,7 +141,7 @@ void sh__case_describe(double timeout_s, const sh_fixture *fx, const sh_sandbox_
         if (sr->exit_status == SH_CASE_CHILD_FAULT || sr->exit_status == SH_CASE_CHILD_CORRUPT)
             snprintf(rep->failure, sizeof rep->failure, "%s", *line ? line : "the kernel crashed");
         else if (sr->exit_status != 0)
-            snprintf(rep->failure, sizeof rep->failure, "the kernel's process exited with status %d%s%s%s",
+            snprintf(rep->failure, sizeof rep->failure, "the kernel's process exited with status %d%.96s%s%.150s",
                      sr->exit_status, at, *line ? ": " : "", line);
         else if (r->in_body || r->have)
             snprintf(rep->failure, sizeof rep->failure, "%s's process ended in the middle of an answer", r->who);
