@@ -248,10 +248,17 @@ TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 # code paths run under ASan/UBSan in the smaller tests (test_sht, test_rotator,
 # test_exr, ...).  They were 730 s of the sanitizer run's 1380 s of tests.
 SAN_SKIP  := test_ranges test_rot_halfpi test_exr_layouts test_sht_highband
+# The generated shaders' numerics run on the Vulkan device (lavapipe's LLVM
+# code, not instrumented) and take 150 s under ASan: the sanitizer run leaves
+# out test_shaders_shlab.sh; test_shaders.sh still drives the host code
+# (compilation, the sandboxed dispatch, the reader) under ASan/UBSan.
+SAN_SKIP_SCRIPTS := test_shaders_shlab.sh
 ifeq ($(SANITIZE),1)
 CHECK_BIN = $(filter-out $(addprefix $(BUILD)/tests/,$(SAN_SKIP)),$(TEST_BIN))
+CHECK_SKIP_SCRIPTS = $(SAN_SKIP_SCRIPTS)
 else
 CHECK_BIN = $(TEST_BIN)
+CHECK_SKIP_SCRIPTS =
 endif
 # Example plug-in kernels (shlab/kernel.h) for verify/bench --plugin
 # (tests/cli/test_plugins.sh): self-contained, so built without libshlab.
@@ -261,7 +268,7 @@ $(PLUGIN_SO): tests/plugins/kernels.c src/shlab/kernel.h
 	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -fPIC -shared -Isrc -o $@ $< -lm
 
 check: deps-quiet $(BUILD)/shlab $(CHECK_BIN) $(FUZZ_REPLAY) $(PLUGIN_SO)
-	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) TEST_JOBS=$(TEST_JOBS) tests/run.sh $(CHECK_BIN)
+	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) TEST_JOBS=$(TEST_JOBS) SKIP_SCRIPTS="$(CHECK_SKIP_SCRIPTS)" tests/run.sh $(CHECK_BIN)
 
 # ---- fuzzing (tests/fuzz/README.md) -----------------------------------------
 # One harness per input kind: tests/fuzz/fuzz_<h>.c.  make check links each to
