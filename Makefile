@@ -251,7 +251,8 @@ SAN_SKIP  := test_ranges test_rot_halfpi test_exr_layouts test_sht_highband
 # The generated shaders' numerics run on the Vulkan device (lavapipe's LLVM
 # code, not instrumented) and take 150 s under ASan: the sanitizer run leaves
 # out test_shaders_shlab.sh; test_shaders.sh still drives the host code
-# (compilation, the sandboxed dispatch, the reader) under ASan/UBSan.
+# (compilation, the sandboxed dispatch, the reader) under ASan/UBSan, on a
+# shorter list (SANITIZE=1 in its environment: one language, one input).
 SAN_SKIP_SCRIPTS := test_shaders_shlab.sh
 ifeq ($(SANITIZE),1)
 CHECK_BIN = $(filter-out $(addprefix $(BUILD)/tests/,$(SAN_SKIP)),$(TEST_BIN))
@@ -268,7 +269,8 @@ $(PLUGIN_SO): tests/plugins/kernels.c src/shlab/kernel.h
 	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -fPIC -shared -Isrc -o $@ $< -lm
 
 check: deps-quiet $(BUILD)/shlab $(CHECK_BIN) $(FUZZ_REPLAY) $(PLUGIN_SO)
-	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) TEST_JOBS=$(TEST_JOBS) SKIP_SCRIPTS="$(CHECK_SKIP_SCRIPTS)" tests/run.sh $(CHECK_BIN)
+	@SHLAB=$(BUILD)/shlab BUILD=$(BUILD) TEST_JOBS=$(TEST_JOBS) SKIP_SCRIPTS="$(CHECK_SKIP_SCRIPTS)" SANITIZE=$(SANITIZE) \
+	  tests/run.sh $(CHECK_BIN)
 
 # ---- fuzzing (tests/fuzz/README.md) -----------------------------------------
 # One harness per input kind: tests/fuzz/fuzz_<h>.c.  make check links each to
