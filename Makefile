@@ -165,6 +165,15 @@ LDLIBS   += -Wl,--push-state,--as-needed $(SHADERC_LIBS) $(shell pkg-config --li
 endif
 # ---- shaders (end) ----
 
+# Builds use every core: GNU make 4.3 honours a -j set here.  Only for the
+# goals that build and test (a command line's own -j wins); `make report`
+# stays serial, since its experiments time things.
+ifeq ($(filter -j%,$(MAKEFLAGS)),)
+ifeq ($(filter-out all check fuzz fuzz-build install,$(or $(MAKECMDGOALS),all)),)
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
+endif
+endif
+
 .PHONY: all deps deps-quiet check report examples plots list-experiments experiments probes install clean man FORCE regen bench-count fuzz fuzz-build models
 all: deps-quiet $(BUILD)/shlab $(BUILD)/libshlab.a $(BUILD)/libshlab.so
 
@@ -492,7 +501,7 @@ ifeq ($(SANITIZE),1)
 check-python:
 	@echo "python tests: skipped under SANITIZE=1 (an ASan libshlab.so loads into python only with libasan in LD_PRELOAD; the plain make check runs them)"
 else
-check-python: $(BUILD)/libshlab.so
+check-python: $(BUILD)/libshlab.so $(BUILD)/shlab
 	@if ! $(PYTHON) -c 'import numpy, pytest' 2>/dev/null; then \
 	  echo "python tests: skipped: $(PYTHON) lacks numpy or pytest (Debian python3-numpy python3-pytest; make deps)"; \
 	else SHLAB_LIBRARY=$(abspath $(BUILD))/libshlab.so SHLAB_BUILD=$(BUILD) PYTHON=$(PYTHON) \
