@@ -61,6 +61,67 @@ static void rot_case(int k, sh_rotation *r, char *name, size_t nn)
     snprintf(name, nn, "(α,β,γ)=(%.17g,%.17g,%.17g)", a, b, g);
 }
 
+/* Case k of a method test: the fixed set above, then random unit
+ * quaternions (uniform in the ball, normalised by sh_rotation_from_quat),
+ * seeded by `seed` and k. */
+static inline void rot_case_quat(int k, unsigned long seed, sh_rotation *r, char *name, size_t nn)
+{
+    if (k < ROT_NCASES) {
+        rot_case(k, r, name, nn);
+        return;
+    }
+    unsigned long save = rot_rng;
+    rot_rng = seed * (unsigned long)(k + 1);
+    double q[4], n2;
+    do {
+        n2 = 0;
+        for (int i = 0; i < 4; i++) q[i] = 2 * rot_urand() - 1, n2 += q[i] * q[i];
+    } while (n2 < 0.01 || n2 > 1);
+    rot_rng = save;
+    ck_assert_int_eq(sh_rotation_from_quat(q, 1, r), SH_OK);
+    snprintf(name, nn, "quaternion %d (β=%.3g)", k - ROT_NCASES, r->beta);
+}
+
+/* The MPFR reference blocks of bands 0..order−1 (32 digits; the layout of
+ * sh_rot_block_offset). */
+static inline void rot_reference_blocks(int order, sh_convention conv, const sh_rotation *r, double *B)
+{
+    for (int l = 0; l < order; l++)
+        ck_assert_int_eq(sh_rot_reference_band(l, conv, r, 32, B + sh_rot_block_offset(l), NULL), SH_OK);
+}
+
+/* y = B x for bands 0..order−1 (the product done here, not by the plan). */
+static inline void rot_blocks_mul(int order, const double *B, const double *x, double *y)
+{
+    for (int l = 0; l < order; l++) {
+        const int w = 2 * l + 1;
+        for (int a = 0; a < w; a++) {
+            double s = 0;
+            for (int b = 0; b < w; b++) s += B[sh_rot_block_offset(l) + (size_t)a * w + b] * x[l * l + b];
+            y[l * l + a] = s;
+        }
+    }
+}
+
+/* max |a_i − b_i|; a non-finite a_i is INFINITY. */
+static inline double rot_maxdiff(size_t n, const double *a, const double *b)
+{
+    double e = 0;
+    for (size_t i = 0; i < n; i++) e = isfinite(a[i]) ? fmax(e, fabs(a[i] - b[i])) : INFINITY;
+    return e;
+}
+
+/* The three ways to set a rotation: 0 angles (sh_rotation), 1 matrix, 2 quaternion. */
+static inline int rot_set_how(sh_rot_plan *p, int how, const sh_rotation *r)
+{
+    double q[4];
+    switch (how) {
+    case 0: return sh_rot_plan_set(p, r);
+    case 1: return sh_rot_plan_set_matrix(p, r->R);
+    default: sh_rotation_to_quat(r, q); return sh_rot_plan_set_quat(p, q);
+    }
+}
+
 /* Max |plan blocks − reference| over bands 0..order−1. */
 static double rot_err_vs_reference(sh_rot_method method, sh_precision prec, sh_convention conv,
                                    int order, const sh_rotation *r)

@@ -18,64 +18,6 @@
 #define DR_TOL_D 1e-14
 #define DR_TOL_F 2e-6 /* float blocks: a few float ulps of 1 (entries are ≤ 1) */
 
-/* Case k: rottest.h's set, then random unit quaternions (uniform in the
- * ball, normalised by sh_rotation_from_quat). */
-static void dr_case(int k, sh_rotation *r, char *name, size_t nn)
-{
-    if (k < ROT_NCASES) {
-        rot_case(k, r, name, nn);
-        return;
-    }
-    unsigned long save = rot_rng;
-    rot_rng = 7919UL * (unsigned long)(k + 1);
-    double q[4], n2;
-    do {
-        n2 = 0;
-        for (int i = 0; i < 4; i++) q[i] = 2 * rot_urand() - 1, n2 += q[i] * q[i];
-    } while (n2 < 0.01 || n2 > 1);
-    rot_rng = save;
-    ck_assert_int_eq(sh_rotation_from_quat(q, 1, r), SH_OK);
-    snprintf(name, nn, "quaternion %d (β=%.3g)", k - ROT_NCASES, r->beta);
-}
-
-/* The reference blocks of bands 0..2 (layout of sh_rot_block_offset). */
-static void dr_reference(sh_convention conv, const sh_rotation *r, double *B)
-{
-    for (int l = 0; l < 3; l++)
-        ck_assert_int_eq(sh_rot_reference_band(l, conv, r, 32, B + sh_rot_block_offset(l), NULL), SH_OK);
-}
-
-/* y = B x for bands 0..order−1 (the product done here). */
-static void dr_mul(int order, const double *B, const double *x, double *y)
-{
-    for (int l = 0; l < order; l++) {
-        const int w = 2 * l + 1;
-        for (int a = 0; a < w; a++) {
-            double s = 0;
-            for (int b = 0; b < w; b++) s += B[sh_rot_block_offset(l) + (size_t)a * w + b] * x[l * l + b];
-            y[l * l + a] = s;
-        }
-    }
-}
-
-static double dr_maxdiff(size_t n, const double *a, const double *b)
-{
-    double e = 0;
-    for (size_t i = 0; i < n; i++) e = isfinite(a[i]) ? fmax(e, fabs(a[i] - b[i])) : INFINITY;
-    return e;
-}
-
-/* The three ways to set a rotation: angles (sh_rotation), matrix, quaternion. */
-static int dr_set(sh_rot_plan *p, int how, const sh_rotation *r)
-{
-    double q[4];
-    switch (how) {
-    case 0: return sh_rot_plan_set(p, r);
-    case 1: return sh_rot_plan_set_matrix(p, r->R);
-    default: sh_rotation_to_quat(r, q); return sh_rot_plan_set_quat(p, q);
-    }
-}
-
 START_TEST(test_blocks_vs_reference)
 {
     double worst[2] = {0, 0};
@@ -88,12 +30,12 @@ START_TEST(test_blocks_vs_reference)
                     sh_rotation r;
                     char name[160];
                     double ref[DR_NB], B[DR_NB];
-                    dr_case(k, &r, name, sizeof name);
-                    dr_reference(conv, &r, ref);
+                    rot_case_quat(k, 7919UL, &r, name, sizeof name);
+                    rot_reference_blocks(3, conv, &r, ref);
                     for (int how = 0; how < 3; how++) {
-                        ck_assert_int_eq(dr_set(p, how, &r), SH_OK);
+                        ck_assert_int_eq(rot_set_how(p, how, &r), SH_OK);
                         ck_assert_int_eq(sh_rot_plan_blocks(p, B), SH_OK);
-                        const double e = dr_maxdiff(sh_rot_block_offset(order), B, ref);
+                        const double e = rot_maxdiff(sh_rot_block_offset(order), B, ref);
                         if (!(e <= (pr ? DR_TOL_F : DR_TOL_D)))
                             ck_abort_msg("direct %s %s order %d set %d %s: max|B − ref| = %.3g", sh_precision_name(pr),
                                          sh_convention_name(conv), order, how, name, e);
@@ -120,10 +62,10 @@ START_TEST(test_apply_vs_reference)
                 sh_rotation r;
                 char name[160];
                 double ref[DR_NB], c[DR_N], want[DR_N], g[DR_N], h[DR_N];
-                dr_case(k, &r, name, sizeof name);
-                dr_reference(conv, &r, ref);
+                rot_case_quat(k, 7919UL, &r, name, sizeof name);
+                rot_reference_blocks(3, conv, &r, ref);
                 for (int i = 0; i < DR_N; i++) c[i] = 2 * rot_urand() - 1;
-                dr_mul(3, ref, c, want);
+                rot_blocks_mul(3, ref, c, want);
                 for (int how = 0; how < 4; how++) {
                     if (how == 3) { /* float matrix and float vectors */
                         if (!pr) continue;
@@ -134,13 +76,13 @@ START_TEST(test_apply_vs_reference)
                         ck_assert_int_eq(sh_rot_plan_apply_f(p, cf, gf), SH_OK);
                         for (int i = 0; i < DR_N; i++) g[i] = gf[i];
                     } else {
-                        ck_assert_int_eq(dr_set(p, how, &r), SH_OK);
+                        ck_assert_int_eq(rot_set_how(p, how, &r), SH_OK);
                         ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);
                         memcpy(h, c, sizeof h);
                         ck_assert_int_eq(sh_rot_plan_apply(p, h, h), SH_OK);
                         ck_assert_msg(memcmp(g, h, sizeof g) == 0, "in-place apply differs (%s)", name);
                     }
-                    const double e = dr_maxdiff(DR_N, g, want);
+                    const double e = rot_maxdiff(DR_N, g, want);
                     if (!(e <= tol))
                         ck_abort_msg("direct %s %s set %d %s: max|apply − ref·c| = %.3g", sh_precision_name(pr),
                                      sh_convention_name(conv), how, name, e);
@@ -161,7 +103,7 @@ START_TEST(test_pointwise)
             sh_rotation r;
             char name[160];
             double c[DR_N], g[DR_N];
-            dr_case(k, &r, name, sizeof name);
+            rot_case_quat(k, 7919UL, &r, name, sizeof name);
             for (int i = 0; i < DR_N; i++) c[i] = 2 * rot_urand() - 1;
             ck_assert_int_eq(sh_rot_plan_set_matrix(p, r.R), SH_OK);
             ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);
@@ -195,7 +137,7 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr, sh_rot
     for (size_t k = 0; k < K; k++) {
         char name[160];
         double qk[4];
-        dr_case((int)k, &rs[k], name, sizeof name);
+        rot_case_quat((int)k, 7919UL, &rs[k], name, sizeof name);
         sh_rotation_to_quat(&rs[k], qk);
         for (int j = 0; j < 9; j++) Rf[j * K + k] = (float)(R[j * K + k] = rs[k].R[j]);
         for (int j = 0; j < 4; j++) q[j * K + k] = qk[j];
@@ -241,8 +183,8 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr, sh_rot
             ck_assert_int_eq(sh_rot_plan_set_matrix(one, rs[k].R), SH_OK);
             ck_assert_int_eq(sh_rot_plan_apply(one, xk, yk), SH_OK);
         }
-        dr_reference(conv, &rs[k], ref);
-        dr_mul(order, ref, xk, want);
+        rot_reference_blocks(3, conv, &rs[k], ref);
+        rot_blocks_mul(order, ref, xk, want);
         for (size_t i = 0; i < n; i++) {
             ck_close(y[i * K + k], yk[i], tol_one, 1, "rotate_many vs one, order %d %s %s %s k %zu i %zu", order,
                      sh_convention_name(conv), sh_precision_name(pr), sh_rot_kernel_name(kern), k, i);
@@ -276,12 +218,12 @@ START_TEST(test_apply_many)
     enum { K = 13 };
     sh_rotation r;
     char name[160];
-    dr_case(3, &r, name, sizeof name);
+    rot_case_quat(3, 7919UL, &r, name, sizeof name);
     for (int conv = 0; conv < 2; conv++)
         for (int pr = 0; pr < 2; pr++) {
             double ref[DR_NB], x[DR_N * K], y[DR_N * K], xk[DR_N], want[DR_N];
             float xf[DR_N * K], yf[DR_N * K];
-            dr_reference(conv, &r, ref);
+            rot_reference_blocks(3, conv, &r, ref);
             for (int i = 0; i < DR_N * K; i++) xf[i] = (float)(x[i] = 2 * rot_urand() - 1);
             sh_rot_plan *p = NULL;
             ck_assert_int_eq(sh_rot_plan_create(3, SH_ROT_DIRECT, pr, conv, &p), SH_OK);
@@ -294,7 +236,7 @@ START_TEST(test_apply_many)
             }
             for (int k = 0; k < K; k++) {
                 for (int i = 0; i < DR_N; i++) xk[i] = x[i * K + k];
-                dr_mul(3, ref, xk, want);
+                rot_blocks_mul(3, ref, xk, want);
                 for (int i = 0; i < DR_N; i++)
                     ck_close(y[i * K + k], want[i], pr ? ROT_TOL_F : 4 * DR_TOL_D, 1, "apply_many %s %s k %d i %d",
                              sh_precision_name(pr), sh_convention_name(conv), k, i);

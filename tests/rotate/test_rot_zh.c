@@ -36,59 +36,6 @@
 const double (*sh__rot_zh_directions(void))[3];
 void sh__rot_zh_basis(int L, const double *e, long double *y);
 
-static void zh_case(int k, sh_rotation *r, char *name, size_t nn)
-{
-    if (k < ROT_NCASES) {
-        rot_case(k, r, name, nn);
-        return;
-    }
-    unsigned long save = rot_rng;
-    rot_rng = 104729UL * (unsigned long)(k + 1);
-    double q[4], n2;
-    do {
-        n2 = 0;
-        for (int i = 0; i < 4; i++) q[i] = 2 * rot_urand() - 1, n2 += q[i] * q[i];
-    } while (n2 < 0.01 || n2 > 1);
-    rot_rng = save;
-    ck_assert_int_eq(sh_rotation_from_quat(q, 1, r), SH_OK);
-    snprintf(name, nn, "quaternion %d (β=%.3g)", k - ROT_NCASES, r->beta);
-}
-
-static void zh_reference(sh_convention conv, const sh_rotation *r, double *B)
-{
-    for (int l = 0; l < ZH_MAXO; l++)
-        ck_assert_int_eq(sh_rot_reference_band(l, conv, r, 32, B + sh_rot_block_offset(l), NULL), SH_OK);
-}
-
-static void zh_mul(int order, const double *B, const double *x, double *y)
-{
-    for (int l = 0; l < order; l++) {
-        const int w = 2 * l + 1;
-        for (int a = 0; a < w; a++) {
-            double s = 0;
-            for (int b = 0; b < w; b++) s += B[sh_rot_block_offset(l) + (size_t)a * w + b] * x[l * l + b];
-            y[l * l + a] = s;
-        }
-    }
-}
-
-static double zh_maxdiff(size_t n, const double *a, const double *b)
-{
-    double e = 0;
-    for (size_t i = 0; i < n; i++) e = isfinite(a[i]) ? fmax(e, fabs(a[i] - b[i])) : INFINITY;
-    return e;
-}
-
-static int zh_set(sh_rot_plan *p, int how, const sh_rotation *r)
-{
-    double q[4];
-    switch (how) {
-    case 0: return sh_rot_plan_set(p, r);
-    case 1: return sh_rot_plan_set_matrix(p, r->R);
-    default: sh_rotation_to_quat(r, q); return sh_rot_plan_set_quat(p, q);
-    }
-}
-
 /* The condition numbers of Y_l at zh's directions (sh_eval_dir, GSL SVD,
  * nocs and cs: the same), and zh's own long-double basis against
  * sh_eval_dir. */
@@ -143,20 +90,20 @@ START_TEST(test_blocks_vs_reference)
             sh_rotation r;
             char name[160];
             double ref[ZH_NB], B[3][ZH_NB];
-            zh_case(k, &r, name, sizeof name);
-            zh_reference(conv, &r, ref);
+            rot_case_quat(k, 104729UL, &r, name, sizeof name);
+            rot_reference_blocks(ZH_MAXO, conv, &r, ref);
             for (int pr = 0; pr < 2; pr++)
                 for (int order = 1; order <= ZH_MAXO; order++) {
                     const size_t nb = sh_rot_block_offset(order);
                     for (int how = 0; how < 3; how++) {
-                        ck_assert_int_eq(zh_set(p[conv][pr][order], how, &r), SH_OK);
+                        ck_assert_int_eq(rot_set_how(p[conv][pr][order], how, &r), SH_OK);
                         ck_assert_int_eq(sh_rot_plan_blocks(p[conv][pr][order], B[how]), SH_OK);
-                        const double e = zh_maxdiff(nb, B[how], ref);
+                        const double e = rot_maxdiff(nb, B[how], ref);
                         if (!(e <= (pr ? ZH_TOL_F : ZH_TOL_D)))
                             ck_abort_msg("zh %s %s order %d set %d %s: max|B − ref| = %.3g", sh_precision_name(pr),
                                          sh_convention_name(conv), order, how, name, e);
                         worst[pr] = fmax(worst[pr], e);
-                        if (how) ways[pr] = fmax(ways[pr], zh_maxdiff(nb, B[how], B[0]));
+                        if (how) ways[pr] = fmax(ways[pr], rot_maxdiff(nb, B[how], B[0]));
                     }
                 }
         }
@@ -182,8 +129,8 @@ START_TEST(test_homomorphism)
             sh_rotation a, b, ab;
             char name[160];
             double A[ZH_NB], Bb[ZH_NB], C[ZH_NB];
-            zh_case(k, &a, name, sizeof name);
-            zh_case(k + 1, &b, name, sizeof name);
+            rot_case_quat(k, 104729UL, &a, name, sizeof name);
+            rot_case_quat(k + 1, 104729UL, &b, name, sizeof name);
             sh_rotation_compose(&a, &b, &ab);
             ck_assert_int_eq(sh_rot_plan_set_matrix(p, a.R), SH_OK);
             ck_assert_int_eq(sh_rot_plan_blocks(p, A), SH_OK);
@@ -224,10 +171,10 @@ START_TEST(test_apply_vs_reference)
                     sh_rotation r;
                     char name[160];
                     double ref[ZH_NB], c[ZH_N], want[ZH_N], g[ZH_N], h[ZH_N];
-                    zh_case(k, &r, name, sizeof name);
-                    zh_reference(conv, &r, ref);
+                    rot_case_quat(k, 104729UL, &r, name, sizeof name);
+                    rot_reference_blocks(ZH_MAXO, conv, &r, ref);
                     for (int i = 0; i < n; i++) c[i] = 2 * rot_urand() - 1;
-                    zh_mul(order, ref, c, want);
+                    rot_blocks_mul(order, ref, c, want);
                     for (int how = 0; how < 4; how++) {
                         if (how == 3) {
                             if (!pr) continue;
@@ -238,13 +185,13 @@ START_TEST(test_apply_vs_reference)
                             ck_assert_int_eq(sh_rot_plan_apply_f(p, cf, gf), SH_OK);
                             for (int i = 0; i < n; i++) g[i] = gf[i];
                         } else {
-                            ck_assert_int_eq(zh_set(p, how, &r), SH_OK);
+                            ck_assert_int_eq(rot_set_how(p, how, &r), SH_OK);
                             ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);
                             memcpy(h, c, sizeof h);
                             ck_assert_int_eq(sh_rot_plan_apply(p, h, h), SH_OK);
                             ck_assert_msg(memcmp(g, h, (size_t)n * sizeof *g) == 0, "in-place apply differs (%s)", name);
                         }
-                        const double e = zh_maxdiff((size_t)n, g, want);
+                        const double e = rot_maxdiff((size_t)n, g, want);
                         if (!(e <= tol))
                             ck_abort_msg("zh %s %s order %d set %d %s: max|apply − ref·c| = %.3g", sh_precision_name(pr),
                                          sh_convention_name(conv), order, how, name, e);
@@ -265,7 +212,7 @@ START_TEST(test_pointwise)
             sh_rotation r;
             char name[160];
             double c[ZH_N], g[ZH_N];
-            zh_case(k, &r, name, sizeof name);
+            rot_case_quat(k, 104729UL, &r, name, sizeof name);
             for (int i = 0; i < ZH_N; i++) c[i] = 2 * rot_urand() - 1;
             ck_assert_int_eq(sh_rot_plan_set_matrix(p, r.R), SH_OK);
             ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);
@@ -298,7 +245,7 @@ static void zh_check_many(int order, sh_convention conv, sh_precision pr, sh_rot
     for (size_t k = 0; k < K; k++) {
         char name[160];
         double qk[4];
-        zh_case((int)k, &rs[k], name, sizeof name);
+        rot_case_quat((int)k, 104729UL, &rs[k], name, sizeof name);
         sh_rotation_to_quat(&rs[k], qk);
         for (int j = 0; j < 9; j++) Rf[j * K + k] = (float)(R[j * K + k] = rs[k].R[j]);
         for (int j = 0; j < 4; j++) q[j * K + k] = qk[j];
@@ -344,7 +291,7 @@ static void zh_check_many(int order, sh_convention conv, sh_precision pr, sh_rot
             ck_assert_int_eq(sh_rot_plan_set_matrix(one, rs[k].R), SH_OK);
             ck_assert_int_eq(sh_rot_plan_apply(one, xk, yk), SH_OK);
         }
-        zh_mul(order, refs + k * ZH_NB, xk, want);
+        rot_blocks_mul(order, refs + k * ZH_NB, xk, want);
         for (size_t i = 0; i < n; i++) {
             ck_close(y[i * K + k], yk[i], tol_one, 1, "rotate_many vs one, order %d %s %s %s k %zu i %zu", order,
                      sh_convention_name(conv), sh_precision_name(pr), sh_rot_kernel_name(kern), k, i);
@@ -368,8 +315,8 @@ START_TEST(test_rotate_many)
         for (int k = 0; k < ZH_NCASES; k++) {
             sh_rotation r;
             char name[160];
-            zh_case(k, &r, name, sizeof name);
-            zh_reference(conv, &r, refs + ((size_t)conv * ZH_NCASES + k) * ZH_NB);
+            rot_case_quat(k, 104729UL, &r, name, sizeof name);
+            rot_reference_blocks(ZH_MAXO, conv, &r, refs + ((size_t)conv * ZH_NCASES + k) * ZH_NB);
         }
     for (int kern = SH_KERNEL_SCALAR; kern < SH_KERNEL_N; kern++) {
         if (!sh_rot_kernel_available((sh_rot_kernel)kern)) continue;
@@ -388,12 +335,12 @@ START_TEST(test_apply_many)
     enum { K = 13 };
     sh_rotation r;
     char name[160];
-    zh_case(3, &r, name, sizeof name);
+    rot_case_quat(3, 104729UL, &r, name, sizeof name);
     for (int conv = 0; conv < 2; conv++)
         for (int pr = 0; pr < 2; pr++) {
             double ref[ZH_NB], x[ZH_N * K], y[ZH_N * K], xk[ZH_N], want[ZH_N];
             float xf[ZH_N * K], yf[ZH_N * K];
-            zh_reference(conv, &r, ref);
+            rot_reference_blocks(ZH_MAXO, conv, &r, ref);
             for (int i = 0; i < ZH_N * K; i++) xf[i] = (float)(x[i] = 2 * rot_urand() - 1);
             sh_rot_plan *p = NULL;
             ck_assert_int_eq(sh_rot_plan_create(ZH_MAXO, SH_ROT_ZH, pr, conv, &p), SH_OK);
@@ -406,7 +353,7 @@ START_TEST(test_apply_many)
             }
             for (int k = 0; k < K; k++) {
                 for (int i = 0; i < ZH_N; i++) xk[i] = x[i * K + k];
-                zh_mul(ZH_MAXO, ref, xk, want);
+                rot_blocks_mul(ZH_MAXO, ref, xk, want);
                 for (int i = 0; i < ZH_N; i++)
                     ck_close(y[i * K + k], want[i], pr ? ROT_TOL_F : 4 * ZH_TOL_D, 1, "apply_many %s %s k %d i %d",
                              sh_precision_name(pr), sh_convention_name(conv), k, i);
