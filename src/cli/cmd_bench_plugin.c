@@ -15,8 +15,8 @@
 #define MAX_ORDERS 16
 
 typedef struct {
-    const char *plugin, *fixture, *methods_s;
-    int abi, conv, batch, repeat, quiet, fmt;
+    const char *plugin, *fixture, *methods_s, *abi_s;
+    int conv, batch, repeat, quiet, fmt;
     double target_ms, timeout;
     struct { int n, v[MAX_ORDERS]; } orders;
 } plug_args;
@@ -37,15 +37,12 @@ static int parse_orders(const char *opt, const char *s, void *field)
     return a->orders.n ? 0 : cli_fail("%s: empty", opt);
 }
 
-static const char *const abi_choices[] = {"matrix-d", "matrix-f", "quat-d", "quat-f", "euler-d", "euler-f",
-                                          "matrix-batch-d", "matrix-batch-f", NULL};
 
 static const cli_opt plug_opts[] = {
     CLI_STRING(plug_args, plugin, "plugin", "LIB.so:SYMBOL", "the kernel (shlab/kernel.h)"),
-    {.type = CLI_T_CHOICE, .name = "abi", .meta = "NAME", .off = offsetof(plug_args, abi), .choices = abi_choices,
-     .def = "matrix-d", .flags = CLI_NO_DEFAULT,
-     .help = "its type: matrix-d | matrix-f | quat-d | quat-f |\n"
-             "euler-d | euler-f | matrix-batch-d | matrix-batch-f\n(required)"},
+    CLI_STRING(plug_args, abi_s, "abi", "NAME",
+               "its type: matrix-d | matrix-f | quat-d | quat-f |\n"
+               "euler-d | euler-f | matrix-batch-d | matrix-batch-f\n(required)"),
     CLI_CUSTOM(plug_args, orders, "order", "LIST", parse_orders, "2,4,6,8,10",
                "orders to time (each must have cases in the fixture)"),
     CLI_STRING(plug_args, fixture, "fixture", "F",
@@ -138,12 +135,13 @@ static int fixture_errors(const plug_args *a, const sh_plugin *p, double worst[6
 
 /* The method `shlab plan` runs for error ≤ e at the order on the ABI's path
  * (or, when none reaches e, the most accurate), its error and model cost. */
-static int choose(const plug_args *a, int order, double e, const sh_rot_path *path, sh_rot_candidate *out, int *admissible)
+static int choose(const plug_args *a, sh_precision prec, int order, double e, const sh_rot_path *path,
+                  sh_rot_candidate *out, int *admissible)
 {
     sh_rot_choose_opts o = {.order = order, .max_beta = M_PI, .tolerance = fmax(e, 1e-300),
                             .measure = SH_MEASURE_COEFF, .lobe_exp = 7, .conv = (sh_convention)a->conv,
                             .beta_step = 0.25 * M_PI / 180, /* `shlab plan`'s defaults: the same answer */
-                            .prec = sh_plugin_abi_precision((sh_plugin_abi)a->abi)};
+                            .prec = prec};
     sh_rot_candidate cand[SH_ROT_NMETHODS];
     int nc, ch, ru;
     if (sh_rot_choose(&o, path, cand, &nc, &ch, &ru, NULL)) return cli_fail_status(SH_EINVAL);
@@ -213,12 +211,14 @@ int cli_bench_plugin(const cli_command *bench, int argc, char **argv)
     cli_parsed seen;
     int rc = cli_args_parse(&plug_decl, argc, argv, &a, &seen);
     if (rc >= 0) return rc;
-    if (!cli_given(&seen, "abi")) return cli_fail("bench: --plugin needs --abi NAME (the function's type, shlab/kernel.h)");
+    if (!a.abi_s) return cli_fail("bench: --plugin needs --abi NAME (the function's type, shlab/kernel.h)");
+    sh_plugin_abi abi;
+    if (sh_plugin_abi_parse(a.abi_s, &abi)) return cli_fail("bench: --abi: %s", sh_last_error());
     sh_rot_method others[SH_PLUGIN_BENCH_MAX_METHODS];
     int nothers;
     if ((rc = parse_methods(a.methods_s, others, &nothers))) return rc;
     sh_plugin p;
-    if (sh_plugin_parse(a.plugin, (sh_plugin_abi)a.abi, &p)) return cli_fail_status(SH_EINVAL);
+    if (sh_plugin_parse(a.plugin, abi, &p)) return cli_fail_status(SH_EINVAL);
     p.timeout_s = a.timeout;
     const int isbatch = p.abi == SH_PLUGIN_MATRIX_BATCH_D || p.abi == SH_PLUGIN_MATRIX_BATCH_F;
     const sh_rot_path path = {
@@ -246,7 +246,7 @@ int cli_bench_plugin(const cli_command *bench, int argc, char **argv)
         const double budget = fmax(worst[order], tol[order]);
         sh_rot_candidate ch = {0};
         int adm = 0;
-        if ((rc = choose(&a, order, budget, &path, &ch, &adm))) break;
+        if ((rc = choose(&a, sh_plugin_abi_precision(abi), order, budget, &path, &ch, &adm))) break;
         /* 3. the two (and --methods) timed interleaved in a child */
         sh_rot_method ms[SH_PLUGIN_BENCH_MAX_METHODS] = {ch.method};
         memcpy(ms + 1, others, (size_t)nothers * sizeof *ms);
@@ -275,7 +275,7 @@ int cli_bench_plugin(const cli_command *bench, int argc, char **argv)
     }
     json_t *root = json_object();
     root = cli_put(root, "plugin", json_string(a.plugin));
-    root = cli_put(root, "abi", json_string(abi_choices[a.abi]));
+    root = cli_put(root, "abi", json_string(sh_plugin_abi_name(abi)));
     root = cli_put(root, "fixture", json_string(a.fixture));
     root = cli_put(root, "convention", json_string(sh_convention_name((sh_convention)a.conv)));
     root = cli_put(root, "noisy", json_boolean(noisy));

@@ -299,6 +299,11 @@ static int fixture_child(void *arg, int fd)
 
 /* ------------------------------------------------------------------ parent */
 
+/* The time limit is the wall clock's (--timeout); the CPU limit is a
+ * backstop one second later, so that a kernel that spins is stopped, and
+ * reported, by the same rule whether or not the machine is busy. */
+#define PLUGIN_CPU_SECONDS(p) ((p)->timeout_s + 1)
+
 int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsigned char *skip, double **got,
                           unsigned char *status, sh_plugin_report *rep)
 {
@@ -308,7 +313,7 @@ int sh_plugin_run_fixture(const sh_plugin *p, const sh_fixture *fx, const unsign
     const fixture_job j = {p, fx, skip};
     sh_case_reader r = {.fx = fx, .got = got, .rep = rep, .status = status, .who = "the plug-in"};
     const sh_sandbox_job sj = {.child = fixture_child, .feed = sh__case_reader_feed, .arg = (void *)&j, .fctx = &r,
-                               .cpu_seconds = p->timeout_s, .wall_seconds = p->timeout_s,
+                               .cpu_seconds = PLUGIN_CPU_SECONDS(p), .wall_seconds = p->timeout_s,
                                .mem_bytes = 1LL << 30, .what = "the plug-in"};
     sh_sandbox_result sr;
     int st = sh__sandbox_run(&sj, &sr);
@@ -488,7 +493,7 @@ int sh_plugin_bench(const sh_plugin *p, const sh_plugin_bench_opts *o, sh_plugin
     if (!(sink.buf = malloc(sink.cap))) return sh_error(SH_ENOMEM, "out of memory");
     const bench_job j = {p, o};
     const sh_sandbox_job sj = {.child = bench_child, .feed = sh__byte_sink_feed, .arg = (void *)&j, .fctx = &sink,
-                               .cpu_seconds = p->timeout_s, .wall_seconds = p->timeout_s, .mem_bytes = 1LL << 30,
+                               .cpu_seconds = PLUGIN_CPU_SECONDS(p), .wall_seconds = p->timeout_s, .mem_bytes = 1LL << 30,
                                .what = "the plug-in"};
     sh_sandbox_result sr;
     int st = sh__sandbox_run(&sj, &sr);
