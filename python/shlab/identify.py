@@ -54,6 +54,12 @@ class CResult(ctypes.Structure):
                 ("needs_order", ctypes.c_int), ("needs_basis", ctypes.c_int), ("tol", ctypes.c_double)]
 
 
+class _IdText(ctypes.Structure):
+    """ctypes mirror of sh_id_text: what `shlab identify` says of a result."""
+    _fields_ = [("convention", ctypes.c_char * 96), ("to_shlab", ctypes.c_char * 512),
+                ("from_shlab", ctypes.c_char * 512), ("needs", ctypes.c_char * 160)]
+
+
 _P = ctypes.c_void_p
 _CP = ctypes.POINTER(CConv)
 _INT4 = ctypes.c_int * 4
@@ -72,6 +78,8 @@ _id_basis = declare("sh_identify_basis", [ctypes.c_int, _P, ctypes.c_size_t, _P,
 _id_proj = declare("sh_identify_projection", [ctypes.c_size_t, _P, _P, ctypes.c_int, ctypes.c_int,
                                               ctypes.c_double, ctypes.POINTER(CResult)])
 _id_free = declare("sh_identify_free", [ctypes.POINTER(CResult)], None, status=False)
+_identify_text = declare("sh_identify_text", [ctypes.POINTER(CResult), ctypes.c_char_p, ctypes.POINTER(_IdText)], None,
+                         status=False)
 _id_dirs = declare("sh_identify_directions", [_P, _P], None, status=False)
 _id_light = declare("sh_identify_light", [_P, _P, _P], None, status=False)
 _id_light_coeffs = declare("sh_identify_light_coeffs", [ctypes.c_int, _P])
@@ -364,25 +372,15 @@ def _result(r, source, file):
     f = {"input": source, "order": cands[0].order if cands else 0, "tolerance": r.tol,
          "verdict": _VERDICTS[r.verdict]}
     conv = None
-    needs = ""
+    t = _IdText()
+    _identify_text(ctypes.byref(r), str(file).encode(), ctypes.byref(t))  # the CLI's own sentences
     if r.verdict == 0:
         conv = cands[0].conv
-        spec = str(conv)
-        f["convention"] = spec
-        f["to_shlab"] = "shlab convert --from %s --to cs --in %s" % (spec, file)
-        f["from_shlab"] = "shlab convert --from cs --to %s --in FILE" % spec
-    elif r.verdict == 1:
-        if r.needs_basis:
-            needs = "the basis values (--basis): the light's coefficients do not tell these apart"
-        elif r.needs_order:
-            needs = "band %d (order %d): these agree on bands 0..%d" % (r.needs_order - 1, r.needs_order,
-                                                                       cands[0].order - 1)
-        else:
-            needs = "--order: the count of numbers fits several kinds"
-    else:
-        needs = "no convention fits within %g; the nearest are listed" % r.tol
-    if needs:
-        f["needs"] = needs
+        f["convention"] = t.convention.decode()
+        f["to_shlab"] = t.to_shlab.decode()
+        f["from_shlab"] = t.from_shlab.decode()
+    if t.needs:
+        f["needs"] = t.needs.decode()
     f["candidates"] = cands
     return IdentifyResult(f, {"identified": r.verdict == 0, "conv": conv, "needs_order": r.needs_order,
                               "needs_basis": bool(r.needs_basis)})

@@ -15,6 +15,7 @@
 #include "convention_internal.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -392,4 +393,25 @@ void sh_identify_free(sh_id_result *res)
     free(res->cand);
     res->cand = NULL;
     res->ncand = 0;
+}
+
+void sh_identify_text(const sh_id_result *r, const char *file, sh_id_text *t)
+{
+    memset(t, 0, sizeof *t);
+    if (r->verdict == SH_ID_IDENTIFIED && r->ncand > 0) {
+        sh_conv_format(&r->cand[0].conv, t->convention, sizeof t->convention);
+        snprintf(t->to_shlab, sizeof t->to_shlab, "shlab convert --from %s --to cs --in %.380s", t->convention,
+                 file ? file : "FILE");
+        snprintf(t->from_shlab, sizeof t->from_shlab, "shlab convert --from cs --to %s --in FILE", t->convention);
+    } else if (r->verdict == SH_ID_AMBIGUOUS) {
+        if (r->needs_basis)
+            snprintf(t->needs, sizeof t->needs, "the basis values (--basis): the light's coefficients do not tell these apart");
+        else if (r->needs_order)
+            snprintf(t->needs, sizeof t->needs, "band %d (order %d): these agree on bands 0..%d", r->needs_order - 1,
+                     r->needs_order, r->ncand ? r->cand[0].order - 1 : 0);
+        else
+            snprintf(t->needs, sizeof t->needs, "--order: the count of numbers fits several kinds");
+    } else {
+        snprintf(t->needs, sizeof t->needs, "no convention fits within %g; the nearest are listed", r->tol);
+    }
 }

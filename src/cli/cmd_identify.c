@@ -143,26 +143,14 @@ static json_t *result_json(const identify_args *a, const sh_id_result *r, const 
     static const char *const verdicts[] = {"identified", "ambiguous", "none"};
     json_t *root = json_pack("{s:s,s:i,s:f,s:s}", "input", a->basis ? "basis" : "projection", "order",
                              r->ncand ? r->cand[0].order : 0, "tolerance", r->tol, "verdict", verdicts[r->verdict]);
-    char b[96], cmd[512], needs[160] = "";
+    sh_id_text t;
+    sh_identify_text(r, file, &t);
     if (r->verdict == SH_ID_IDENTIFIED) {
-        sh_conv_format(&r->cand[0].conv, b, sizeof b);
-        root = cli_put(root, "convention", json_string(b));
-        snprintf(cmd, sizeof cmd, "shlab convert --from %s --to cs --in %s", b, file);
-        root = cli_put(root, "to_shlab", json_string(cmd));
-        snprintf(cmd, sizeof cmd, "shlab convert --from cs --to %s --in FILE", b);
-        root = cli_put(root, "from_shlab", json_string(cmd));
-    } else if (r->verdict == SH_ID_AMBIGUOUS) {
-        if (r->needs_basis)
-            snprintf(needs, sizeof needs, "the basis values (--basis): the light's coefficients do not tell these apart");
-        else if (r->needs_order)
-            snprintf(needs, sizeof needs, "band %d (order %d): these agree on bands 0..%d", r->needs_order - 1,
-                     r->needs_order, r->cand[0].order - 1);
-        else
-            snprintf(needs, sizeof needs, "--order: the count of numbers fits several kinds");
-    } else {
-        snprintf(needs, sizeof needs, "no convention fits within %g; the nearest are listed", r->tol);
+        root = cli_put(root, "convention", json_string(t.convention));
+        root = cli_put(root, "to_shlab", json_string(t.to_shlab));
+        root = cli_put(root, "from_shlab", json_string(t.from_shlab));
     }
-    if (*needs) root = cli_put(root, "needs", json_string(needs));
+    if (*t.needs) root = cli_put(root, "needs", json_string(t.needs));
     json_t *arr = json_array();
     for (int i = 0; i < r->ncand && arr; i++)
         if (json_array_append_new(arr, candidate_json(&r->cand[i]))) { json_decref(arr); arr = NULL; }

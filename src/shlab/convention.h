@@ -153,6 +153,14 @@ int sh_identify_basis(int ndir, const double *dirs, size_t per_dir, const double
 int sh_identify_projection(size_t n, const double *coeffs, const double *ref, int ref_order,
                            int order, double tol, sh_id_result *res);
 void sh_identify_free(sh_id_result *res);
+/* What `shlab identify` says of a result, for every front end: identified:
+ * the convention's spec and the `shlab convert` commands to shlab's
+ * coefficients (of `file`) and back; otherwise `needs`, the sentence on what
+ * decides (ambiguous) or that nothing fits.  Fields that do not apply are "". */
+typedef struct {
+    char convention[96], to_shlab[512], from_shlab[512], needs[160];
+} sh_id_text;
+void sh_identify_text(const sh_id_result *res, const char *file, sh_id_text *out);
 
 /* The fixture (data/fixtures/basis/, identify_fixture.c): the directions at
  * which a user evaluates their basis, d[3j..3j+2] (unit vectors), and
