@@ -65,13 +65,16 @@ static const cli_cmd shbench_decl = {
         "same K rotations per call.  Both are timed interleaved in one process, one\n"
         "sample each per round, as `shlab bench` times (paired ratio per round, the\n"
         "noise rule).  A dispatch's time is submit to fence: the buffers stay on the\n"
-        "device (uploads and downloads are not timed).  On a CPU device (lavapipe) the\n"
+        "device (uploads and downloads are not timed); the first dispatch's outputs at\n"
+        "each K are checked against shlab's exact rotation (max_error).  On a CPU device (lavapipe) the\n"
         "shader's figures are CPU figures too, and the output says so.\n",
     .opts = shbench_opts,
     .notes = "JSON: {\"shader\",\"abi\",\"order\",\"device\",\"driver\",\"device_is_cpu\",\"note\",\"cpu_method\",\n"
              "       \"noisy\",\"noise\",\"rows\":[{\"k\",\"shader_ns_per_rotation\",\"shader_rotations_per_s\",\n"
              "       \"cpu_ns_per_rotation\",\"cpu_rotations_per_s\",\"ratio\",\"ratio_q1\",\"ratio_q3\",\n"
-             "       \"noisy\"}]}  (ratio = shader time / CPU time per rotation, median over rounds)\n",
+             "       \"max_error\",\"noisy\"}]}  (ratio = shader time / CPU time per rotation, median over\n"
+             "       rounds; max_error = max |output − exact| of the first dispatch's K outputs, the\n"
+             "       exact rotation by zxzxz in double from the same matrices)\n",
 };
 
 int cli_bench_shader(const cli_command *bench, int argc, char **argv)
@@ -123,6 +126,7 @@ int cli_bench_shader(const cli_command *bench, int argc, char **argv)
         row = cli_put(row, "ratio", json_real(r->ratio[q].median));
         row = cli_put(row, "ratio_q1", json_real(r->ratio[q].q1));
         row = cli_put(row, "ratio_q3", json_real(r->ratio[q].q3));
+        row = cli_put(row, "max_error", json_real(r->max_error[q]));
         row = cli_put(row, "noisy", json_boolean(nz->noisy));
         if (!row || json_array_append_new(rows, row)) json_decref(rows), rows = NULL;
     }

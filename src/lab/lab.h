@@ -308,6 +308,7 @@ typedef struct {
     sh_bench_stats shader[SH_SHADER_BENCH_MAX_K], cpu[SH_SHADER_BENCH_MAX_K]; /* ns per rotation */
     sh_bench_ratio ratio[SH_SHADER_BENCH_MAX_K]; /* shader / cpu, paired by round */
     sh_bench_noise noise[SH_SHADER_BENCH_MAX_K];
+    double max_error[SH_SHADER_BENCH_MAX_K]; /* the first dispatch's outputs against zxzxz in double */
     sh_shader_report report;
 } sh_shader_bench_result;
 int sh_shader_bench(const sh_shader *s, const sh_shader_bench_opts *o, sh_shader_bench_result *res);

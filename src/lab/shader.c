@@ -308,6 +308,7 @@ typedef struct {
     sh_bench_stats shader[SH_SHADER_BENCH_MAX_K], cpu[SH_SHADER_BENCH_MAX_K];
     sh_bench_ratio ratio[SH_SHADER_BENCH_MAX_K]; /* shader / cpu per rotation, paired by round */
     sh_bench_noise noise[SH_SHADER_BENCH_MAX_K];
+    double max_error[SH_SHADER_BENCH_MAX_K];
 } bench_answer;
 
 /* K rotations of the pool (cycled) in the form, and K input vectors. */
@@ -328,6 +329,31 @@ static int fill_bench(const sh_shader_bench_opts *o, int form, int K, void *map[
     }
     free(R), free(vin);
     return SH_OK;
+}
+
+/* The first dispatch's K outputs against shlab's exact rotation in double
+ * (zxzxz, from the pool's matrices; the pool repeats every SH_BENCH_POOL
+ * rotations, so 64 reference vectors serve every k): max |y_shader − y|. */
+static int check_outputs(const sh_shader_bench_opts *o, int K, const float *out, double *max_err)
+{
+    const int nc = o->order * o->order;
+    double(*R)[9] = malloc(SH_BENCH_POOL * sizeof *R), *vin = malloc((size_t)SH_BENCH_POOL * nc * sizeof *vin);
+    double *ref = malloc((size_t)SH_BENCH_POOL * nc * sizeof *ref);
+    sh_rot_plan *p = NULL;
+    int st = R && vin && ref ? sh_rot_plan_create(o->order, SH_ROT_ZXZXZ, SH_PREC_DOUBLE, o->bench.conv, &p) : SH_ENOMEM;
+    if (!st) sh_bench_pool(o->bench.seed, o->bench.max_beta, nc, R, vin);
+    for (int q = 0; !st && q < SH_BENCH_POOL; q++)
+        if (!(st = sh_rot_plan_set_matrix(p, R[q]))) st = sh_rot_plan_apply(p, vin + (size_t)q * nc, ref + (size_t)q * nc);
+    double e = 0;
+    for (size_t k = 0; !st && k < (size_t)K; k++)
+        for (int i = 0; i < nc; i++) {
+            const double d = fabs((double)out[k * nc + i] - ref[(size_t)(k & (SH_BENCH_POOL - 1)) * nc + i]);
+            e = isnan(d) || d > e ? (isnan(d) ? INFINITY : d) : e;
+        }
+    *max_err = e;
+    sh_rot_plan_free(p);
+    free(R), free(vin), free(ref);
+    return st == SH_ENOMEM ? sh_error(SH_ENOMEM, "out of memory") : st;
 }
 
 static int bench_child(void *arg, int fd)
@@ -354,6 +380,7 @@ static int bench_child(void *arg, int fd)
             if (((uint32_t *)map[3])[k] != 0)
                 st = sh_error(SH_EINVAL, "the shader set status %u for order %d (it does not rotate this order)",
                               ((uint32_t *)map[3])[k], o->order);
+        if (!st) st = check_outputs(o, K, map[2], &ans->max_error[q]);
         /* beside it, shlab's CPU kernel on K rotations at once (float,
          * matrices, structure of arrays: sh_rot_plan_rotate_many_f) */
         sh_bench_entry ent[2] = {{0}};
@@ -424,6 +451,7 @@ int sh_shader_bench(const sh_shader *s, const sh_shader_bench_opts *o, sh_shader
             memcpy(res->cpu, ans.cpu, sizeof ans.cpu);
             memcpy(res->ratio, ans.ratio, sizeof ans.ratio);
             memcpy(res->noise, ans.noise, sizeof ans.noise);
+            memcpy(res->max_error, ans.max_error, sizeof ans.max_error);
             done = 1;
         }
         at += body;

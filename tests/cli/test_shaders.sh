@@ -93,3 +93,16 @@ expect_refused "bench --shader without --abi" "needs --abi" bench --shader $SH/r
 expect_refused "bench --shader, K beyond 2^20" "count" bench --shader $SH/rotate_ivanic.glsl --abi matrix --count 2000000
 "$SHLAB" bench --quiet --shader $SH/rotate_ivanic.glsl --abi matrix --order 12 --count 4 --repeat 3 >"$TMP/out" 2>"$TMP/err"; rc=$?
 if [ "$rc" = 2 ] && grep -q "does not rotate this order" "$TMP/err"; then ok "bench --shader at an order the shader declines: one line"; else notok "bench declined order: exit $rc $(cat "$TMP/err")"; fi
+# the top of --count (2^20 rotations in one dispatch): every output of the
+# first dispatch against shlab's exact rotation in double (a second method:
+# zxzxz from the same matrices), for shlab's generated shader; and a shader
+# with a mistake is seen to be wrong there (the check bites)
+if [ "$quick" = 0 ]; then
+    "$SHLAB" bench --quiet --shader data/shaders/rot_zxzxz.glsl --abi matrix --order 2 --count 1048576 --repeat 3 --target-ms 1 --format json >"$TMP/b.json" 2>"$TMP/err"; rc=$?
+    e=$(field "$TMP/b.json" max_error)
+    if [ "$rc" = 0 ] && awk -v e="$e" 'BEGIN { exit !(e <= 2e-6) }'; then ok "bench --shader at K = 2^20: all 1048576 outputs within 2e-6 of the exact rotation (max $e)"
+    else notok "bench --shader at K = 2^20: exit $rc, max_error '$e' $(head -c 200 "$TMP/err")"; fi
+fi
+"$SHLAB" bench --quiet --shader $SH/rotate_ivanic.glsl --define MISTAKE_INVERSE --abi matrix --order 3 --count 256 --repeat 3 --target-ms 1 --format json >"$TMP/b.json" 2>/dev/null
+e=$(field "$TMP/b.json" max_error)
+if awk -v e="$e" 'BEGIN { exit !(e > 1e-2) }'; then ok "bench --shader: a shader with a mistake shows max_error $e"; else notok "bench --shader mistake: max_error '$e'"; fi
