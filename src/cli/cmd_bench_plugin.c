@@ -120,7 +120,8 @@ static int fixture_errors(const plug_args *a, const sh_plugin *p, double worst[6
         double e = 0, nrm = 0;
         for (int i = 0; i < c->n; i++) {
             const double d = fabs(got[k][i] - c->expected[i]);
-            e = isnan(d) || d > e ? (isnan(d) ? INFINITY : d) : e;
+            if (isnan(d)) e = INFINITY; /* a NaN output is the worst */
+            else if (d > e) e = d;
             nrm += c->input[i] * c->input[i];
         }
         e /= sqrt(nrm) > 0 ? sqrt(nrm) : 1;

@@ -348,7 +348,8 @@ static int check_outputs(const sh_shader_bench_opts *o, int K, const float *out,
     for (size_t k = 0; !st && k < (size_t)K; k++)
         for (int i = 0; i < nc; i++) {
             const double d = fabs((double)out[k * nc + i] - ref[(size_t)(k & (SH_BENCH_POOL - 1)) * nc + i]);
-            e = isnan(d) || d > e ? (isnan(d) ? INFINITY : d) : e;
+            if (isnan(d)) e = INFINITY; /* a NaN output is the worst */
+            else if (d > e) e = d;
         }
     *max_err = e;
     sh_rot_plan_free(p);
