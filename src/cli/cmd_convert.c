@@ -62,13 +62,14 @@ static const cli_cmd convert_decl = {
 static json_t *build_result(const convert_args *a, int order, const double *c, int n, int nchan,
                             char names[SH_IMAGE_MAX_CHANNELS][8])
 {
-    /* the output's phase convention: cs for cs, nocs for every phase-free form */
+    /* "convention" names the output's convention in full, as "to" does (it once
+       gave only the phase, so a Schmidt output read "nocs") */
     char f[96], t[96];
     if (!a->from.legacy) sh_conv_format(&a->from.conv, f, sizeof f);
     if (!a->to.legacy) sh_conv_format(&a->to.conv, t, sizeof t);
-    json_t *root = json_pack("{s:i,s:s,s:s,s:s}", "order", order, "convention", a->to.conv.cs ? "cs" : "nocs",
-                             "from", a->from.legacy ? sh_norm_name(a->from.norm) : f,
-                             "to", a->to.legacy ? sh_norm_name(a->to.norm) : t);
+    const char *to = a->to.legacy ? sh_norm_name(a->to.norm) : t;
+    json_t *root = json_pack("{s:i,s:s,s:s,s:s}", "order", order, "convention", to,
+                             "from", a->from.legacy ? sh_norm_name(a->from.norm) : f, "to", to);
     if (nchan == 1 && !strcmp(names[0], "Y")) return cli_put(root, "coeffs", cli_json_array(c, n));
     json_t *ch = json_object();
     for (int k = 0; k < nchan && ch; k++) ch = cli_put(ch, names[k], cli_json_array(c + (size_t)k * n, n));

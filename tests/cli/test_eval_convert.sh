@@ -38,6 +38,9 @@ if [ "$(cut -d, -f8 "$TMP/out" | tail -4 | tr '\n' ' ')" = "1 -2 3 -4 " ]; then 
 expect_success "convert cs->schmidt" convert --from cs --to schmidt --coeffs 1,0,1,0 --format csv
 # schmidt coefficient = c * sqrt((2l+1)/4pi): l=0 -> 0.28209479177387814, l=1 -> 0.48860251190291992
 if close "$(csv_value "$TMP/out" 1 8)" 0.28209479177387814 1e-15 && close "$(csv_value "$TMP/out" 3 8)" 0.48860251190291992 1e-15; then ok "convert schmidt scale"; else notok "convert schmidt: $(cat "$TMP/out")"; fi
+# the output names its convention in full (it once said "nocs" for a Schmidt vector)
+expect_success "convert cs->schmidt json" convert --from cs --to schmidt --coeffs 1,0,1,0 --format json
+case $(cat "$TMP/out") in *'"convention":"schmidt"'*) ok "convert's output names schmidt" ;; *) notok "convert convention: $(cat "$TMP/out")" ;; esac
 expect_usage_error "convert not square" convert --from cs --to nocs --coeffs 1,2,3
 expect_usage_error "convert bad norm" convert --from cs --to foo --coeffs 1
 expect_usage_error "convert NaN" convert --from cs --to nocs --coeffs 1,nan,0,0
