@@ -5,7 +5,8 @@
 # line "$ COMMAND" followed by its output (stdout and stderr as a terminal
 # shows them).  Each command runs in a scratch directory (with the
 # repository's data/, src/ and tests/ visible, and `shlab` meaning the binary under test) and
-# its output is compared byte for byte.  Examples that read data/probes/ are
+# its output is compared with the page's: the same text, and every number
+# equal to 1e-13 relative or 1e-15 absolute (same_to_rounding below).  Examples that read data/probes/ are
 # skipped when the probes are absent (`make probes`), and those that run a
 # shader when there is no Vulkan device.  Output that cannot be
 # reproduced (timings) belongs in a ```text block, which is not run.
