@@ -87,7 +87,7 @@ def page_parts(path, root="."):
                 fence = None if fence is not None else (m.group(1) or "plain")
                 continue
             if fence is None:
-                mk = MARK.search(s)
+                mk = MARK.search(re.sub(r"`[^`]*`", " ", s))
                 if mk:
                     marked = os.path.isfile(os.path.join(root, mk.group(1)))
                     if not marked:
