@@ -17,7 +17,7 @@ ROOT=$(pwd)
 LABEL=${LABEL:-"README/manual"}
 README=${README:-"$ROOT/README.md $ROOT/docs/tour.md $ROOT/docs/rotation.md $ROOT/docs/check-your-kernel.md $ROOT/docs/high-bands.md
 $ROOT/docs/scaling.md $ROOT/docs/sweeps.md $ROOT/docs/bad-input.md $ROOT/docs/scenes.md $ROOT/docs/developing.md
-$ROOT/docs/CONVENTIONS.md"}
+$ROOT/docs/CONVENTIONS.md $ROOT/docs/library.md"}
 case $SHLAB in /*) bin=$SHLAB ;; *) bin=$ROOT/$SHLAB ;; esac
 mkdir -p "$TMP/bin" "$TMP/work" "$TMP/ex"
 ln -s "$bin" "$TMP/bin/shlab"
@@ -25,6 +25,10 @@ ln -s "$ROOT/data" "$TMP/work/data"
 # the example plug-in's source and the ABI header (docs/check-your-kernel.md builds it)
 ln -s "$ROOT/src" "$TMP/work/src"
 ln -s "$ROOT/tests" "$TMP/work/tests"
+# docs/library.md shows its example program with cat and links it to libshlab.so
+ln -s "$ROOT/docs" "$TMP/work/docs"
+lib=$(dirname "$bin")/libshlab.so
+[ -f "$lib" ] && ln -s "$lib" "$TMP/work/libshlab.so" && ln -s "$lib" "$TMP/work/libshlab.so.0"
 
 # split the console blocks into ex/N.cmd (the command) and ex/N.out (its output)
 awk -v dir="$TMP/ex" '
@@ -72,6 +76,10 @@ for c in "$TMP"/ex/*.cmd; do
     case $cmd in
     *--shader*)
         if [ "$have_vk" = 0 ]; then ok "# skip README example (no Vulkan device or shlab built without Vulkan): $cmd"; continue; fi ;;
+    *libshlab.so*|*./rotate_one*)
+        # a program linked to libshlab.so: not under the sanitizers (the
+        # instrumented library needs the ASan runtime loaded first)
+        if [ "${SANITIZE:-0}" = 1 ] || [ ! -f "$lib" ]; then ok "# skip README example (sanitizer build or no libshlab.so): $cmd"; continue; fi ;;
     *data/probes/*)
         p=$(printf '%s' "$cmd" | grep -o 'data/probes/[^ ]*' | head -1)
         if [ ! -f "$ROOT/$p" ]; then ok "# skip README example (no $p): $cmd"; continue; fi ;;
