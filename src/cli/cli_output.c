@@ -92,7 +92,7 @@ static void put_scalar(FILE *o, const json_t *v, int table)
     }
     else if (json_is_true(v)) fputs("true", o);
     else if (json_is_false(v)) fputs("false", o);
-    else if (json_is_null(v)) fputs("", o);
+    else if (json_is_null(v)) fputs(table ? "-" : "", o); /* a table shows "no value" */
     else {
         char *s = json_dumps(v, JSON_COMPACT | JSON_REAL_PRECISION(17) | JSON_ENCODE_ANY);
         if (s) { fputs(s, o); free(s); }
