@@ -213,13 +213,14 @@ int sh__rot_plan_par_matrix_d(const sh_rotator *r, const double R[9], double *pa
     return SH_OK;
 }
 
-int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par)
+static inline __attribute__((always_inline)) int par_matrix_f(const sh_rotator *r, const float R[9], float *par)
 {
     if (!sh__finite9_f(R)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
     r->ff1->par_matrix(R, r->nb, par);
     if (r->conv == SH_NOCS) par[3] = -par[3], par[6] = -par[6];
     return SH_OK;
 }
+int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par) { return par_matrix_f(r, R, par); }
 
 /* A sparse method set straight from the matrix (ops->set_mat_P: direct),
  * in the plan's precision: no angle, no par; sh_rot_plan_blocks reads its
@@ -325,24 +326,32 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 
 int sh_rot_plan_set_matrix(sh_rot_plan *p, const double R[9]) { return set_rot(p, R, NULL, 0); }
 int sh_rot_plan_set_quat(sh_rot_plan *p, const double q[4]) { return set_rot(p, q, NULL, 1); }
+/* set_rot's two hot cases written out, each its own function so that the
+ * dispatch below needs no stack frame (every path a tail call): the
+ * unrolled kernels' par, and a method's own state from the matrix (direct;
+ * set_mat checks R) */
+static __attribute__((noinline)) int set_matrix_fast_f(sh_rot_plan *p, const float R[9])
+{
+    const int st = par_matrix_f(p->r, R, p->par_f);
+    if (st) return st;
+    p->set_mults = SH__PAR_MULTS_MATRIX + (p->r->nb ? SH__PAR_MULTS_BETA_F : 0);
+    p->have_angles = 0;
+    p->have_rot = 1;
+    return SH_OK;
+}
+static __attribute__((noinline)) int set_matrix_own_f(sh_rot_plan *p, const float R[9])
+{
+    p->have_rot = p->have_angles = 0;
+    p->set_mults = 0;
+    const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
+    p->have_rot = st == SH_OK;
+    return st;
+}
 int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
 {
     if (p->r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float matrix for a double plan");
-    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC) { /* set_rot's path, the hot case written out */
-        const int st = sh__rot_plan_par_matrix_f(p->r, R, p->par_f);
-        if (st) return st;
-        p->set_mults = SH__PAR_MULTS_MATRIX + (p->r->nb ? SH__PAR_MULTS_BETA_F : 0);
-        p->have_angles = 0;
-        p->have_rot = 1;
-        return SH_OK;
-    }
-    if (p->r->ops->set_mat_f) { /* set_rot's path for direct, written out (set_mat checks R) */
-        p->have_rot = p->have_angles = 0;
-        p->set_mults = 0;
-        const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
-        p->have_rot = st == SH_OK;
-        return st;
-    }
+    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC) return set_matrix_fast_f(p, R);
+    if (p->r->ops->set_mat_f) return set_matrix_own_f(p, R);
     return set_rot(p, NULL, R, 0);
 }
 int sh_rot_plan_set_quat_f(sh_rot_plan *p, const float q[4])
@@ -437,14 +446,15 @@ int sh_rot_plan_apply_f(sh_rot_plan *p, const float *in, float *out)
 {
     if (p->r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float vectors for a double plan");
     if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
+    /* the count first: nothing is read back after the kernel */
     if (p->r->fn_f) {
-        p->r->fn_f(p->par_f, 1, in, out, 1);
         p->apply_mults = p->r->fn_mults;
+        p->r->fn_f(p->par_f, 1, in, out, 1);
         return SH_OK;
     }
     if (p->r->one_f) {
-        p->r->one_f(p->state, in, out);
         p->apply_mults = p->r->one_mults;
+        p->r->one_f(p->state, in, out);
         return SH_OK;
     }
     uint64_t m = 0;
