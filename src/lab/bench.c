@@ -449,35 +449,61 @@ static int bench_pool_matrix(bench_ctx *b)
 
 /* Matrix input (set_matrix, vectors in the plan's precision; batched: one
  * apply_many) and k-rotations (one rotate_many of the batch); `count`
- * iterations. */
+ * iterations.  The loop is the measured thing's only companion: the choice
+ * of calls is made once, outside it, and each iteration does the calls, the
+ * pool index and one output read into a local sink (index i cycling
+ * through the coefficients without a division) — the same few instructions
+ * for every method. */
+#define BENCH_LOOP(CALLS, OUT)                                                                     \
+    do {                                                                                           \
+        size_t i = 0;                                                                              \
+        for (long it = 0; it < count; it++) {                                                      \
+            const long k = it & (SH_BENCH_POOL - 1);                                               \
+            (void)k;                                                                               \
+            CALLS;                                                                                 \
+            sink += (double)(OUT);                                                                 \
+            i = i + 1 == nc ? 0 : i + 1;                                                           \
+        }                                                                                          \
+    } while (0)
 static int bench_run_matrix(bench_ctx *b, long count)
 {
     int st = SH_OK;
     const size_t nc = (size_t)b->nc, K = (size_t)b->batch;
-    for (long it = 0; it < count; it++) {
-        const long k = it & (SH_BENCH_POOL - 1);
-        const int quat = b->input == SH_BENCH_INPUT_QUAT;
-        if (b->mode == SH_BENCH_KROT && quat) {
-            if (b->fl) st |= sh_rot_plan_rotate_many_quat_f(b->p, K, b->Rs, b->xs, b->ys);
-            else st |= sh_rot_plan_rotate_many_quat(b->p, K, b->Rs, b->xs, b->ys);
-        } else if (b->mode == SH_BENCH_KROT) {
-            if (b->fl) st |= sh_rot_plan_rotate_many_f(b->p, K, b->Rs, b->xs, b->ys);
-            else st |= sh_rot_plan_rotate_many(b->p, K, b->Rs, b->xs, b->ys);
-        } else if (b->fl) {
-            st |= quat ? sh_rot_plan_set_quat_f(b->p, b->Qf[k]) : sh_rot_plan_set_matrix_f(b->p, b->Rf[k]);
-            if (b->mode == SH_BENCH_BATCHED) st |= sh_rot_plan_apply_many_f(b->p, K, b->xs, b->ys);
-            else st |= sh_rot_plan_apply_f(b->p, b->vinf + k * nc, b->voutf);
-        } else {
-            st |= quat ? sh_rot_plan_set_quat(b->p, b->Q[k]) : sh_rot_plan_set_matrix(b->p, b->R[k]);
-            if (b->mode == SH_BENCH_BATCHED) st |= sh_rot_plan_apply_many(b->p, K, b->xs, b->ys);
-            else st |= sh_rot_plan_apply(b->p, b->vin + k * nc, b->vout);
-        }
-        const size_t i = (size_t)it % nc;
-        if (b->mode == SH_BENCH_PER_ROTATION) b->sink += b->fl ? (double)b->voutf[i] : b->vout[i];
-        else b->sink += b->fl ? (double)((float *)b->ys)[i * K] : ((double *)b->ys)[i * K];
+    sh_rot_plan *const p = b->p;
+    const int quat = b->input == SH_BENCH_INPUT_QUAT;
+    double sink = b->sink;
+    float *const ysf = b->ys, *const voutf = b->voutf, *const vinf = b->vinf;
+    double *const ysd = b->ys, *const vout = b->vout, *const vin = b->vin;
+    if (b->mode == SH_BENCH_KROT) {
+        if (b->fl && quat) BENCH_LOOP(st |= sh_rot_plan_rotate_many_quat_f(p, K, b->Rs, b->xs, b->ys), ysf[i * K]);
+        else if (b->fl) BENCH_LOOP(st |= sh_rot_plan_rotate_many_f(p, K, b->Rs, b->xs, b->ys), ysf[i * K]);
+        else if (quat) BENCH_LOOP(st |= sh_rot_plan_rotate_many_quat(p, K, b->Rs, b->xs, b->ys), ysd[i * K]);
+        else BENCH_LOOP(st |= sh_rot_plan_rotate_many(p, K, b->Rs, b->xs, b->ys), ysd[i * K]);
+    } else if (b->mode == SH_BENCH_BATCHED) {
+        if (b->fl && quat)
+            BENCH_LOOP((st |= sh_rot_plan_set_quat_f(p, b->Qf[k]), st |= sh_rot_plan_apply_many_f(p, K, b->xs, b->ys)), ysf[i * K]);
+        else if (b->fl)
+            BENCH_LOOP((st |= sh_rot_plan_set_matrix_f(p, b->Rf[k]), st |= sh_rot_plan_apply_many_f(p, K, b->xs, b->ys)), ysf[i * K]);
+        else if (quat)
+            BENCH_LOOP((st |= sh_rot_plan_set_quat(p, b->Q[k]), st |= sh_rot_plan_apply_many(p, K, b->xs, b->ys)), ysd[i * K]);
+        else
+            BENCH_LOOP((st |= sh_rot_plan_set_matrix(p, b->R[k]), st |= sh_rot_plan_apply_many(p, K, b->xs, b->ys)), ysd[i * K]);
+    } else { /* per rotation */
+        const float(*const Rf)[9] = (const float(*)[9])b->Rf;
+        const float(*const Qf)[4] = (const float(*)[4])b->Qf;
+        if (b->fl && quat)
+            BENCH_LOOP((st |= sh_rot_plan_set_quat_f(p, Qf[k]), st |= sh_rot_plan_apply_f(p, vinf + k * nc, voutf)), voutf[i]);
+        else if (b->fl)
+            BENCH_LOOP((st |= sh_rot_plan_set_matrix_f(p, Rf[k]), st |= sh_rot_plan_apply_f(p, vinf + k * nc, voutf)), voutf[i]);
+        else if (quat)
+            BENCH_LOOP((st |= sh_rot_plan_set_quat(p, b->Q[k]), st |= sh_rot_plan_apply(p, vin + k * nc, vout)), vout[i]);
+        else
+            BENCH_LOOP((st |= sh_rot_plan_set_matrix(p, b->R[k]), st |= sh_rot_plan_apply(p, vin + k * nc, vout)), vout[i]);
     }
+    b->sink = sink;
     return st;
 }
+#undef BENCH_LOOP
 
 /* The user's step: an orthonormal frame becomes an sh_rotation. */
 static inline void rot_from_frame(const double R[9], sh_rotation *r)

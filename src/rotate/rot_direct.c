@@ -87,11 +87,16 @@
  * that the compiler vectorises across rotations (`omp simd`),
  * compiled three times: default flags (SSE2 on x86-64), AVX2 and AVX-512
  * (target attributes), chosen by the rotator's kernel.  No contraction to
- * FMA (-std=c11 turns it off): the variants and the single-rotation path do
- * the same operations in the same order (test_rot_direct holds them to
- * 4e-15 of each other in double, 2e-6 in float).
+ * FMA there (-std=c11 turns it off): the batch variants give the same bits.
+ * The single rotation (the plan's apply through ops->one_P, one function per
+ * order, convention and instruction set) is the same code with each sum of
+ * three products fused into two FMAs in its avx2 and avx512 variants (the
+ * multiplications counted are the same 57): it differs from the batch by
+ * rounding only (test_rot_direct holds them to 4e-15 of each other in
+ * double, 2e-6 in float, per kernel, and each to the MPFR reference).
  */
 #include "rotate/rot_internal.h"
+#include "rotate/rot_finite.h"
 #include "rotate/rot_real.h"
 
 #include <string.h>
@@ -106,6 +111,8 @@ int sh__rot_direct_rotate_many_d(int, int, sh_rot_kernel, size_t, const double *
                                  double *, uint64_t *, uint64_t *);
 int sh__rot_direct_rotate_many_f(int, int, sh_rot_kernel, size_t, const float *, const float *,
                                  float *, uint64_t *, uint64_t *);
+sh__rot_one_fn_d sh__rot_direct_one_d(int, int, sh_rot_kernel, uint64_t *);
+sh__rot_one_fn_f sh__rot_direct_one_f(int, int, sh_rot_kernel, uint64_t *);
 
 #define DR_SQRT3 ((sh_real)1.7320508075688772935)
 #define DR_HSQRT3 ((sh_real)0.86602540378443864676)
@@ -189,23 +196,35 @@ static void SH_R(dr_blocks_r)(int order, const sh_real *r, sh_real *blocks, uint
     }
 }
 
-/* 0 if every R[i] is finite: Σ (R[i] − R[i]) is 0, else NaN (∞ − ∞) */
-static inline __attribute__((always_inline)) int SH_R(dr_finite)(const sh_real *R)
+/* The state from R: r = R with entries 2, 5, 6, 7 negated (header), the
+ * first eight as 16-byte vectors times a ±1 table (exact: x·(−1) = −x),
+ * R[8] copied. */
+static inline __attribute__((always_inline)) void SH_R(dr_state_from)(const sh_real *R, sh_real *r)
 {
-    sh_real acc = 0;
-#pragma GCC unroll 9
-    for (int i = 0; i < 9; i++) acc += R[i] - R[i];
-    return acc == 0;
+    typedef sh_real v_t __attribute__((vector_size(16)));
+    static const sh_real sgn[8] = {1, 1, -1, 1, 1, -1, -1, -1};
+    enum { N = 16 / sizeof(sh_real) };
+    for (int i = 0; i < 8; i += N) {
+        v_t a, s;
+        memcpy(&a, R + i, 16);
+        memcpy(&s, sgn + i, 16);
+        a *= s;
+        memcpy(r + i, &a, 16);
+    }
+    r[8] = R[8];
 }
 
-/* The per-rotation state is r: R with the cs signs (header), 9 values; no
- * multiplication. */
+/* The per-rotation state is r: R with the cs signs (header), 9 values, the
+ * same for every order (which the rotator checked); no multiplication.  R
+ * is checked finite first (rot_finite.h). */
 int SH_R(sh__rot_direct_set_mat)(int order, const sh_real *R, void *state, uint64_t *mults)
 {
-    const int st = dr_check_order(order);
-    if (st) return st;
-    if (!SH_R(dr_finite)(R)) return sh_error(SH_EINVAL, "method direct: matrix entries must be finite");
-    SH_R(dr_signs)(R, 0, state);
+#ifdef SH_REAL_FLOAT
+    if (!sh__finite9_f(R)) return sh_error(SH_EINVAL, "method direct: matrix entries must be finite");
+#else
+    if (!sh__finite9_d(R)) return sh_error(SH_EINVAL, "method direct: matrix entries must be finite");
+#endif
+    SH_R(dr_state_from)(R, state);
     return SH_OK;
 }
 
@@ -237,16 +256,30 @@ void SH_R(sh__rot_direct_state_blocks)(int order, const void *state, double *blo
     for (size_t i = 0; i < sh_rot_block_offset(order); i++) blocks[i] = b[i];
 }
 
+/* a·b + c: one fused multiply-add when FUSED (the one-vector kernels built
+ * for FMA, below; the sum then rounds once instead of twice), else the
+ * product and the sum (every other caller: FUSED is a constant 0 there, so
+ * no fma call is ever made without the instruction) */
+#ifdef SH_REAL_FLOAT
+#define DR_FMA_FN __builtin_fmaf
+#else
+#define DR_FMA_FN __builtin_fma
+#endif
+#define DR_MA(a, b, c) (fused ? DR_FMA_FN((a), (b), (c)) : (a) * (b) + (c))
+
 /* y = R_sh x for bands 0..order−1 from r (header, "Apply"): band 1 by the
- * permutation B1, band 2 as Ã' = r Ã rᵀ; 9 + 48 multiplications. */
-static inline __attribute__((always_inline)) void SH_R(dr_apply_r)(int order, const sh_real *r, const sh_real *x,
-                                                                   sh_real *y)
+ * permutation B1, band 2 as Ã' = r Ã rᵀ; 9 + 48 multiplications.  Each sum
+ * of three products is taken left to right, a·b + c·d + e·f =
+ * (a·b + c·d) + e·f, fused as fma(e, f, fma(c, d, a·b)). */
+static inline __attribute__((always_inline)) void SH_R(dr_apply_r)(int order, int fused, const sh_real *r,
+                                                                   const sh_real *x, sh_real *y)
 {
+#define DR_SUM3(a, b, c, d, e, f) DR_MA(e, f, DR_MA(c, d, (a) * (b)))
     y[0] = x[0];
     if (order > 1) {
-        y[1] = r[4] * x[1] + r[5] * x[2] + r[3] * x[3];
-        y[2] = r[7] * x[1] + r[8] * x[2] + r[6] * x[3];
-        y[3] = r[1] * x[1] + r[2] * x[2] + r[0] * x[3];
+        y[1] = DR_SUM3(r[4], x[1], r[5], x[2], r[3], x[3]);
+        y[2] = DR_SUM3(r[7], x[1], r[8], x[2], r[6], x[3]);
+        y[3] = DR_SUM3(r[1], x[1], r[2], x[2], r[0], x[3]);
     }
     if (order > 2) {
         /* Ã (symmetric, six values); v_j = Ã (row j of r)ᵀ = column j of
@@ -255,10 +288,10 @@ static inline __attribute__((always_inline)) void SH_R(dr_apply_r)(int order, co
         const sh_real q = DR_RSQRT3 * x[6];
         const sh_real a00 = x[8] - q, a11 = -x[8] - q, a22 = q + q, a01 = x[4], a12 = x[5], a02 = x[7];
 #define DR_V(j, v0, v1, v2)                                                                        \
-    const sh_real v0 = a00 * r[3 * (j)] + a01 * r[3 * (j) + 1] + a02 * r[3 * (j) + 2];             \
-    const sh_real v1 = a01 * r[3 * (j)] + a11 * r[3 * (j) + 1] + a12 * r[3 * (j) + 2];             \
-    const sh_real v2 = a02 * r[3 * (j)] + a12 * r[3 * (j) + 1] + a22 * r[3 * (j) + 2]
-#define DR_DOT(i, v0, v1, v2) (r[3 * (i)] * v0 + r[3 * (i) + 1] * v1 + r[3 * (i) + 2] * v2)
+    const sh_real v0 = DR_SUM3(a00, r[3 * (j)], a01, r[3 * (j) + 1], a02, r[3 * (j) + 2]);         \
+    const sh_real v1 = DR_SUM3(a01, r[3 * (j)], a11, r[3 * (j) + 1], a12, r[3 * (j) + 2]);         \
+    const sh_real v2 = DR_SUM3(a02, r[3 * (j)], a12, r[3 * (j) + 1], a22, r[3 * (j) + 2])
+#define DR_DOT(i, v0, v1, v2) DR_SUM3(r[3 * (i)], v0, r[3 * (i) + 1], v1, r[3 * (i) + 2], v2)
         DR_V(2, w0, w1, w2);
         y[6] = DR_HSQRT3 * DR_DOT(2, w0, w1, w2); /* c'_0 = (√3/2) Ã'22 */
         y[5] = DR_DOT(1, w0, w1, w2);             /* c'_{−1} = Ã'12 */
@@ -271,6 +304,7 @@ static inline __attribute__((always_inline)) void SH_R(dr_apply_r)(int order, co
 #undef DR_V
 #undef DR_DOT
     }
+#undef DR_SUM3
 }
 static uint64_t dr_apply_mults(int order) { return order > 2 ? DR_APPLY_MULTS : order > 1 ? 9u : 0u; }
 
@@ -279,11 +313,77 @@ void SH_R(sh__rot_direct_apply)(int order, const void *tables, const void *state
                                 sh_real *out, void *work, uint64_t *mults)
 {
     switch (order) { /* each order a constant: the tests on it fold away */
-    case 3: SH_R(dr_apply_r)(3, state, in, out); break;
-    case 2: SH_R(dr_apply_r)(2, state, in, out); break;
-    default: SH_R(dr_apply_r)(1, state, in, out); break;
+    case 3: SH_R(dr_apply_r)(3, 0, state, in, out); break;
+    case 2: SH_R(dr_apply_r)(2, 0, state, in, out); break;
+    default: SH_R(dr_apply_r)(1, 0, state, in, out); break;
     }
     if (mults) *mults += dr_apply_mults(order);
+}
+
+/* One vector of one rotation, the plan's per-rotation path
+ * (ops->one_P): r from the state (cs; a nocs plan flips entries 2, 5, 6, 7
+ * back, which gives the nocs block, header "The cs basis"), the vector
+ * loaded first (in == out allowed), then dr_apply_r — fused into FMA in
+ * the variants built for it (avx2, avx512: the rotator's kernel), so these
+ * differ from apply_P and the batch by float rounding only.  One function
+ * per (order, convention, instruction set): the tests on them fold away. */
+static inline __attribute__((always_inline)) void SH_R(dr_one_vec)(int order, int nocs, int fused,
+                                                                   const sh_real *state, const sh_real *in,
+                                                                   sh_real *out)
+{
+    sh_real r[9], x[9];
+    SH_R(dr_signs)(state, !nocs, r);
+#pragma GCC unroll 9
+    for (int i = 0; i < order * order; i++) x[i] = in[i];
+    SH_R(dr_apply_r)(order, fused, r, x, out);
+}
+#define DR_ONE_FN(NAME, TARGET, ORDER, NOCS, FUSED)                                                \
+    TARGET static void NAME(const sh_real *state, const sh_real *in, sh_real *out)                 \
+    {                                                                                              \
+        SH_R(dr_one_vec)(ORDER, NOCS, FUSED, state, in, out);                                      \
+    }
+#define DR_ONE_SET(PFX, TARGET, FUSED)                                                             \
+    DR_ONE_FN(SH_R(PFX##_1c), TARGET, 1, 0, FUSED)                                                       \
+    DR_ONE_FN(SH_R(PFX##_2c), TARGET, 2, 0, FUSED)                                                       \
+    DR_ONE_FN(SH_R(PFX##_3c), TARGET, 3, 0, FUSED)                                                       \
+    DR_ONE_FN(SH_R(PFX##_1n), TARGET, 1, 1, FUSED)                                                       \
+    DR_ONE_FN(SH_R(PFX##_2n), TARGET, 2, 1, FUSED)                                                       \
+    DR_ONE_FN(SH_R(PFX##_3n), TARGET, 3, 1, FUSED)
+#define DR_ONE_ROW(PFX)                                                                            \
+    {{SH_R(PFX##_1c), SH_R(PFX##_2c), SH_R(PFX##_3c)}, {SH_R(PFX##_1n), SH_R(PFX##_2n), SH_R(PFX##_3n)}}
+typedef void (*SH_R(dr_one_t))(const sh_real *, const sh_real *, sh_real *);
+/* GCC's straight-line (SLP) vectoriser would gather the nine results into
+ * one vector store (a dozen shuffles, the stack realigned, spills): off for
+ * these functions, the results are stored as they come */
+#if defined(__GNUC__) && !defined(__clang__)
+#define DR_NO_SLP __attribute__((optimize("no-tree-slp-vectorize")))
+#else
+#define DR_NO_SLP
+#endif
+DR_ONE_SET(dr_one_base, DR_NO_SLP, 0)
+#if defined(__x86_64__) && defined(__GNUC__)
+DR_ONE_SET(dr_one_avx2, DR_NO_SLP __attribute__((target("avx2,fma"))), 1)
+DR_ONE_SET(dr_one_avx512, DR_NO_SLP __attribute__((target("avx512f,avx512vl,fma"))), 1)
+static const SH_R(dr_one_t) SH_R(dr_one_tab)[3][2][3] = {
+    DR_ONE_ROW(dr_one_base), DR_ONE_ROW(dr_one_avx2), DR_ONE_ROW(dr_one_avx512)};
+#else
+static const SH_R(dr_one_t) SH_R(dr_one_tab)[1][2][3] = {DR_ONE_ROW(dr_one_base)};
+#endif
+#undef DR_ONE_FN
+#undef DR_ONE_SET
+#undef DR_ONE_ROW
+
+/* The kernel of one vector for (order, convention, the rotator's kernel),
+ * and its multiplications (fused or not, the same products). */
+SH_R(dr_one_t) SH_R(sh__rot_direct_one)(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults)
+{
+    if (order < 1 || order > SH_ROT_DIRECT_MAX_ORDER) return NULL;
+    int isa = 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    isa = kernel == SH_KERNEL_AVX512 ? 2 : kernel == SH_KERNEL_AVX2 ? 1 : 0;
+#endif
+    *mults = dr_apply_mults(order);
+    return SH_R(dr_one_tab)[isa][nocs != 0][order - 1];
 }
 
 /* One rotation k of a structure-of-arrays batch (stride K): r and the
@@ -299,7 +399,7 @@ static inline __attribute__((always_inline)) void SH_R(dr_one)(int order, int no
 #pragma GCC unroll 9
     for (int i = 0; i < order * order; i++) x[i] = in[(size_t)i * K + k];
     SH_R(dr_signs)(Rk, nocs, r);
-    SH_R(dr_apply_r)(order, r, x, y);
+    SH_R(dr_apply_r)(order, 0, r, x, y);
 #pragma GCC unroll 9
     for (int i = 0; i < order * order; i++) out[(size_t)i * K + k] = y[i];
 }
@@ -315,7 +415,7 @@ static inline __attribute__((always_inline)) void SH_R(dr_one)(int order, int no
     TARGET static int NAME(int order, int nocs, size_t K, const sh_real *R, const sh_real *in,     \
                            sh_real *out)                                                           \
     {                                                                                              \
-        sh_real acc = 0; /* 0 if every entry is finite (dr_finite) */                              \
+        sh_real acc = 0; /* 0 if every entry is finite (rot_finite.h) */                           \
         SH_PRAGMA(omp simd simdlen(LANES) reduction(+ : acc))                                      \
         for (size_t i = 0; i < 9 * K; i++) acc += R[i] - R[i];                                     \
         if (acc != 0) return 0;                                                                    \
@@ -375,6 +475,8 @@ const sh__rot_ops sh__rot_direct_ops = {
     .set_mat_f = sh__rot_direct_set_mat_f,
     .rotate_many_d = sh__rot_direct_rotate_many_d,
     .rotate_many_f = sh__rot_direct_rotate_many_f,
+    .one_d = sh__rot_direct_one_d,
+    .one_f = sh__rot_direct_one_f,
     .state_blocks_d = sh__rot_direct_state_blocks_d,
     .state_blocks_f = sh__rot_direct_state_blocks_f,
 };

@@ -17,6 +17,10 @@
 
 #include "core/shlab_internal.h"
 
+/* A method's kernel of one vector (ops->one_P, below). */
+typedef void (*sh__rot_one_fn_d)(const double *state, const double *in, double *out);
+typedef void (*sh__rot_one_fn_f)(const float *state, const float *in, float *out);
+
 typedef struct {
     const char *name;
     int max_order;
@@ -96,6 +100,14 @@ typedef struct {
                          const double *in, double *out, uint64_t *set_mults, uint64_t *apply_mults);
     int (*rotate_many_f)(int order, int nocs, sh_rot_kernel kernel, size_t K, const float *R,
                          const float *in, float *out, uint64_t *set_mults, uint64_t *apply_mults);
+    /* One vector of the plan's rotation (optional; direct): the kernel for
+     * (order, convention nocs 1 or cs 0, the rotator's kernel), which reads
+     * the state set_P or set_mat_P wrote (P: the plan's precision) and
+     * applies it in that convention, in == out allowed; *mults = its
+     * multiplications.  The rotator resolves it once (sh_rotator.one_P);
+     * the plan's apply then calls it with nothing in between. */
+    sh__rot_one_fn_d (*one_d)(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults);
+    sh__rot_one_fn_f (*one_f)(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults);
 } sh__rot_ops;
 
 /* Progress of the long steps (rotator.c): a method whose tables or blocks
@@ -285,6 +297,9 @@ struct sh_rotator {
     sh__fast_fn_d fn_d;   /* unrolled, one lane: the kernel of this order, or NULL */
     sh__fast_fn_f fn_f;
     uint64_t fn_mults;    /* its multiplications per call */
+    sh__rot_one_fn_d one_d; /* the method's one-vector kernel (ops->one_P), or NULL */
+    sh__rot_one_fn_f one_f;
+    uint64_t one_mults;   /* its multiplications per call */
     int stream;           /* halfpi in double: all bands by sh_rot_stream, on threads */
     int threads;          /* the stream's threads (1 for the plans) */
     sh_progress_fn progress;

@@ -8,6 +8,7 @@
  * Every method computes in the CS convention; the plan turns the result into
  * nocs by the sign flip S·R·S (S = −1 on odd m).
  */
+#include "rotate/rot_finite.h"
 #include "rotate/rot_internal.h"
 #include "rotate/rot_real.h" /* SH_PRAGMA */
 
@@ -200,7 +201,7 @@ ALL_FINITE(all_finite_f, float, uint32_t, 0x7fffffffu, 0x7f800000u)
 static const int nocs_ivanic[4] = {2, 5, 6, 7};
 int sh__rot_plan_par_matrix_d(const sh_rotator *r, const double R[9], double *par)
 {
-    if (!all_finite_d(R, 9)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
+    if (!sh__finite9_d(R)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
     if (r->fmeth == SH__FAST_IVANIC) {
         memcpy(par, R, 9 * sizeof *par);
         if (r->conv == SH_NOCS)
@@ -212,13 +213,14 @@ int sh__rot_plan_par_matrix_d(const sh_rotator *r, const double R[9], double *pa
     return SH_OK;
 }
 
-int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par)
+static inline __attribute__((always_inline)) int par_matrix_f(const sh_rotator *r, const float R[9], float *par)
 {
-    if (!all_finite_f(R, 9)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
+    if (!sh__finite9_f(R)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
     r->ff1->par_matrix(R, r->nb, par);
     if (r->conv == SH_NOCS) par[3] = -par[3], par[6] = -par[6];
     return SH_OK;
 }
+int sh__rot_plan_par_matrix_f(const sh_rotator *r, const float R[9], float *par) { return par_matrix_f(r, R, par); }
 
 /* A sparse method set straight from the matrix (ops->set_mat_P: direct),
  * in the plan's precision: no angle, no par; sh_rot_plan_blocks reads its
@@ -242,7 +244,7 @@ static int set_mat(sh_rot_plan *p, const double *rd, const float *rf)
 static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 {
     const int n = quat ? 4 : 9, nb = need_beta(p);
-    if (!(rf ? all_finite_f(rf, (size_t)n) : all_finite_d(rd, (size_t)n)))
+    if (!(quat ? (rf ? all_finite_f(rf, 4) : all_finite_d(rd, 4)) : (rf ? sh__finite9_f(rf) : sh__finite9_d(rd))))
         return sh_error(SH_EINVAL, "rotation plan: %s entries must be finite", quat ? "quaternion" : "matrix");
     p->have_rot = 0;
     p->set_mults = (quat ? SH__PAR_MULTS_QUAT : SH__PAR_MULTS_MATRIX) + (nb && rf ? SH__PAR_MULTS_BETA_F : 0);
@@ -324,24 +326,32 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
 
 int sh_rot_plan_set_matrix(sh_rot_plan *p, const double R[9]) { return set_rot(p, R, NULL, 0); }
 int sh_rot_plan_set_quat(sh_rot_plan *p, const double q[4]) { return set_rot(p, q, NULL, 1); }
+/* set_rot's two hot cases written out, each its own function so that the
+ * dispatch below needs no stack frame (every path a tail call): the
+ * unrolled kernels' par, and a method's own state from the matrix (direct;
+ * set_mat checks R) */
+static __attribute__((noinline)) int set_matrix_fast_f(sh_rot_plan *p, const float R[9])
+{
+    const int st = par_matrix_f(p->r, R, p->par_f);
+    if (st) return st;
+    p->set_mults = SH__PAR_MULTS_MATRIX + (p->r->nb ? SH__PAR_MULTS_BETA_F : 0);
+    p->have_angles = 0;
+    p->have_rot = 1;
+    return SH_OK;
+}
+static __attribute__((noinline)) int set_matrix_own_f(sh_rot_plan *p, const float R[9])
+{
+    p->have_rot = p->have_angles = 0;
+    p->set_mults = 0;
+    const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
+    p->have_rot = st == SH_OK;
+    return st;
+}
 int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
 {
     if (p->r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float matrix for a double plan");
-    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC) { /* set_rot's path, the hot case written out */
-        const int st = sh__rot_plan_par_matrix_f(p->r, R, p->par_f);
-        if (st) return st;
-        p->set_mults = SH__PAR_MULTS_MATRIX + (p->r->nb ? SH__PAR_MULTS_BETA_F : 0);
-        p->have_angles = 0;
-        p->have_rot = 1;
-        return SH_OK;
-    }
-    if (p->r->ops->set_mat_f) { /* set_rot's path for direct, written out (set_mat checks R) */
-        p->have_rot = p->have_angles = 0;
-        p->set_mults = 0;
-        const int st = p->r->ops->set_mat_f(p->r->order, R, p->state, &p->set_mults);
-        p->have_rot = st == SH_OK;
-        return st;
-    }
+    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC) return set_matrix_fast_f(p, R);
+    if (p->r->ops->set_mat_f) return set_matrix_own_f(p, R);
     return set_rot(p, NULL, R, 0);
 }
 int sh_rot_plan_set_quat_f(sh_rot_plan *p, const float q[4])
@@ -374,6 +384,9 @@ static void apply_float(sh_rot_plan *p, const float *x, float *y, uint64_t *m)
     if (p->r->fn_f) {
         p->r->fn_f(p->par_f, 1, x, y, 1);
         *m += p->r->fn_mults;
+    } else if (p->r->one_f) { /* the method's one-vector kernel: convention and in == out its own */
+        p->r->one_f(p->state, x, y);
+        *m += p->r->one_mults;
     } else if (p->r->ops->apply_f) { /* sparse: the kernel works in CS, on distinct arrays */
         if (p->r->conv == SH_NOCS || x == y) {
             if (x != p->vin) memcpy(p->vin, x, nc * sizeof *x);
@@ -408,6 +421,9 @@ int sh_rot_plan_apply(sh_rot_plan *p, const double *in, double *out)
     } else if (p->r->fn_d) {
         p->r->fn_d(p->par_d, 1, in, out, 1);
         m = p->r->fn_mults;
+    } else if (p->r->one_d) {
+        p->r->one_d(p->state, in, out);
+        m = p->r->one_mults;
     } else {
         /* kernels need distinct input and output: copy when in == out (and
          * for a sparse kernel in nocs, whose input is sign-flipped first) */
@@ -430,9 +446,15 @@ int sh_rot_plan_apply_f(sh_rot_plan *p, const float *in, float *out)
 {
     if (p->r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float vectors for a double plan");
     if (!p->have_rot) return sh_error(SH_EINVAL, "rotation plan: no rotation set");
+    /* the count first: nothing is read back after the kernel */
     if (p->r->fn_f) {
-        p->r->fn_f(p->par_f, 1, in, out, 1);
         p->apply_mults = p->r->fn_mults;
+        p->r->fn_f(p->par_f, 1, in, out, 1);
+        return SH_OK;
+    }
+    if (p->r->one_f) {
+        p->apply_mults = p->r->one_mults;
+        p->r->one_f(p->state, in, out);
         return SH_OK;
     }
     uint64_t m = 0;

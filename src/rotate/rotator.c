@@ -181,6 +181,12 @@ static int rotator_new(const sh_rotator_opts *o, int stream, sh_rotator **out)
     r->progress = o->progress;
     r->progress_ctx = o->progress_ctx;
     choose_kernel(r, o->kernel);
+    if (!r->stream && r->fmeth < 0) { /* the method's own one-vector kernel, if any */
+        if (r->prec == SH_PREC_FLOAT && r->ops->one_f)
+            r->one_f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
+        else if (r->prec == SH_PREC_DOUBLE && r->ops->one_d)
+            r->one_d = r->ops->one_d(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
+    }
     if ((st = mem_check(r->order, method, r->prec, sh__rot_plan_state_bytes(r) +
                                                          sh__rot_tables_bytes(r->order, r->ops, r->prec)))) {
         free(r);

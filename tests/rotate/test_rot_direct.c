@@ -146,7 +146,9 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr, sh_rot
     sh_rot_plan *p = NULL, *one = NULL;
     ck_assert_int_eq(sh_rot_plan_create_kernel(order, SH_ROT_DIRECT, pr, conv, kern, &p), SH_OK);
     ck_assert_int_eq(sh_rot_plan_kernel(p), kern); /* kept: the batch has a variant per kernel */
-    ck_assert_int_eq(sh_rot_plan_create(order, SH_ROT_DIRECT, pr, conv, &one), SH_OK);
+    /* the single rotations with the same kernel: each instruction set has its
+     * own one-vector kernel too (fused multiply-adds in avx2 and avx512) */
+    ck_assert_int_eq(sh_rot_plan_create_kernel(order, SH_ROT_DIRECT, pr, conv, kern, &one), SH_OK);
     if (pr) {
         ck_assert_int_eq(sh_rot_plan_rotate_many_f(p, K, Rf, xf, yf), SH_OK);
         for (size_t i = 0; i < n * K; i++) y[i] = yf[i];
@@ -179,9 +181,16 @@ static void dr_check_many(int order, sh_convention conv, sh_precision pr, sh_rot
             ck_assert_int_eq(sh_rot_plan_set_matrix_f(one, Rk), SH_OK);
             ck_assert_int_eq(sh_rot_plan_apply_f(one, xk_f, yk_f), SH_OK);
             for (size_t i = 0; i < n; i++) yk[i] = yk_f[i];
+            ck_assert_int_eq(sh_rot_plan_apply_f(one, xk_f, xk_f), SH_OK); /* in place: the same bits */
+            ck_assert_msg(memcmp(xk_f, yk_f, n * sizeof *xk_f) == 0, "apply_f in place differs (%s)",
+                          sh_rot_kernel_name(kern));
         } else {
             ck_assert_int_eq(sh_rot_plan_set_matrix(one, rs[k].R), SH_OK);
             ck_assert_int_eq(sh_rot_plan_apply(one, xk, yk), SH_OK);
+            double xin[DR_N];
+            memcpy(xin, xk, sizeof xin);
+            ck_assert_int_eq(sh_rot_plan_apply(one, xin, xin), SH_OK); /* in place: the same bits */
+            ck_assert_msg(memcmp(xin, yk, n * sizeof *xin) == 0, "apply in place differs (%s)", sh_rot_kernel_name(kern));
         }
         rot_reference_blocks(3, conv, &rs[k], ref);
         rot_blocks_mul(order, ref, xk, want);
@@ -300,6 +309,32 @@ START_TEST(test_counts_limits)
         ck_assert_int_ne(sh_rot_plan_set_matrix_f(p, R1), SH_OK);
         sh_rot_plan_free(p);
     }
+    /* the finiteness check of one matrix (rot_finite.h: vector lanes and the
+     * last entry alone) sees ±∞ and NaN at every position, in both
+     * precisions, for direct and for zxzxz's unrolled path */
+    const sh_rot_method ms_[2] = {SH_ROT_DIRECT, SH_ROT_ZXZXZ};
+    for (int mi = 0; mi < 2; mi++)
+        for (int pr = 0; pr < 2; pr++) {
+            ck_assert_int_eq(sh_rot_plan_create(3, ms_[mi], pr, SH_CS, &p), SH_OK);
+            const double bads[3] = {INFINITY, -INFINITY, NAN};
+            for (int j = 0; j < 9; j++)
+                for (int b = 0; b < 3; b++) {
+                    double Rd[9];
+                    float Rf1[9];
+                    memcpy(Rd, r.R, sizeof Rd);
+                    Rd[j] = bads[b];
+                    for (int i = 0; i < 9; i++) Rf1[i] = (float)Rd[i];
+                    if (pr) {
+                        ck_assert_int_eq(sh_rot_plan_set_matrix_f(p, Rf1), SH_EINVAL);
+                    } else {
+                        ck_assert_int_eq(sh_rot_plan_set_matrix(p, Rd), SH_EINVAL);
+                    }
+                    /* a good matrix after a bad one is accepted */
+                    for (int i = 0; i < 9; i++) Rf1[i] = (float)r.R[i];
+                    ck_assert_int_eq(pr ? sh_rot_plan_set_matrix_f(p, Rf1) : sh_rot_plan_set_matrix(p, r.R), SH_OK);
+                }
+            sh_rot_plan_free(p);
+        }
 }
 END_TEST
 
