@@ -189,5 +189,5 @@ r=$(sed 's/.*"order_residual":\([^,}]*\).*/\1/' "$TMP/out")
     && ok "plan auto: no order reaches 1e-9 below 2 -> exit 1, result printed (residual $r)" \
     || notok "plan auto 1e-9: exit $rc, $(head -c 300 "$TMP/out") / $(cat "$TMP/err")"
 "$SHLAB" plan --order auto --exr "$TMP/p.exr" --tolerance 1e-9 --max-order 2 --max-beta 0.1 --quiet >"$TMP/out" 2>"$TMP/err"; rc=$?
-[ $rc = 1 ] && grep -q '^order: $' "$TMP/out" && grep -q '^image\.width: 128$' "$TMP/out" \
-    && ok "plan auto table: exit 1, order empty, image.width 128" || notok "plan auto table: exit $rc, $(head -c 300 "$TMP/out")"
+[ $rc = 1 ] && grep -q '^order: -$' "$TMP/out" && grep -q '^image\.width: 128$' "$TMP/out" \
+    && ok "plan auto table: exit 1, order '-' (no value), image.width 128" || notok "plan auto table: exit $rc, $(head -c 300 "$TMP/out")"
