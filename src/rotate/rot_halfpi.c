@@ -166,17 +166,17 @@ HP_INLINE void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh
 
 /* ---- scratch ------------------------------------------------------------ */
 /* Per band l ≤ L and nj ≤ J jobs: three wedge rows, three recursion rows,
- * B, 1/B, 2m, the column scales, ten per-job vectors, kexp: O(l), either
- * precision. */
+ * B, 1/B, 2m, the column scales, the seed row (values, mantissas, scales),
+ * ten per-job vectors, kexp and the seed's: O(l), either precision. */
 #ifndef SH_REAL_FLOAT
 static size_t hp_nreal(int L, int J)
 {
     const size_t n = (size_t)L + 1;
-    return 3 * n + 3 * n + 2 * (n + 1) + 2 * n + 10 * n * (size_t)J + 16;
+    return 3 * n + 3 * n + 2 * (n + 1) + 2 * n + 3 * n + 10 * n * (size_t)J + 16;
 }
 size_t sh__rot_halfpi_work_bytes(int L, int J)
 {
-    return hp_nreal(L, J) * sizeof(double) + ((size_t)L + 1) * sizeof(int) + 64;
+    return hp_nreal(L, J) * sizeof(double) + 2 * ((size_t)L + 1) * sizeof(int) + 64;
 }
 #endif
 
@@ -188,6 +188,8 @@ typedef struct {
     sh_real *twom;      /* 2m */
     sh_real *scale;     /* 2^−kexp[m] (0: flushed) */
     int *kexp;
+    sh_real *sw, *sx, *ssc; /* the seed row (hp_init): w, rec, scale of row l */
+    int *skexp;             /* and kexp */
     sh_real *job;       /* per-job vectors */
 } SH_R(hp_gen);
 #define HPGEN SH_R(hp_gen)
@@ -207,44 +209,64 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     g->iB = p, p += n + 1;
     g->twom = p, p += n;
     g->scale = p, p += n;
+    g->sw = p, p += n;
+    g->sx = p, p += n;
+    g->ssc = p, p += n;
     g->job = p, p += 10 * n * (size_t)nj;
     g->kexp = (int *)(p + 1);
+    g->skexp = g->kexp + n;
 }
 
-/* The seed row Δ_{l,m} (long double, [4]) and the recursion coefficients. */
+/* The seed row Δ_{l,m} (long double, [4]) into sw, sx, ssc, skexp, and the
+ * recursion coefficients: once per band (both generations start from it,
+ * hp_start). */
 static void SH_R(hp_init)(HPGEN *g)
 {
     const int l = g->l;
-    sh_real *w0 = g->w[l % 3];
+    sh_real *w0 = g->sw;
     long double e2 = 1;
     for (int k = 1; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
     long double e = sqrtl(e2);
+    const long double low = ldexpl(1.0L, HP_LOW_EXP - 1);
     g->ms = l + 1;
     for (int m = 0; m <= l; m++) {
         if (m) e *= sqrtl((long double)(l - m + 1) / (l + m));
         const long double v = ((l - m) & 1) ? -e : e;
-        int ex;
-        const long double f = frexpl(v, &ex);
         g->twom[m] = (sh_real)(2 * m);
-        if (ex >= HP_LOW_EXP && g->ms > l) {
+        /* frexpl's exponent ≥ HP_LOW_EXP  ⟺  |v| ≥ 2^(HP_LOW_EXP−1) */
+        if (g->ms > l && e >= low) {
             w0[m] = (sh_real)v;
-            g->kexp[m] = 0;
-            g->scale[m] = 1;
+            g->sx[m] = 0;
+            g->skexp[m] = 0;
+            g->ssc[m] = 1;
         } else { /* seeds decrease with m: every later column is scaled too */
+            int ex;
+            const long double f = frexpl(v, &ex);
             if (g->ms > l) g->ms = m;
-            g->kexp[m] = -ex;
-            g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->kexp[m]);
-            g->rec[l % 3][m] = (sh_real)f;
-            g->rec[(l + 1) % 3][m] = 0;
-            w0[m] = (sh_real)f * g->scale[m];
+            g->skexp[m] = -ex;
+            g->ssc[m] = g->skexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->skexp[m]);
+            g->sx[m] = (sh_real)f;
+            w0[m] = (sh_real)f * g->ssc[m];
         }
     }
-    memset(g->w[(l + 1) % 3], 0, ((size_t)l + 1) * sizeof(sh_real)); /* row l+1 */
     for (int j = 0; j <= l + 1; j++) {
         const double b = sqrt((double)(l + j) * (double)(l - j + 1));
         g->B[j] = (sh_real)b;
         g->iB[j] = b > 0 ? (sh_real)(1.0 / b) : 0;
     }
+}
+
+/* The generator at row l again (the seed row of hp_init, row l+1 zero). */
+static void SH_R(hp_start)(HPGEN *g)
+{
+    const int l = g->l;
+    const size_t n = (size_t)l + 1, ns = n - (size_t)g->ms;
+    memcpy(g->w[l % 3], g->sw, n * sizeof(sh_real));
+    memset(g->w[(l + 1) % 3], 0, n * sizeof(sh_real)); /* row l+1 */
+    memcpy(g->rec[l % 3] + g->ms, g->sx + g->ms, ns * sizeof(sh_real));
+    memset(g->rec[(l + 1) % 3] + g->ms, 0, ns * sizeof(sh_real));
+    memcpy(g->scale, g->ssc, n * sizeof(sh_real));
+    memcpy(g->kexp, g->skexp, n * sizeof(int));
 }
 
 /* out[m] = (2m·x1[m] − b2·x2[m])·ib for m in [m0, m1): the recursion, a vector
@@ -377,6 +399,7 @@ HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj)
     const size_t n = (size_t)l + 1;
     uint64_t count = 0;
     SH_R(hp_init)(g);
+    SH_R(hp_start)(g);
     for (int r = l; r >= 0; r--) {
         int na;
         const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
@@ -434,7 +457,7 @@ HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj)
     const int l = g->l;
     const size_t n = (size_t)l + 1;
     uint64_t count = 0;
-    SH_R(hp_init)(g);
+    SH_R(hp_start)(g); /* hp_init: stage 3 */
     for (int r = l; r >= 0; r--) {
         int na;
         const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
@@ -511,6 +534,7 @@ HP_CLONES void SH_R(sh__rot_halfpi_delta)(int l, void *work, sh_real *d)
     HPGEN g;
     SH_R(hp_layout)(l, 0, work, &g);
     SH_R(hp_init)(&g);
+    SH_R(hp_start)(&g);
     const int n = l + 1;
     for (int r = l; r >= 0; r--) {
         if (r < l) SH_R(hp_row)(&g, r);
