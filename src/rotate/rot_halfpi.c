@@ -93,10 +93,14 @@ SH__ROT_DECLARE_APPLY(halfpi);
 #define HP_LOW_EXP (-60)
 #define HP_RESCALE_EXP 30
 #define HP_FLUSH_K 90
+#define HP_ROW_EXP 60
+#define HP_CHECK_MASK 0 /* the scaled columns checked every row */
 #else
 #define HP_LOW_EXP (-600)
 #define HP_RESCALE_EXP 400
 #define HP_FLUSH_K 1000
+#define HP_ROW_EXP 400
+#define HP_CHECK_MASK 7 /* every 8 rows */
 #endif
 
 /* One vector of HP_VBYTES: NL lanes (4 doubles or 8 floats), columns c,
@@ -164,19 +168,31 @@ HP_INLINE void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh
     *so = o;
 }
 
+/* HP_TINY: see hp_active */
+#ifdef SH_REAL_FLOAT
+#define HP_TINY 0x1p-45f
+typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffff
+#else
+#define HP_TINY 0x1p-90
+typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffffffffffffLL
+#endif
+
 /* ---- scratch ------------------------------------------------------------ */
 /* Per band l ≤ L and nj ≤ J jobs: three wedge rows, three recursion rows,
- * B, 1/B, 2m, the column scales, the seed row (values, mantissas, scales),
- * ten per-job vectors, kexp and the seed's: O(l), either precision. */
+ * B², 2m, the row factors and thresholds, the column scales, the seed row
+ * (values, mantissas, scales), ten per-job vectors, kexp and the seed's, the
+ * row rescale flags: O(l), either precision. */
 #ifndef SH_REAL_FLOAT
 static size_t hp_nreal(int L, int J)
 {
     const size_t n = (size_t)L + 1;
-    return 3 * n + 3 * n + 2 * (n + 1) + 2 * n + 3 * n + 10 * n * (size_t)J + 16;
+    return 3 * n + 3 * n + (n + 1) + 2 * n + 2 * n + 3 * n + 10 * n * (size_t)J + 16;
 }
 size_t sh__rot_halfpi_work_bytes(int L, int J)
 {
-    return hp_nreal(L, J) * sizeof(double) + 2 * ((size_t)L + 1) * sizeof(int) + 64;
+    return hp_nreal(L, J) * sizeof(double) + 3 * ((size_t)L + 1) * sizeof(int) + 64;
 }
 #endif
 
@@ -184,8 +200,10 @@ typedef struct {
     int l, ms;          /* band; first scaled column (l+1: none) */
     sh_real *w[3];      /* wedge rows (true values) by r mod 3 */
     sh_real *rec[3];    /* recursion rows of the scaled columns, by r mod 3 */
-    sh_real *B, *iB;    /* B_j, 1/B_j, j = 0..l+1 */
+    sh_real *C;         /* B_j² = (l+j)(l−j+1), j = 0..l+1 (integers) */
     sh_real *twom;      /* 2m */
+    sh_real *rs, *tau;  /* row r: Δ = rs[r]·(stored value); HP_TINY / rs[r] */
+    int *resc;          /* resc[r]: rows r+1, r+2 divided by 2^HP_ROW_EXP before row r */
     sh_real *scale;     /* 2^−kexp[m] (0: flushed) */
     int *kexp;
     sh_real *sw, *sx, *ssc; /* the seed row (hp_init): w, rec, scale of row l */
@@ -205,9 +223,10 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     g->rec[0] = p, p += n;
     g->rec[1] = p, p += n;
     g->rec[2] = p, p += n;
-    g->B = p, p += n + 1;
-    g->iB = p, p += n + 1;
+    g->C = p, p += n + 1;
     g->twom = p, p += n;
+    g->rs = p, p += n;
+    g->tau = p, p += n;
     g->scale = p, p += n;
     g->sw = p, p += n;
     g->sx = p, p += n;
@@ -215,6 +234,7 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     g->job = p, p += 10 * n * (size_t)nj;
     g->kexp = (int *)(p + 1);
     g->skexp = g->kexp + n;
+    g->resc = g->skexp + n;
 }
 
 /* The seed row Δ_{l,m} (long double, [4]) into sw, sx, ssc, skexp, and the
@@ -249,10 +269,20 @@ static void SH_R(hp_init)(HPGEN *g)
             w0[m] = (sh_real)f * g->ssc[m];
         }
     }
-    for (int j = 0; j <= l + 1; j++) {
-        const double b = sqrt((double)(l + j) * (double)(l - j + 1));
-        g->B[j] = (sh_real)b;
-        g->iB[j] = b > 0 ? (sh_real)(1.0 / b) : 0;
+    for (int j = 0; j <= l + 1; j++) g->C[j] = (sh_real)((double)(l + j) * (double)(l - j + 1));
+    /* the row factors: P_r = Π_{j=r+1..l} B_j · 2^{−HP_ROW_EXP·(rescales so
+     * far)} in long double (relative error ≲ 2l·5e-20), P_l = 1 */
+    long double P = 1;
+    const long double big = ldexpl(1.0L, HP_ROW_EXP), down = ldexpl(1.0L, -HP_ROW_EXP);
+    g->rs[l] = 1;
+    g->tau[l] = HP_TINY;
+    g->resc[l] = 0;
+    for (int r = l - 1; r >= 0; r--) {
+        g->resc[r] = P > big;
+        if (g->resc[r]) P *= down;
+        P *= sqrtl((long double)(l + r + 1) * (long double)(l - r));
+        g->rs[r] = (sh_real)(1 / P);
+        g->tau[r] = (sh_real)(HP_TINY * P);
     }
 }
 
@@ -269,17 +299,27 @@ static void SH_R(hp_start)(HPGEN *g)
     memcpy(g->kexp, g->skexp, n * sizeof(int));
 }
 
-/* out[m] = (2m·x1[m] − b2·x2[m])·ib for m in [m0, m1): the recursion, a vector
+/* out[m] = 2m·x1[m] − c·x2[m] for m in [m0, m1): the recursion, a vector
  * at a time (the same operations on every column). */
 HP_INLINE void SH_R(hp_rec3)(int m0, int m1, const sh_real *tm, const sh_real *x1,
-                             const sh_real *x2, sh_real b2, sh_real ib, sh_real *out)
+                             const sh_real *x2, sh_real c, sh_real *out)
 {
-    VR vb, vi;
-    for (int i = 0; i < NL; i++) vb[i] = b2, vi[i] = ib;
+    VR vc;
+    for (int i = 0; i < NL; i++) vc[i] = c;
     int m = m0;
     for (; m + NL <= m1; m += NL)
-        SH_R(hp_st)(out + m, (SH_R(hp_ld)(tm + m) * SH_R(hp_ld)(x1 + m) - vb * SH_R(hp_ld)(x2 + m)) * vi);
-    for (; m < m1; m++) out[m] = (tm[m] * x1[m] - b2 * x2[m]) * ib;
+        SH_R(hp_st)(out + m, SH_R(hp_ld)(tm + m) * SH_R(hp_ld)(x1 + m) - vc * SH_R(hp_ld)(x2 + m));
+    for (; m < m1; m++) out[m] = tm[m] * x1[m] - c * x2[m];
+}
+
+/* x[m] *= f for m in [0, n) */
+HP_INLINE void SH_R(hp_scal)(int n, sh_real f, sh_real *x)
+{
+    VR vf;
+    for (int i = 0; i < NL; i++) vf[i] = f;
+    int m = 0;
+    for (; m + NL <= n; m += NL) SH_R(hp_st)(x + m, SH_R(hp_ld)(x + m) * vf);
+    for (; m < n; m++) x[m] *= f;
 }
 
 /* Wedge row r < l from rows r+1 and r+2 (row l+1 is zero). */
@@ -287,16 +327,28 @@ HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
 {
     const int nu = r + 1 < g->ms ? r + 1 : g->ms; /* unscaled columns 0..nu−1 */
     sh_real *w = g->w[r % 3];
-    const sh_real b2 = g->B[r + 2], ib = g->iB[r + 1];
-    /* Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1} */
-    SH_R(hp_rec3)(0, nu, g->twom, g->w[(r + 1) % 3], g->w[(r + 2) % 3], b2, ib, w);
+    const sh_real c = g->C[r + 2];
+    if (g->resc[r]) { /* rows r+1, r+2 (the columns still needed, 0..r) / 2^HP_ROW_EXP */
+        const sh_real down = (sh_real)ldexp(1.0, -HP_ROW_EXP);
+        SH_R(hp_scal)(nu, down, g->w[(r + 1) % 3]);
+        SH_R(hp_scal)(nu, down, g->w[(r + 2) % 3]);
+        for (int m = nu; m <= r; m++) { /* scaled columns: the exponent only */
+            g->kexp[m] += HP_ROW_EXP;
+            g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : g->scale[m] * down;
+        }
+    }
+    /* Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1}, on the values
+     * y_r = Δ_r·P_r (hp_init): y_r = 2m y_{r+1} − B_{r+2}² y_{r+2} */
+    SH_R(hp_rec3)(0, nu, g->twom, g->w[(r + 1) % 3], g->w[(r + 2) % 3], c, w);
     if (nu > r) return;
     /* scaled columns ms..r: the same recursion on the mantissas */
     sh_real *x = g->rec[r % 3];
-    SH_R(hp_rec3)(nu, r + 1, g->twom, g->rec[(r + 1) % 3], g->rec[(r + 2) % 3], b2, ib, x);
-    /* a row grows by at most ~2√(2l) < 2^7.5 (l < 4097), so a check every
-     * 8 rows keeps the mantissas below 2^(HP_RESCALE_EXP + 60), far from overflow */
-    if (!(r & 7)) {
+    SH_R(hp_rec3)(nu, r + 1, g->twom, g->rec[(r + 1) % 3], g->rec[(r + 2) % 3], c, x);
+    /* a row grows by at most ~2√(2l)·B_{r+1} < 2^19.5 (l < 4097), so a check
+     * every HP_CHECK_MASK+1 rows keeps the mantissas below
+     * 2^(HP_RESCALE_EXP + 160) (double; float: 2^(HP_RESCALE_EXP + 20)),
+     * far from overflow */
+    if (!(r & HP_CHECK_MASK)) {
         const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP), down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
         sh_real *y1 = g->rec[(r + 1) % 3];
         for (int m = nu; m <= r; m++)
@@ -317,21 +369,12 @@ HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
  * m² + r² ≈ l² decay fast (and the flushed scaled columns are 0), so near
  * r = l most of a row is skipped.  Skipping |Δ| < HP_TINY changes a stage's
  * sum by less than l·HP_TINY·max|z| (≤ 1e-23 relative). */
-#ifdef SH_REAL_FLOAT
-#define HP_TINY 0x1p-45f
-typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
-#define HP_ABSMASK 0x7fffffff
-#else
-#define HP_TINY 0x1p-90
-typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
-#define HP_ABSMASK 0x7fffffffffffffffLL
-#endif
-HP_INLINE int SH_R(hp_active)(const sh_real *w, int r)
+HP_INLINE int SH_R(hp_active)(const sh_real *w, int r, sh_real tiny)
 {
     int n = r + 1;
     SH_R(hp_vi) mask, tau;
     VR t;
-    for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = HP_TINY;
+    for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = tiny;
     memcpy(&tau, &t, sizeof tau);
     while (n >= NL) { /* a vector of |w| < HP_TINY (compared as integers: |w| ≥ 0) */
         SH_R(hp_vi) a;
@@ -342,20 +385,21 @@ HP_INLINE int SH_R(hp_active)(const sh_real *w, int r)
         if (any) break;
         n -= NL;
     }
-    while (n > 0 && !(SH_FABS(w[n - 1]) >= HP_TINY)) n--;
+    while (n > 0 && !(SH_FABS(w[n - 1]) >= tiny)) n--;
     return n;
 }
 
 /* The next wedge row, r = l, l−1, …, 0 in turn (row l is the seed row of
- * hp_init), and in *na its active length for the stages (0 without jobs). */
+ * hp_init), and in *na its active length for the stages (0 without jobs).
+ * The row holds y_r = Δ_r / g->rs[r]. */
 HP_INLINE const sh_real *SH_R(hp_next)(HPGEN *g, int r, int nj, int *na, uint64_t *count)
 {
     if (r < g->l) {
         SH_R(hp_row)(g, r);
-        *count += 3u * (uint64_t)(r + 1);
+        *count += 2u * (uint64_t)(r + 1);
     }
     const sh_real *row = g->w[r % 3];
-    *na = nj ? SH_R(hp_active)(row, r) : 0;
+    *na = nj ? SH_R(hp_active)(row, r, g->tau[r]) : 0;
     return row;
 }
 
@@ -402,7 +446,8 @@ HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj)
     SH_R(hp_start)(g);
     for (int r = l; r >= 0; r--) {
         int na;
-        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const sh_real rs = g->rs[r]; /* Δ_r = rs·row */
+        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -rs : rs;
         const int off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
             sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
@@ -416,9 +461,9 @@ HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj)
                 if (r & 1) so += row[r] * z[r];
                 else se += row[r] * z[r];
             }
-            E[r] += se;
-            O[r] += so;
-            count += 2u * (uint64_t)off + 1;
+            E[r] += rs * se;
+            O[r] += rs * so;
+            count += 2u * (uint64_t)off + 5;
         }
     }
     return count;
@@ -460,7 +505,8 @@ HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj)
     SH_R(hp_start)(g); /* hp_init: stage 3 */
     for (int r = l; r >= 0; r--) {
         int na;
-        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
+        const sh_real rs = g->rs[r]; /* Δ_r = rs·row */
+        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -rs : rs;
         const int same = !((l - r) & 1), off = na < r ? na : r;
         for (int j = 0; j < nj; j++) {
             sh_real *hE = g->job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
@@ -469,11 +515,12 @@ HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj)
             /* (k, m') = (r, c): U/V_c += Δ_{rc} h_r; (k, m') = (c, r), c < r:
              * (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r (c ≢ l) */
             sh_real *T = same ? U : V;
-            SH_R(hp_dot_axpy)(off, row, (r & 1) ? GO : GE, T, hE[r], hO[r], &se, &so);
-            if (na > r) T[r] += row[r] * ((r & 1) ? hO[r] : hE[r]);
+            const sh_real ke = rs * hE[r], ko = rs * hO[r];
+            SH_R(hp_dot_axpy)(off, row, (r & 1) ? GO : GE, T, ke, ko, &se, &so);
+            if (na > r) T[r] += row[r] * ((r & 1) ? ko : ke);
             if (l & 1) U[r] += sr * so, V[r] += sr * se;
             else U[r] += sr * se, V[r] += sr * so;
-            count += 2u * (uint64_t)off + 1;
+            count += 2u * (uint64_t)off + 5;
         }
     }
     return count;
@@ -539,7 +586,7 @@ HP_CLONES void SH_R(sh__rot_halfpi_delta)(int l, void *work, sh_real *d)
     for (int r = l; r >= 0; r--) {
         if (r < l) SH_R(hp_row)(&g, r);
         for (int c = 0; c <= r; c++) {
-            const sh_real v = g.w[r % 3][c];
+            const sh_real v = g.rs[r] * g.w[r % 3][c];
             d[(size_t)r * n + c] = v;
             d[(size_t)c * n + r] = ((r - c) & 1) ? -v : v;
         }
