@@ -103,13 +103,14 @@ SH__ROT_DECLARE_APPLY(halfpi);
 #define HP_CHECK_MASK 7 /* every 8 rows */
 #endif
 
-/* One vector of HP_VBYTES: NL lanes (4 doubles or 8 floats), columns c,
+/* One vector of HP_VBYTES: NL lanes (8 doubles or 16 floats), columns c,
  * c+1, … alternately even and odd.  Lane arithmetic is defined element by
  * element (and ISO C mode keeps the compiler from contracting a·b + c into
  * an FMA), so the result does not depend on the instructions used: the
- * hot functions are compiled for AVX-512, AVX2 and the baseline
- * (HP_CLONES, chosen at load time) and all give the same bits. */
-#define HP_VBYTES 32
+ * hot functions are compiled for AVX-512 (one register a vector), AVX2 (two)
+ * and the baseline (four) (HP_CLONES, chosen at load time) and all give the
+ * same bits. */
+#define HP_VBYTES 64
 #define NL ((int)(HP_VBYTES / sizeof(sh_real)))
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi" /* only inline helpers pass these vectors */
@@ -129,46 +130,13 @@ HP_INLINE void SH_R(hp_st)(sh_real *p, VR v) { memcpy(p, &v, sizeof v); }
 #define HP_CLONES
 #endif
 
-/* Over columns c = 0..n−1 of a wedge row: the dot product Σ row[c]·z[c],
- * even c into *se and odd c into *so, and the axpy T[c] += row[c]·(ke or ko
- * for even or odd c).  Fixed summation order: four vectors of partial sums
- * (8 doubles, 16 floats), combined pairwise at the end, then the tail. */
-HP_INLINE void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh_real *T,
-                                     sh_real ke, sh_real ko, sh_real *se, sh_real *so)
-{
-    VR k, a0, a1, a2, a3;
-    for (int i = 0; i < NL; i++) k[i] = (i & 1) ? ko : ke, a0[i] = a1[i] = a2[i] = a3[i] = 0;
-    int c = 0;
-    for (; c + 4 * NL <= n; c += 4 * NL) {
-        const VR r0 = SH_R(hp_ld)(row + c), r1 = SH_R(hp_ld)(row + c + NL);
-        const VR r2 = SH_R(hp_ld)(row + c + 2 * NL), r3 = SH_R(hp_ld)(row + c + 3 * NL);
-        a0 += r0 * SH_R(hp_ld)(z + c);
-        a1 += r1 * SH_R(hp_ld)(z + c + NL);
-        a2 += r2 * SH_R(hp_ld)(z + c + 2 * NL);
-        a3 += r3 * SH_R(hp_ld)(z + c + 3 * NL);
-        SH_R(hp_st)(T + c, SH_R(hp_ld)(T + c) + r0 * k);
-        SH_R(hp_st)(T + c + NL, SH_R(hp_ld)(T + c + NL) + r1 * k);
-        SH_R(hp_st)(T + c + 2 * NL, SH_R(hp_ld)(T + c + 2 * NL) + r2 * k);
-        SH_R(hp_st)(T + c + 3 * NL, SH_R(hp_ld)(T + c + 3 * NL) + r3 * k);
-    }
-    a0 = (a0 + a1) + (a2 + a3);
-    sh_real e = 0, o = 0;
-    for (int i = 0; i < NL; i += 2) e += a0[i], o += a0[i + 1];
-    for (; c + 2 <= n; c += 2) {
-        e += row[c] * z[c];
-        o += row[c + 1] * z[c + 1];
-        T[c] += row[c] * ke;
-        T[c + 1] += row[c + 1] * ko;
-    }
-    if (c < n) { /* c even */
-        e += row[c] * z[c];
-        T[c] += row[c] * ke;
-    }
-    *se = e;
-    *so = o;
-}
+/* The stages run over column blocks of HP_W columns (HP_NV vectors), HP_R
+ * rows at a time (hp_cols). */
+#define HP_NV 4
+#define HP_W (HP_NV * NL)
+#define HP_R 64
 
-/* HP_TINY: see hp_active */
+/* HP_TINY: see hp_cols */
 #ifdef SH_REAL_FLOAT
 #define HP_TINY 0x1p-45f
 typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
@@ -188,7 +156,10 @@ typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
 static size_t hp_nreal(int L, int J)
 {
     const size_t n = (size_t)L + 1;
-    return 3 * n + 3 * n + (n + 1) + 2 * n + 2 * n + 3 * n + 10 * n * (size_t)J + 16;
+    /* per job: ten vectors padded to whole column blocks (≤ n + 64 reals of
+     * either precision) and the dot's partial sums (64 bytes a row); the
+     * block buffer: HP_R rows of 256 bytes (see hp_cols) */
+    return 3 * n + 3 * n + (n + 1) + 2 * n + 2 * n + 3 * n + (10 * (n + 64) + 8 * n) * (size_t)J + 2048 + 16;
 }
 size_t sh__rot_halfpi_work_bytes(int L, int J)
 {
@@ -208,7 +179,9 @@ typedef struct {
     int *kexp;
     sh_real *sw, *sx, *ssc; /* the seed row (hp_init): w, rec, scale of row l */
     int *skexp;             /* and kexp */
+    sh_real *buf;       /* hp_cols' block of rows */
     sh_real *job;       /* per-job vectors */
+    size_t np, js;      /* their length (n padded to whole blocks), a job's stride */
 } SH_R(hp_gen);
 #define HPGEN SH_R(hp_gen)
 
@@ -231,7 +204,10 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     g->sw = p, p += n;
     g->sx = p, p += n;
     g->ssc = p, p += n;
-    g->job = p, p += 10 * n * (size_t)nj;
+    g->buf = p, p += HP_R * HP_W;
+    g->np = (n + HP_W - 1) / HP_W * HP_W;
+    g->js = 10 * g->np + NL * n;
+    g->job = p, p += g->js * (size_t)nj;
     g->kexp = (int *)(p + 1);
     g->skexp = g->kexp + n;
     g->resc = g->skexp + n;
@@ -364,63 +340,283 @@ HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
     for (; m <= r; m++) w[m] = x[m] * g->scale[m];
 }
 
-/* Columns 0..n−1 of wedge row r (n ≤ r+1) hold every entry of magnitude
- * ≥ HP_TINY; the stages skip the rest.  Entries beyond the turning point
- * m² + r² ≈ l² decay fast (and the flushed scaled columns are 0), so near
- * r = l most of a row is skipped.  Skipping |Δ| < HP_TINY changes a stage's
- * sum by less than l·HP_TINY·max|z| (≤ 1e-23 relative). */
-HP_INLINE int SH_R(hp_active)(const sh_real *w, int r, sh_real tiny)
+/* ---- the stages' column blocks -------------------------------------------- */
+/* Stages 3 and 5 have one form: over the wedge, row r (values y = Δ_r/rs[r])
+ * gives a dot product with z_q (q = r mod 2), whose even and odd columns are
+ * summed apart, and an axpy T_q[c] += y_c·(kp[2r] for even c, kp[2r+1] for odd c);
+ * the diagonal c = r goes to the dot (stage 3) or to the axpy (stage 5).
+ * They run over blocks of HP_W columns: a block's recursion (every column
+ * has its own, hp_init) runs from row l down to its first column, HP_R rows
+ * at a time into g->buf, in registers; then every job takes those rows,
+ * its axpy accumulators for the block's columns in registers and the dot's
+ * partial sums in acc (NL lanes a row, one vector added per block).  Memory
+ * traffic per element is the buffer's store and load, instead of three rows
+ * read and one written per pass; the per-job arithmetic is the same whatever
+ * nj, so a job's bits do not depend on its batch (nor on threads).
+ * Skipped: a block's first rows while all its entries are below HP_TINY
+ * (the classically forbidden region near r = l, where Δ grows downward; the
+ * flushed scaled columns are 0): changes a stage's sums by less than
+ * l·HP_TINY·max|z| (≤ 1e-23 relative). */
+typedef struct {
+    const sh_real *z[2];    /* the dot's inputs for even, odd r */
+    sh_real *T[2];          /* the axpy's targets for even, odd r */
+    const sh_real *kp;      /* its factors, row r: kp[2r] (even columns), kp[2r+1] (odd) */
+    sh_real *acc;           /* the dot's partial sums, NL a row */
+} SH_R(hp_job);
+#define HPJOB SH_R(hp_job)
+
+/* Job j's ten vectors: zc (hE), zs (hO), E, O, GE, GO, U, V, kp (two: 2n
+ * values, and up to NL − 2 past them read but not used); acc. */
+#define HP_JV(g, j, i) ((g)->job + (g)->js * (size_t)(j) + (g)->np * (size_t)(i))
+
+/* y ∧ mask, lane by lane (a −1 lane keeps y, a 0 lane gives +0) */
+HP_INLINE VR SH_R(hp_and)(VR y, SH_R(hp_vi) mask)
 {
-    int n = r + 1;
-    SH_R(hp_vi) mask, tau;
-    VR t;
-    for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = tiny;
-    memcpy(&tau, &t, sizeof tau);
-    while (n >= NL) { /* a vector of |w| < HP_TINY (compared as integers: |w| ≥ 0) */
-        SH_R(hp_vi) a;
-        memcpy(&a, w + n - NL, sizeof a);
-        const SH_R(hp_vi) big = (a & mask) >= tau;
-        int any = 0;
-        for (int i = 0; i < NL; i++) any |= big[i] != 0;
-        if (any) break;
-        n -= NL;
-    }
-    while (n > 0 && !(SH_FABS(w[n - 1]) >= tiny)) n--;
-    return n;
+    SH_R(hp_vi) b;
+    memcpy(&b, &y, sizeof b);
+    b &= mask;
+    memcpy(&y, &b, sizeof y);
+    return y;
 }
 
-/* The next wedge row, r = l, l−1, …, 0 in turn (row l is the seed row of
- * hp_init), and in *na its active length for the stages (0 without jobs).
- * The row holds y_r = Δ_r / g->rs[r]. */
-HP_INLINE const sh_real *SH_R(hp_next)(HPGEN *g, int r, int nj, int *na, uint64_t *count)
+/* One row for one job: yd into the dot (acc), ya into the axpy (T) with the
+ * factors kp[0] (even columns), kp[1] (odd): kp[0..NL−1] readable. */
+HP_INLINE void SH_R(hp_use)(const VR *yd, const VR *ya, const VR *z, VR *T, const sh_real *kp,
+                            sh_real *acc)
 {
-    if (r < g->l) {
-        SH_R(hp_row)(g, r);
-        *count += 2u * (uint64_t)(r + 1);
+    SH_R(hp_vi) pair = {0};
+    for (int i = 0; i < NL; i++) pair[i] = i & 1;
+    const VR k = __builtin_shuffle(SH_R(hp_ld)(kp), pair);
+    const VR p = (yd[0] * z[0] + yd[1] * z[1]) + (yd[2] * z[2] + yd[3] * z[3]);
+    SH_R(hp_st)(acc, SH_R(hp_ld)(acc) + p);
+#pragma GCC unroll 4
+    for (int v = 0; v < HP_NV; v++) T[v] += ya[v] * k;
+}
+
+/* A row away from the diagonal: every column c < r. */
+HP_INLINE void SH_R(hp_use_row)(const sh_real *b, const VR *z, VR *T, const sh_real *kp, sh_real *acc)
+{
+    VR y[HP_NV];
+#pragma GCC unroll 4
+    for (int v = 0; v < HP_NV; v++) y[v] = SH_R(hp_ld)(b + v * NL);
+    SH_R(hp_use)(y, y, z, T, kp, acc);
+}
+
+/* The rows of one chunk (rows rhi − first down to rlo of block m0, in buf from
+ * row rhi) for one job. */
+HP_INLINE void SH_R(hp_chunk_job)(const HPJOB *J, const sh_real *buf, int m0, int rhi, int first,
+                                  int rlo, int st5)
+{
+    VR z0[HP_NV], z1[HP_NV], T0[HP_NV], T1[HP_NV];
+#pragma GCC unroll 4
+    for (int v = 0; v < HP_NV; v++) {
+        z0[v] = SH_R(hp_ld)(J->z[0] + m0 + v * NL), z1[v] = SH_R(hp_ld)(J->z[1] + m0 + v * NL);
+        T0[v] = SH_R(hp_ld)(J->T[0] + m0 + v * NL), T1[v] = SH_R(hp_ld)(J->T[1] + m0 + v * NL);
     }
-    const sh_real *row = g->w[r % 3];
-    *na = nj ? SH_R(hp_active)(row, r, g->tau[r]) : 0;
-    return row;
+    const sh_real *kp = J->kp;
+    sh_real *acc = J->acc;
+#define HP_B(r) (buf + (size_t)(rhi - (r)) * HP_W)
+    int r = rhi - first;
+    const int rd = m0 + HP_W - 1;           /* rows ≤ rd meet the diagonal */
+    const int lo = rlo > rd ? rlo : rd + 1; /* rows r..lo: every column c < r */
+    if (r >= lo && (r & 1)) {
+        SH_R(hp_use_row)(HP_B(r), z1, T1, kp + 2 * (size_t)r, acc + (size_t)NL * r);
+        r--;
+    }
+    for (; r - 1 >= lo; r -= 2) { /* r even */
+        SH_R(hp_use_row)(HP_B(r), z0, T0, kp + 2 * (size_t)r, acc + (size_t)NL * r);
+        SH_R(hp_use_row)(HP_B(r - 1), z1, T1, kp + 2 * (size_t)(r - 1), acc + (size_t)NL * (r - 1));
+    }
+    if (r >= lo) {
+        SH_R(hp_use_row)(HP_B(r), z0, T0, kp + 2 * (size_t)r, acc + (size_t)NL * r);
+        r--;
+    }
+    for (; r >= rlo; r--) { /* the diagonal's rows: columns c ≤ r to the dot, c < r to the axpy (stage 3) */
+        SH_R(hp_vi) idx = {0};
+        for (int i = 0; i < NL; i++) idx[i] += m0 + i;
+        VR yd[HP_NV], ya[HP_NV];
+#pragma GCC unroll 4
+        for (int v = 0; v < HP_NV; v++) {
+            const VR y = SH_R(hp_ld)(HP_B(r) + v * NL);
+            const SH_R(hp_vi) lt = idx < r, le = idx <= r;
+            yd[v] = SH_R(hp_and)(y, st5 ? lt : le);
+            ya[v] = SH_R(hp_and)(y, st5 ? le : lt);
+            idx += NL;
+        }
+        if (r & 1) SH_R(hp_use)(yd, ya, z1, T1, kp + 2 * (size_t)r, acc + (size_t)NL * r);
+        else SH_R(hp_use)(yd, ya, z0, T0, kp + 2 * (size_t)r, acc + (size_t)NL * r);
+    }
+#undef HP_B
+#pragma GCC unroll 4
+    for (int v = 0; v < HP_NV; v++) {
+        SH_R(hp_st)(J->T[0] + m0 + v * NL, T0[v]);
+        SH_R(hp_st)(J->T[1] + m0 + v * NL, T1[v]);
+    }
+}
+
+/* A column block's recursion between chunks: rows r+1 (x1) and r+2 (x2) of
+ * the block's columns (mantissas), 2m, and for a scaled block the columns'
+ * scales 2^−kexp (0: flushed). */
+typedef struct {
+    VR x1[HP_NV], x2[HP_NV], tm[HP_NV], sc[HP_NV];
+    int kexp[HP_W];
+} SH_R(hp_blk);
+#define HPBLK SH_R(hp_blk)
+
+HP_INLINE int SH_R(hp_any)(SH_R(hp_vi) c)
+{
+    int any = 0;
+    for (int i = 0; i < NL; i++) any |= c[i] != 0;
+    return any;
+}
+
+/* Rows rhi..rlo of the block (b: its state at row rhi+1) into buf, row rhi
+ * first; *first: the first row (from rhi) with an entry ≥ HP_TINY·P_r, if
+ * none so far (*active).  The recursion's rows stay in registers (no lane is
+ * touched but through b, on the rare rescaling paths). */
+HP_INLINE void SH_R(hp_blkgen)(const HPGEN *g, HPBLK *b, int scaled, int rhi, int rlo, sh_real *buf,
+                            int *active, int *first)
+{
+    const int l = g->l;
+    VR x1[HP_NV], x2[HP_NV], tm[HP_NV], sc[HP_NV];
+#pragma GCC unroll 4
+    for (int v = 0; v < HP_NV; v++) x1[v] = b->x1[v], x2[v] = b->x2[v], tm[v] = b->tm[v], sc[v] = b->sc[v];
+    int unk = 0; /* the first row (from rhi) not found below HP_TINY */
+    for (int r = rhi; r >= rlo; r--) {
+        if (r < l) {
+            if (g->resc[r]) { /* rows r+1, r+2 / 2^HP_ROW_EXP */
+                const sh_real down = (sh_real)ldexp(1.0, -HP_ROW_EXP);
+                if (!scaled) {
+#pragma GCC unroll 4
+                    for (int v = 0; v < HP_NV; v++) x1[v] *= down, x2[v] *= down;
+                } else { /* the exponents only */
+#pragma GCC unroll 4
+                    for (int v = 0; v < HP_NV; v++) b->sc[v] = sc[v];
+                    for (int q = 0; q < HP_W; q++) {
+                        b->kexp[q] += HP_ROW_EXP;
+                        b->sc[q / NL][q % NL] = b->kexp[q] > HP_FLUSH_K ? 0 : b->sc[q / NL][q % NL] * down;
+                    }
+#pragma GCC unroll 4
+                    for (int v = 0; v < HP_NV; v++) sc[v] = b->sc[v];
+                }
+            }
+            const sh_real c = g->C[r + 2];
+#pragma GCC unroll 4
+            for (int v = 0; v < HP_NV; v++) {
+                const VR x = tm[v] * x1[v] - c * x2[v];
+                x2[v] = x1[v];
+                x1[v] = x;
+            }
+            if (scaled && !(r & HP_CHECK_MASK)) {
+                /* lanes of row r above 2^HP_RESCALE_EXP: rows r, r+1 scaled down */
+                const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP);
+                SH_R(hp_vi) big = (x1[0] > lim) | (x1[0] < -lim);
+#pragma GCC unroll 4
+                for (int v = 1; v < HP_NV; v++) big |= (x1[v] > lim) | (x1[v] < -lim);
+                if (SH_R(hp_any)(big)) {
+                    const sh_real down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
+#pragma GCC unroll 4
+                    for (int v = 0; v < HP_NV; v++) b->x1[v] = x1[v], b->x2[v] = x2[v], b->sc[v] = sc[v];
+                    for (int q = 0; q < HP_W; q++) {
+                        sh_real *x = &b->x1[q / NL][q % NL];
+                        if (SH_FABS(*x) > lim) {
+                            *x *= down, b->x2[q / NL][q % NL] *= down;
+                            b->kexp[q] -= HP_RESCALE_EXP;
+                            b->sc[q / NL][q % NL] = b->kexp[q] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -b->kexp[q]);
+                        }
+                    }
+#pragma GCC unroll 4
+                    for (int v = 0; v < HP_NV; v++) x1[v] = b->x1[v], x2[v] = b->x2[v], sc[v] = b->sc[v];
+                }
+            }
+        }
+        sh_real *row = buf + (size_t)(rhi - r) * HP_W;
+        VR w[HP_NV];
+#pragma GCC unroll 4
+        for (int v = 0; v < HP_NV; v++) {
+            w[v] = scaled ? x1[v] * sc[v] : x1[v];
+            SH_R(hp_st)(row + v * NL, w[v]);
+        }
+        if (!*active && (!(r & 7) || r == rlo)) {
+            /* any |w| ≥ HP_TINY·P_r, checked every 8 rows (and at the chunk's
+             * end): the stage starts after the last row found below, up to 7
+             * rows early (entries below HP_TINY); compared as integers (|w| ≥ 0) */
+            SH_R(hp_vi) mask, tau, a, big;
+            VR t;
+            for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = g->tau[r];
+            memcpy(&tau, &t, sizeof tau);
+            memcpy(&a, &w[0], sizeof a);
+            big = (a & mask) >= tau;
+#pragma GCC unroll 4
+            for (int v = 1; v < HP_NV; v++) memcpy(&a, &w[v], sizeof a), big |= (a & mask) >= tau;
+            if (SH_R(hp_any)(big)) *active = 1, *first = unk;
+            else unk = rhi - r + 1;
+        }
+    }
+#pragma GCC unroll 4
+    for (int v = 0; v < HP_NV; v++) b->x1[v] = x1[v], b->x2[v] = x2[v], b->sc[v] = sc[v];
+}
+
+/* Stage 3 (st5 = 0) or 5 over every job (J: nj jobs), the wedge generated
+ * once more (hp_start). */
+HP_INLINE uint64_t SH_R(hp_cols)(HPGEN *g, int nj, const HPJOB *J, int st5)
+{
+    const int l = g->l;
+    sh_real *buf = g->buf;
+    uint64_t count = 0;
+    for (int m0 = 0; m0 <= l; m0 += HP_W) {
+        HPBLK b;
+        const int scaled = m0 + HP_W > g->ms; /* any column ≥ ms: all by mantissa and kexp */
+        for (int q = 0; q < HP_W; q++) {
+            const int m = m0 + q, v = q / NL, i = q % NL;
+            b.tm[v][i] = (sh_real)(2 * m);
+            b.x2[v][i] = 0;
+            if (m > l) b.x1[v][i] = 0, b.sc[v][i] = 0, b.kexp[q] = 0;
+            else if (m < g->ms) b.x1[v][i] = g->sw[m], b.sc[v][i] = 1, b.kexp[q] = 0;
+            else b.x1[v][i] = g->sx[m], b.sc[v][i] = g->ssc[m], b.kexp[q] = g->skexp[m];
+        }
+        int active = 0;
+        for (int rhi = l; rhi >= m0; rhi -= HP_R) {
+            const int rlo = rhi - HP_R + 1 > m0 ? rhi - HP_R + 1 : m0;
+            int first = active ? 0 : rhi - rlo + 1; /* the chunk's first row for the stage */
+            if (scaled) SH_R(hp_blkgen)(g, &b, 1, rhi, rlo, buf, &active, &first);
+            else SH_R(hp_blkgen)(g, &b, 0, rhi, rlo, buf, &active, &first);
+            count += (uint64_t)(rhi - rlo + 1) * (scaled ? 3 : 2) * HP_W;
+            if (first > rhi - rlo) continue;
+            for (int j = 0; j < nj; j++) SH_R(hp_chunk_job)(J + j, buf, m0, rhi, first, rlo, st5);
+            count += (uint64_t)nj * (uint64_t)(rhi - first - rlo + 1) * 2 * HP_W;
+        }
+    }
+    return count;
+}
+
+/* The dot's sums of row r (even, odd columns) from acc. */
+HP_INLINE void SH_R(hp_sums)(const sh_real *acc, int r, sh_real *se, sh_real *so)
+{
+    sh_real e = 0, o = 0;
+    for (int i = 0; i < NL; i += 2) e += acc[(size_t)NL * r + i], o += acc[(size_t)NL * r + i + 1];
+    *se = e;
+    *so = o;
 }
 
 /* ---- the band kernel ------------------------------------------------------ */
 /* The stages of sh__rot_halfpi_band (the letters and numbers of the header
  * comment), each over every job; inlined (HP_INLINE) so that every clone of
  * the kernel (HP_CLONES) compiles them for its instruction set.  Job j keeps
- * its ten vectors of n = l+1 at g->job + 10·n·j (zc, zs, E, O, GE, GO, U, V;
- * stage B overwrites zc, zs with hE, hO).  Each returns its multiplications. */
+ * its vectors at HP_JV (zc, zs, E, O, GE, GO, U, V, kp; stage B
+ * overwrites zc, zs with hE, hO).  Each returns its multiplications. */
 
 /* A: Z(γ), σ, √2 into zc, zs; E and O cleared. */
 HP_INLINE uint64_t SH_R(hp_stage_a)(HPGEN *g, int nocs, int nj, const sh_real *const *cs, int M,
                                     const sh_real *const *in)
 {
     const int l = g->l;
-    const size_t n = (size_t)l + 1;
     const sh_real r2 = SH_SQRT((sh_real)2);
     uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n;
+        sh_real *zc = HP_JV(g, j, 0), *zs = HP_JV(g, j, 1);
         const sh_real *x = in[j] + l, *csg = cs[j] + 4 * (size_t)(M + 1);
+        memset(zc, 0, g->js * sizeof *zc); /* the padding too */
         const sh_real fl = nocs ? -1 : 1;
         zc[0] = x[0];
         zs[0] = 0;
@@ -430,55 +626,56 @@ HP_INLINE uint64_t SH_R(hp_stage_a)(HPGEN *g, int nocs, int nj, const sh_real *c
             zc[m] = sg * (c * cm - s * sm);
             zs[m] = sg * (c * sm + s * cm);
         }
-        memset(E, 0, 2 * n * sizeof *E);
         count += 6u * (uint64_t)l;
     }
     return count;
 }
 
-/* 3: the wedge generated (rows l..0), each row's dot products into E, O. */
-HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj)
+/* 3: the wedge generated (rows l..0, hp_cols), its dot products into E, O:
+ * (k, m) = (r, c): the dot into E_r, O_r; (k, m) = (c, r), c < r, by (S):
+ * (−1)^{r−c} Δ_{rc} z^{(c)}_r into E_c (r even) or O_c (r odd). */
+HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj, HPJOB *J)
 {
     const int l = g->l;
     const size_t n = (size_t)l + 1;
-    uint64_t count = 0;
     SH_R(hp_init)(g);
     SH_R(hp_start)(g);
-    for (int r = l; r >= 0; r--) {
-        int na;
-        const sh_real rs = g->rs[r]; /* Δ_r = rs·row */
-        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -rs : rs;
-        const int off = na < r ? na : r;
-        for (int j = 0; j < nj; j++) {
-            sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
-            const sh_real *z = ((l - r) & 1) ? zs : zc;
-            const sh_real *zev = (l & 1) ? zs : zc, *zod = (l & 1) ? zc : zs;
-            sh_real se, so;
-            /* (k, m) = (r, c): dot into E_r, O_r; (k, m) = (c, r), c < r, by (S):
-             * (−1)^{r−c} Δ_{rc} z^{(c)}_r into E_c (r even) or O_c (r odd) */
-            SH_R(hp_dot_axpy)(off, row, z, (r & 1) ? O : E, sr * zev[r], -sr * zod[r], &se, &so);
-            if (na > r) {
-                if (r & 1) so += row[r] * z[r];
-                else se += row[r] * z[r];
-            }
-            E[r] += rs * se;
-            O[r] += rs * so;
-            count += 2u * (uint64_t)off + 5;
+    for (int j = 0; j < nj; j++) {
+        sh_real *zc = HP_JV(g, j, 0), *zs = HP_JV(g, j, 1), *kp = HP_JV(g, j, 8);
+        const sh_real *zev = (l & 1) ? zs : zc, *zod = (l & 1) ? zc : zs;
+        J[j].z[0] = (l & 1) ? zs : zc; /* z = zs for l − r odd */
+        J[j].z[1] = (l & 1) ? zc : zs;
+        J[j].T[0] = HP_JV(g, j, 2), J[j].T[1] = HP_JV(g, j, 3);
+        J[j].kp = kp, J[j].acc = HP_JV(g, j, 10);
+        for (int r = 0; r <= l; r++) {
+            const sh_real sr = (r & 1) ? -g->rs[r] : g->rs[r];
+            kp[2 * r] = sr * zev[r], kp[2 * r + 1] = -sr * zod[r];
         }
+        memset(J[j].acc, 0, NL * n * sizeof(sh_real));
+    }
+    uint64_t count = SH_R(hp_cols)(g, nj, J, 0);
+    for (int j = 0; j < nj; j++) {
+        sh_real *E = HP_JV(g, j, 2), *O = HP_JV(g, j, 3);
+        for (int r = 0; r <= l; r++) {
+            sh_real se, so;
+            SH_R(hp_sums)(J[j].acc, r, &se, &so);
+            E[r] += g->rs[r] * se;
+            O[r] += g->rs[r] * so;
+        }
+        count += 4 * n;
     }
     return count;
 }
 
 /* B: t_k, e^{−ikβ}, and the stage-5 coefficients h (hE for even m', hO
- * for odd m', w_k included) and G = (−1)^k h; U and V cleared. */
+ * for odd m', w_k included) and G = (−1)^k h (U and V: cleared by A). */
 HP_INLINE uint64_t SH_R(hp_stage_b)(HPGEN *g, int nj, const sh_real *const *cs, int M)
 {
     const int l = g->l;
-    const size_t n = (size_t)l + 1;
     uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
-        sh_real *hE = zc, *hO = zs, *GE = O + n, *GO = GE + n, *U = GO + n; /* V = U + n */
+        sh_real *E = HP_JV(g, j, 2), *O = HP_JV(g, j, 3);
+        sh_real *hE = HP_JV(g, j, 0), *hO = HP_JV(g, j, 1), *GE = HP_JV(g, j, 4), *GO = HP_JV(g, j, 5);
         const sh_real *csb = cs[j] + 2 * (size_t)(M + 1);
         for (int k = 0; k <= l; k++) {
             const int same = !((l - k) & 1);
@@ -490,38 +687,41 @@ HP_INLINE uint64_t SH_R(hp_stage_b)(HPGEN *g, int nj, const sh_real *const *cs, 
             GE[k] = (k & 1) ? -hE[k] : hE[k];
             GO[k] = (k & 1) ? -hO[k] : hO[k];
         }
-        memset(U, 0, 2 * n * sizeof *U);
         count += 6u * (uint64_t)(l + 1);
     }
     return count;
 }
 
-/* 5: the wedge generated again (rows l..0), each row's sums into U, V. */
-HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj)
+/* 5: the wedge generated again (rows l..0, hp_cols), its sums into U, V:
+ * (k, m') = (r, c): U/V_c += Δ_{rc} h_r (the axpy, into U for l − r even);
+ * (k, m') = (c, r), c < r: (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r
+ * (c ≢ l) (the dot, with G). */
+HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj, HPJOB *J)
 {
     const int l = g->l;
     const size_t n = (size_t)l + 1;
-    uint64_t count = 0;
     SH_R(hp_start)(g); /* hp_init: stage 3 */
-    for (int r = l; r >= 0; r--) {
-        int na;
-        const sh_real rs = g->rs[r]; /* Δ_r = rs·row */
-        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -rs : rs;
-        const int same = !((l - r) & 1), off = na < r ? na : r;
-        for (int j = 0; j < nj; j++) {
-            sh_real *hE = g->job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
-            sh_real *U = GO + n, *V = U + n;
+    for (int j = 0; j < nj; j++) {
+        const sh_real *hE = HP_JV(g, j, 0), *hO = HP_JV(g, j, 1);
+        sh_real *kp = HP_JV(g, j, 8), *U = HP_JV(g, j, 6), *V = HP_JV(g, j, 7);
+        J[j].z[0] = HP_JV(g, j, 4), J[j].z[1] = HP_JV(g, j, 5);
+        J[j].T[0] = (l & 1) ? V : U; /* U for l − r even */
+        J[j].T[1] = (l & 1) ? U : V;
+        J[j].kp = kp, J[j].acc = HP_JV(g, j, 10);
+        for (int r = 0; r <= l; r++) kp[2 * r] = g->rs[r] * hE[r], kp[2 * r + 1] = g->rs[r] * hO[r];
+        memset(J[j].acc, 0, NL * n * sizeof(sh_real));
+    }
+    uint64_t count = SH_R(hp_cols)(g, nj, J, 1);
+    for (int j = 0; j < nj; j++) {
+        sh_real *U = HP_JV(g, j, 6), *V = HP_JV(g, j, 7);
+        for (int r = 0; r <= l; r++) {
             sh_real se, so;
-            /* (k, m') = (r, c): U/V_c += Δ_{rc} h_r; (k, m') = (c, r), c < r:
-             * (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r (c ≢ l) */
-            sh_real *T = same ? U : V;
-            const sh_real ke = rs * hE[r], ko = rs * hO[r];
-            SH_R(hp_dot_axpy)(off, row, (r & 1) ? GO : GE, T, ke, ko, &se, &so);
-            if (na > r) T[r] += row[r] * ((r & 1) ? ko : ke);
+            const sh_real sr = (r & 1) ? -g->rs[r] : g->rs[r];
+            SH_R(hp_sums)(J[j].acc, r, &se, &so);
             if (l & 1) U[r] += sr * so, V[r] += sr * se;
             else U[r] += sr * se, V[r] += sr * so;
-            count += 2u * (uint64_t)off + 5;
         }
+        count += 4 * n;
     }
     return count;
 }
@@ -531,11 +731,10 @@ HP_INLINE uint64_t SH_R(hp_stage_d)(HPGEN *g, int nocs, int nj, const sh_real *c
                                     sh_real *const *out)
 {
     const int l = g->l;
-    const size_t n = (size_t)l + 1;
     const sh_real r2 = SH_SQRT((sh_real)2);
     uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        const sh_real *U = g->job + 10 * n * j + 6 * n, *V = U + n;
+        const sh_real *U = HP_JV(g, j, 6), *V = HP_JV(g, j, 7);
         const sh_real *csa = cs[j];
         sh_real *y = out[j] + l;
         const sh_real fl = nocs ? -1 : 1, t2 = 2 * r2;
@@ -565,12 +764,15 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
 {
     HPGEN g;
     SH_R(hp_layout)(l, nj, work, &g);
+    HPJOB jb[16], *J = nj <= 16 ? jb : malloc((size_t)nj * sizeof *J);
+    if (!J) abort(); /* callers batch at most 16 */
     uint64_t count = 0;
     count += SH_R(hp_stage_a)(&g, nocs, nj, cs, M, in); /* Z(γ), σ, √2 */
-    count += SH_R(hp_stage3)(&g, nj);                    /* × Δ (the wedge's first generation) */
+    count += SH_R(hp_stage3)(&g, nj, J);                 /* × Δ (the wedge's first generation) */
     count += SH_R(hp_stage_b)(&g, nj, cs, M);            /* e^{−ikβ} */
-    count += SH_R(hp_stage5)(&g, nj);                    /* × Δ (the second generation) */
+    count += SH_R(hp_stage5)(&g, nj, J);                 /* × Δ (the second generation) */
     count += SH_R(hp_stage_d)(&g, nocs, nj, cs, out);    /* e^{−im'α}, out */
+    if (J != jb) free(J);
     if (mults) *mults += count;
 }
 
