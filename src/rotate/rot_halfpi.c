@@ -221,7 +221,13 @@ static void SH_R(hp_init)(HPGEN *g)
     const int l = g->l;
     sh_real *w0 = g->sw;
     long double e2 = 1;
-    for (int k = 1; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
+    int k = 1;
+    for (; k + 3 <= l; k += 4) { /* four factors at once: numerator and denominator exact (< 2^53) */
+        const long double a = (long double)((2.0 * k - 1) * (2.0 * k + 1)) * (long double)((2.0 * k + 3) * (2.0 * k + 5));
+        const long double b = (long double)((2.0 * k) * (2.0 * k + 2)) * (long double)((2.0 * k + 4) * (2.0 * k + 6));
+        e2 *= a / b;
+    }
+    for (; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
     long double e = sqrtl(e2);
     const long double low = ldexpl(1.0L, HP_LOW_EXP - 1);
     g->ms = l + 1;
@@ -247,16 +253,18 @@ static void SH_R(hp_init)(HPGEN *g)
     }
     for (int j = 0; j <= l + 1; j++) g->C[j] = (sh_real)((double)(l + j) * (double)(l - j + 1));
     /* the row factors: P_r = Π_{j=r+1..l} B_j · 2^{−HP_ROW_EXP·(rescales so
-     * far)} in long double (relative error ≲ 2l·5e-20), P_l = 1 */
-    long double P = 1;
-    const long double big = ldexpl(1.0L, HP_ROW_EXP), down = ldexpl(1.0L, -HP_ROW_EXP);
+     * far)}, P_l = 1, from Q = P² in long double (times the integers B_j²:
+     * relative error ≲ l·5e-20), then rs = 1/√Q in double (≲ 1.5 ulp) */
+    long double Q = 1;
+    const long double big2 = ldexpl(1.0L, 2 * HP_ROW_EXP), down2 = ldexpl(1.0L, -2 * HP_ROW_EXP);
     g->rs[l] = 1;
     g->tau[l] = HP_TINY;
     g->resc[l] = 0;
     for (int r = l - 1; r >= 0; r--) {
-        g->resc[r] = P > big;
-        if (g->resc[r]) P *= down;
-        P *= sqrtl((long double)(l + r + 1) * (long double)(l - r));
+        g->resc[r] = Q > big2;
+        if (g->resc[r]) Q *= down2;
+        Q *= (long double)(l + r + 1) * (long double)(l - r);
+        const double P = sqrt((double)Q);
         g->rs[r] = (sh_real)(1 / P);
         g->tau[r] = (sh_real)(HP_TINY * P);
     }
