@@ -103,14 +103,14 @@ SH__ROT_DECLARE_APPLY(halfpi);
 #define HP_CHECK_MASK 7 /* every 8 rows */
 #endif
 
-/* One vector of HP_VBYTES: NL lanes (8 doubles or 16 floats), columns c,
- * c+1, … alternately even and odd.  Lane arithmetic is defined element by
+/* One vector of HP_VBYTES: NL lanes (4 doubles or 8 floats), columns c,
+ * c+1, … alternately even and odd (the stages' column blocks have their own
+ * vectors, rot_halfpi_cols.h).  Lane arithmetic is defined element by
  * element (and ISO C mode keeps the compiler from contracting a·b + c into
  * an FMA), so the result does not depend on the instructions used: the
- * hot functions are compiled for AVX-512 (one register a vector), AVX2 (two)
- * and the baseline (four) (HP_CLONES, chosen at load time) and all give the
- * same bits. */
-#define HP_VBYTES 64
+ * hot functions are compiled for AVX-512, AVX2 and the baseline
+ * (HP_CLONES, chosen at load time) and all give the same bits. */
+#define HP_VBYTES 32
 #define NL ((int)(HP_VBYTES / sizeof(sh_real)))
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi" /* only inline helpers pass these vectors */
@@ -130,10 +130,10 @@ HP_INLINE void SH_R(hp_st)(sh_real *p, VR v) { memcpy(p, &v, sizeof v); }
 #define HP_CLONES
 #endif
 
-/* The stages run over column blocks of HP_W columns (HP_NV vectors), HP_R
- * rows at a time (hp_cols). */
-#define HP_NV 4
-#define HP_W (HP_NV * NL)
+/* The stages run over column blocks of HP_W columns (256 bytes), HP_R rows
+ * at a time, a row's partial sums in HP_AL lanes (64 bytes) (hp_cols). */
+#define HP_W ((int)(256 / sizeof(sh_real)))
+#define HP_AL ((int)(64 / sizeof(sh_real)))
 #define HP_R 64
 
 /* HP_TINY: see hp_cols */
@@ -206,7 +206,7 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     g->ssc = p, p += n;
     g->buf = p, p += HP_R * HP_W;
     g->np = (n + HP_W - 1) / HP_W * HP_W;
-    g->js = 10 * g->np + NL * n;
+    g->js = 10 * g->np + HP_AL * n;
     g->job = p, p += g->js * (size_t)nj;
     g->kexp = (int *)(p + 1);
     g->skexp = g->kexp + n;
@@ -369,240 +369,46 @@ typedef struct {
     const sh_real *z[2];    /* the dot's inputs for even, odd r */
     sh_real *T[2];          /* the axpy's targets for even, odd r */
     const sh_real *kp;      /* its factors, row r: kp[2r] (even columns), kp[2r+1] (odd) */
-    sh_real *acc;           /* the dot's partial sums, NL a row */
+    sh_real *acc;           /* the dot's partial sums, HP_AL a row */
 } SH_R(hp_job);
 #define HPJOB SH_R(hp_job)
 
 /* Job j's ten vectors: zc (hE), zs (hO), E, O, GE, GO, U, V, kp (two: 2n
- * values, and up to NL − 2 past them read but not used); acc. */
+ * values, and up to HP_AL − 2 past them read but not used); acc. */
 #define HP_JV(g, j, i) ((g)->job + (g)->js * (size_t)(j) + (g)->np * (size_t)(i))
 
-/* y ∧ mask, lane by lane (a −1 lane keeps y, a 0 lane gives +0) */
-HP_INLINE VR SH_R(hp_and)(VR y, SH_R(hp_vi) mask)
-{
-    SH_R(hp_vi) b;
-    memcpy(&b, &y, sizeof b);
-    b &= mask;
-    memcpy(&y, &b, sizeof y);
-    return y;
-}
+#define HPC_VB 64
+#define HPC(x) SH_R(hp_##x##_w)
+#include "rotate/rot_halfpi_cols.h"
+#undef HPC
+#undef HPC_VB
+#define HPC_VB 32
+#define HPC(x) SH_R(hp_##x##_n)
+#include "rotate/rot_halfpi_cols.h"
+#undef HPC
+#undef HPC_VB
+#define HPC_VB 16
+#define HPC(x) SH_R(hp_##x##_s)
+#include "rotate/rot_halfpi_cols.h"
+#undef HPC
+#undef HPC_VB
 
-/* One row for one job: yd into the dot (acc), ya into the axpy (T) with the
- * factors kp[0] (even columns), kp[1] (odd): kp[0..NL−1] readable. */
-HP_INLINE void SH_R(hp_use)(const VR *yd, const VR *ya, const VR *z, VR *T, const sh_real *kp,
-                            sh_real *acc)
-{
-    SH_R(hp_vi) pair = {0};
-    for (int i = 0; i < NL; i++) pair[i] = i & 1;
-    const VR k = __builtin_shuffle(SH_R(hp_ld)(kp), pair);
-    const VR p = (yd[0] * z[0] + yd[1] * z[1]) + (yd[2] * z[2] + yd[3] * z[3]);
-    SH_R(hp_st)(acc, SH_R(hp_ld)(acc) + p);
-#pragma GCC unroll 4
-    for (int v = 0; v < HP_NV; v++) T[v] += ya[v] * k;
-}
-
-/* A row away from the diagonal: every column c < r. */
-HP_INLINE void SH_R(hp_use_row)(const sh_real *b, const VR *z, VR *T, const sh_real *kp, sh_real *acc)
-{
-    VR y[HP_NV];
-#pragma GCC unroll 4
-    for (int v = 0; v < HP_NV; v++) y[v] = SH_R(hp_ld)(b + v * NL);
-    SH_R(hp_use)(y, y, z, T, kp, acc);
-}
-
-/* The rows of one chunk (rows rhi − first down to rlo of block m0, in buf from
- * row rhi) for one job. */
-HP_INLINE void SH_R(hp_chunk_job)(const HPJOB *J, const sh_real *buf, int m0, int rhi, int first,
-                                  int rlo, int st5)
-{
-    VR z0[HP_NV], z1[HP_NV], T0[HP_NV], T1[HP_NV];
-#pragma GCC unroll 4
-    for (int v = 0; v < HP_NV; v++) {
-        z0[v] = SH_R(hp_ld)(J->z[0] + m0 + v * NL), z1[v] = SH_R(hp_ld)(J->z[1] + m0 + v * NL);
-        T0[v] = SH_R(hp_ld)(J->T[0] + m0 + v * NL), T1[v] = SH_R(hp_ld)(J->T[1] + m0 + v * NL);
-    }
-    const sh_real *kp = J->kp;
-    sh_real *acc = J->acc;
-#define HP_B(r) (buf + (size_t)(rhi - (r)) * HP_W)
-    int r = rhi - first;
-    const int rd = m0 + HP_W - 1;           /* rows ≤ rd meet the diagonal */
-    const int lo = rlo > rd ? rlo : rd + 1; /* rows r..lo: every column c < r */
-    if (r >= lo && (r & 1)) {
-        SH_R(hp_use_row)(HP_B(r), z1, T1, kp + 2 * (size_t)r, acc + (size_t)NL * r);
-        r--;
-    }
-    for (; r - 1 >= lo; r -= 2) { /* r even */
-        SH_R(hp_use_row)(HP_B(r), z0, T0, kp + 2 * (size_t)r, acc + (size_t)NL * r);
-        SH_R(hp_use_row)(HP_B(r - 1), z1, T1, kp + 2 * (size_t)(r - 1), acc + (size_t)NL * (r - 1));
-    }
-    if (r >= lo) {
-        SH_R(hp_use_row)(HP_B(r), z0, T0, kp + 2 * (size_t)r, acc + (size_t)NL * r);
-        r--;
-    }
-    for (; r >= rlo; r--) { /* the diagonal's rows: columns c ≤ r to the dot, c < r to the axpy (stage 3) */
-        SH_R(hp_vi) idx = {0};
-        for (int i = 0; i < NL; i++) idx[i] += m0 + i;
-        VR yd[HP_NV], ya[HP_NV];
-#pragma GCC unroll 4
-        for (int v = 0; v < HP_NV; v++) {
-            const VR y = SH_R(hp_ld)(HP_B(r) + v * NL);
-            const SH_R(hp_vi) lt = idx < r, le = idx <= r;
-            yd[v] = SH_R(hp_and)(y, st5 ? lt : le);
-            ya[v] = SH_R(hp_and)(y, st5 ? le : lt);
-            idx += NL;
-        }
-        if (r & 1) SH_R(hp_use)(yd, ya, z1, T1, kp + 2 * (size_t)r, acc + (size_t)NL * r);
-        else SH_R(hp_use)(yd, ya, z0, T0, kp + 2 * (size_t)r, acc + (size_t)NL * r);
-    }
-#undef HP_B
-#pragma GCC unroll 4
-    for (int v = 0; v < HP_NV; v++) {
-        SH_R(hp_st)(J->T[0] + m0 + v * NL, T0[v]);
-        SH_R(hp_st)(J->T[1] + m0 + v * NL, T1[v]);
-    }
-}
-
-/* A column block's recursion between chunks: rows r+1 (x1) and r+2 (x2) of
- * the block's columns (mantissas), 2m, and for a scaled block the columns'
- * scales 2^−kexp (0: flushed). */
-typedef struct {
-    VR x1[HP_NV], x2[HP_NV], tm[HP_NV], sc[HP_NV];
-    int kexp[HP_W];
-} SH_R(hp_blk);
-#define HPBLK SH_R(hp_blk)
-
-HP_INLINE int SH_R(hp_any)(SH_R(hp_vi) c)
-{
-    int any = 0;
-    for (int i = 0; i < NL; i++) any |= c[i] != 0;
-    return any;
-}
-
-/* Rows rhi..rlo of the block (b: its state at row rhi+1) into buf, row rhi
- * first; *first: the first row (from rhi) with an entry ≥ HP_TINY·P_r, if
- * none so far (*active).  The recursion's rows stay in registers (no lane is
- * touched but through b, on the rare rescaling paths). */
-HP_INLINE void SH_R(hp_blkgen)(const HPGEN *g, HPBLK *b, int scaled, int rhi, int rlo, sh_real *buf,
-                            int *active, int *first)
-{
-    const int l = g->l;
-    VR x1[HP_NV], x2[HP_NV], tm[HP_NV], sc[HP_NV];
-#pragma GCC unroll 4
-    for (int v = 0; v < HP_NV; v++) x1[v] = b->x1[v], x2[v] = b->x2[v], tm[v] = b->tm[v], sc[v] = b->sc[v];
-    int unk = 0; /* the first row (from rhi) not found below HP_TINY */
-    for (int r = rhi; r >= rlo; r--) {
-        if (r < l) {
-            if (g->resc[r]) { /* rows r+1, r+2 / 2^HP_ROW_EXP */
-                const sh_real down = (sh_real)ldexp(1.0, -HP_ROW_EXP);
-                if (!scaled) {
-#pragma GCC unroll 4
-                    for (int v = 0; v < HP_NV; v++) x1[v] *= down, x2[v] *= down;
-                } else { /* the exponents only */
-#pragma GCC unroll 4
-                    for (int v = 0; v < HP_NV; v++) b->sc[v] = sc[v];
-                    for (int q = 0; q < HP_W; q++) {
-                        b->kexp[q] += HP_ROW_EXP;
-                        b->sc[q / NL][q % NL] = b->kexp[q] > HP_FLUSH_K ? 0 : b->sc[q / NL][q % NL] * down;
-                    }
-#pragma GCC unroll 4
-                    for (int v = 0; v < HP_NV; v++) sc[v] = b->sc[v];
-                }
-            }
-            const sh_real c = g->C[r + 2];
-#pragma GCC unroll 4
-            for (int v = 0; v < HP_NV; v++) {
-                const VR x = tm[v] * x1[v] - c * x2[v];
-                x2[v] = x1[v];
-                x1[v] = x;
-            }
-            if (scaled && !(r & HP_CHECK_MASK)) {
-                /* lanes of row r above 2^HP_RESCALE_EXP: rows r, r+1 scaled down */
-                const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP);
-                SH_R(hp_vi) big = (x1[0] > lim) | (x1[0] < -lim);
-#pragma GCC unroll 4
-                for (int v = 1; v < HP_NV; v++) big |= (x1[v] > lim) | (x1[v] < -lim);
-                if (SH_R(hp_any)(big)) {
-                    const sh_real down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
-#pragma GCC unroll 4
-                    for (int v = 0; v < HP_NV; v++) b->x1[v] = x1[v], b->x2[v] = x2[v], b->sc[v] = sc[v];
-                    for (int q = 0; q < HP_W; q++) {
-                        sh_real *x = &b->x1[q / NL][q % NL];
-                        if (SH_FABS(*x) > lim) {
-                            *x *= down, b->x2[q / NL][q % NL] *= down;
-                            b->kexp[q] -= HP_RESCALE_EXP;
-                            b->sc[q / NL][q % NL] = b->kexp[q] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -b->kexp[q]);
-                        }
-                    }
-#pragma GCC unroll 4
-                    for (int v = 0; v < HP_NV; v++) x1[v] = b->x1[v], x2[v] = b->x2[v], sc[v] = b->sc[v];
-                }
-            }
-        }
-        sh_real *row = buf + (size_t)(rhi - r) * HP_W;
-        VR w[HP_NV];
-#pragma GCC unroll 4
-        for (int v = 0; v < HP_NV; v++) {
-            w[v] = scaled ? x1[v] * sc[v] : x1[v];
-            SH_R(hp_st)(row + v * NL, w[v]);
-        }
-        if (!*active && (!(r & 7) || r == rlo)) {
-            /* any |w| ≥ HP_TINY·P_r, checked every 8 rows (and at the chunk's
-             * end): the stage starts after the last row found below, up to 7
-             * rows early (entries below HP_TINY); compared as integers (|w| ≥ 0) */
-            SH_R(hp_vi) mask, tau, a, big;
-            VR t;
-            for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = g->tau[r];
-            memcpy(&tau, &t, sizeof tau);
-            memcpy(&a, &w[0], sizeof a);
-            big = (a & mask) >= tau;
-#pragma GCC unroll 4
-            for (int v = 1; v < HP_NV; v++) memcpy(&a, &w[v], sizeof a), big |= (a & mask) >= tau;
-            if (SH_R(hp_any)(big)) *active = 1, *first = unk;
-            else unk = rhi - r + 1;
-        }
-    }
-#pragma GCC unroll 4
-    for (int v = 0; v < HP_NV; v++) b->x1[v] = x1[v], b->x2[v] = x2[v], b->sc[v] = sc[v];
-}
-
-/* Stage 3 (st5 = 0) or 5 over every job (J: nj jobs), the wedge generated
- * once more (hp_start). */
+/* Which instance of rot_halfpi_cols.h fits the registers: 64-byte vectors
+ * with AVX-512, 32 with AVX2, else 16 (SSE2, NEON); all give the same bits. */
 HP_INLINE uint64_t SH_R(hp_cols)(HPGEN *g, int nj, const HPJOB *J, int st5)
 {
-    const int l = g->l;
-    sh_real *buf = g->buf;
-    uint64_t count = 0;
-    for (int m0 = 0; m0 <= l; m0 += HP_W) {
-        HPBLK b;
-        const int scaled = m0 + HP_W > g->ms; /* any column ≥ ms: all by mantissa and kexp */
-        for (int q = 0; q < HP_W; q++) {
-            const int m = m0 + q, v = q / NL, i = q % NL;
-            b.tm[v][i] = (sh_real)(2 * m);
-            b.x2[v][i] = 0;
-            if (m > l) b.x1[v][i] = 0, b.sc[v][i] = 0, b.kexp[q] = 0;
-            else if (m < g->ms) b.x1[v][i] = g->sw[m], b.sc[v][i] = 1, b.kexp[q] = 0;
-            else b.x1[v][i] = g->sx[m], b.sc[v][i] = g->ssc[m], b.kexp[q] = g->skexp[m];
-        }
-        int active = 0;
-        for (int rhi = l; rhi >= m0; rhi -= HP_R) {
-            const int rlo = rhi - HP_R + 1 > m0 ? rhi - HP_R + 1 : m0;
-            int first = active ? 0 : rhi - rlo + 1; /* the chunk's first row for the stage */
-            if (scaled) SH_R(hp_blkgen)(g, &b, 1, rhi, rlo, buf, &active, &first);
-            else SH_R(hp_blkgen)(g, &b, 0, rhi, rlo, buf, &active, &first);
-            count += (uint64_t)(rhi - rlo + 1) * (scaled ? 3 : 2) * HP_W;
-            if (first > rhi - rlo) continue;
-            for (int j = 0; j < nj; j++) SH_R(hp_chunk_job)(J + j, buf, m0, rhi, first, rlo, st5);
-            count += (uint64_t)nj * (uint64_t)(rhi - first - rlo + 1) * 2 * HP_W;
-        }
-    }
-    return count;
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    if (__builtin_cpu_supports("avx512f")) return SH_R(hp_cols_w)(g, nj, J, st5);
+    if (__builtin_cpu_supports("avx2")) return SH_R(hp_cols_n)(g, nj, J, st5);
+#endif
+    return SH_R(hp_cols_s)(g, nj, J, st5);
 }
 
 /* The dot's sums of row r (even, odd columns) from acc. */
 HP_INLINE void SH_R(hp_sums)(const sh_real *acc, int r, sh_real *se, sh_real *so)
 {
     sh_real e = 0, o = 0;
-    for (int i = 0; i < NL; i += 2) e += acc[(size_t)NL * r + i], o += acc[(size_t)NL * r + i + 1];
+    for (int i = 0; i < HP_AL; i += 2) e += acc[(size_t)HP_AL * r + i], o += acc[(size_t)HP_AL * r + i + 1];
     *se = e;
     *so = o;
 }
@@ -659,7 +465,7 @@ HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj, HPJOB *J)
             const sh_real sr = (r & 1) ? -g->rs[r] : g->rs[r];
             kp[2 * r] = sr * zev[r], kp[2 * r + 1] = -sr * zod[r];
         }
-        memset(J[j].acc, 0, NL * n * sizeof(sh_real));
+        memset(J[j].acc, 0, HP_AL * n * sizeof(sh_real));
     }
     uint64_t count = SH_R(hp_cols)(g, nj, J, 0);
     for (int j = 0; j < nj; j++) {
@@ -717,7 +523,7 @@ HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj, HPJOB *J)
         J[j].T[1] = (l & 1) ? U : V;
         J[j].kp = kp, J[j].acc = HP_JV(g, j, 10);
         for (int r = 0; r <= l; r++) kp[2 * r] = g->rs[r] * hE[r], kp[2 * r + 1] = g->rs[r] * hO[r];
-        memset(J[j].acc, 0, NL * n * sizeof(sh_real));
+        memset(J[j].acc, 0, HP_AL * n * sizeof(sh_real));
     }
     uint64_t count = SH_R(hp_cols)(g, nj, J, 1);
     for (int j = 0; j < nj; j++) {
