@@ -48,18 +48,23 @@
  * (t_{−k} = (−1)^k conj(t_k) folds the negative k into the w_k-weighted sums.)
  * Stages 3 and 5 are each one pass over Δ⁺ ((l+1)² multiply-adds); over the
  * wedge, entry Δ_{rc} (c < r) serves both as (k, m) = (r, c) and, by (S), as
- * (c, r): in each stage a wedge row is one dot product and one axpy
- * (hp_dot_axpy), whose even and odd columns go to different sums — two
- * lanes of one vector.  Stage 3 runs while the rows are generated (r = l down
- * to 0); stage 5 needs every t'_k first, so the wedge is generated a second
- * time for it rather than stored: storing it (64 MB a band at l = 4000)
- * means writing it to memory and reading it back, while the recursion's
- * three rows stay in cache (measured on one vector: ~35% slower per band
- * at l = 300, 10–15% faster at l = 1000, and O(l) scratch instead of O(l²)).  Cost per band and vector:
- * 2(l+1)² multiply-adds, like ZXZXZ's two X products, plus 2·3·(l+1)²/2 for
- * the two generations of Δ, shared by all vectors and rotations of a batch.
- * Row tails below HP_TINY (beyond the turning point m² + r² ≈ l², where Δ
- * decays like an Airy function) are skipped by both stages (hp_active).
+ * (c, r): in each stage a wedge row is one dot product and one axpy, whose
+ * even and odd columns go to different sums.  Stage 5 needs every t'_k
+ * first, so the wedge is generated a second time for it rather than stored
+ * (64 MB a band at l = 4000; O(l) scratch instead of O(l²)).  Both stages
+ * run over column blocks (hp_cols, rot_halfpi_cols.h): the recursion is
+ * column by column, so a block of 32 columns (doubles) is generated down its
+ * rows in registers, 64 rows at a time into a small buffer, and every job
+ * (vector and rotation of a batch) takes those rows with its axpy
+ * accumulators for the block in registers and its dot's partial sums in one
+ * 8-lane vector a row: per element, a store and a load of the buffer
+ * instead of three rows read and one written per pass.  Cost per band and
+ * vector: 2(l+1)² multiply-adds (a multiply and an add each), like ZXZXZ's
+ * two X products, plus 2·3·(l+1)²/2 flops (2 multiplies, 1 subtract an
+ * element) for the two generations of Δ, shared by all vectors and rotations
+ * of a batch.  A block's rows while all its entries are below HP_TINY
+ * (beyond the turning point m² + r² ≈ l², where Δ decays like an Airy
+ * function) are skipped by both stages.
  *
  * Generating Δ⁺ (the wedge, row r = m' from l down to 0, all m ≤ r at once):
  *   Δ_{l,m} = (−1)^{l−m} √C(2l, l+m) / 2^l                                  ([4])
@@ -71,8 +76,14 @@
  *   = 2m d_{m'm} at cosβ = 0.  Downward in m' each column goes from the
  *   classically forbidden region (m² + m'² > l², where the wanted solution
  *   grows in the direction of the recursion) into the oscillatory one: the
- *   stable direction.  Measured against the same recursion in binary128 the
- *   wedge is within 8.5e-16 (absolute) at l = 1000.
+ *   stable direction.  It runs on y_r = Δ_r·P_r, P_r = Π_{j=r+1..l} B_j:
+ *     y_r = 2m y_{r+1} − B_{r+2}² y_{r+2},
+ *   integer coefficients (exact), two multiplies and a subtract an element;
+ *   the stages multiply each row's sums and factors by rs_r = 1/P_r (O(1) a
+ *   row; P_r from P_r² in long double, divided by 2^HP_ROW_EXP, rows and
+ *   P alike, when it grows past it).  Measured against the recursion above
+ *   in binary128 the wedge is within 4.7e-16 (absolute) at l = 1000 (with
+ *   the recursion on Δ itself, 3 multiplies an element: 7.1e-16).
  * Underflow: the seeds go down to 2^−l (m = l), below double's range for
  * l > 1022.  A column whose seed is below 2^HP_LOW_EXP is carried scaled:
  * the recursion keeps mantissa · 2^{kexp[m]} (the seed's mantissa, kexp =
