@@ -56,9 +56,14 @@ HP_INLINE int HPC(any)(CVI c)
  * kp[0] (even columns), kp[1] (odd); kp[0..CNL−1] readable. */
 HP_INLINE void HPC(use)(const CV *yd, const CV *ya, const CV *z, CV *T, const sh_real *kp, sh_real *acc)
 {
+#ifdef __clang__
+    CV k; /* clang has no __builtin_shuffle (its own needs literal indices) */
+    for (int i = 0; i < CNL; i++) k[i] = kp[i & 1];
+#else
     CVI pair = {0};
     for (int i = 0; i < CNL; i++) pair[i] = i & 1;
     const CV k = __builtin_shuffle(HPC(ld)(kp), pair);
+#endif
     const CV p = (yd[0] * z[0] + yd[1] * z[1]) + (yd[2] * z[2] + yd[3] * z[3]);
     HPC(st)(acc, HPC(ld)(acc) + p);
 #pragma GCC unroll 4
@@ -170,9 +175,9 @@ HP_INLINE void HPC(gen)(const HPGEN *g, HPC(blk) *b, int scaled, int v0, int rhi
 #pragma GCC unroll 4
                     for (int u = 0; u < CG; u++) b->x1[v0 + u] = x1[u], b->x2[v0 + u] = x2[u], b->sc[v0 + u] = sc[u];
                     for (int q = v0 * CNL; q < (v0 + CG) * CNL; q++) {
-                        sh_real *x = &b->x1[q / CNL][q % CNL];
-                        if (SH_FABS(*x) > lim) {
-                            *x *= down, b->x2[q / CNL][q % CNL] *= down;
+                        const sh_real x = b->x1[q / CNL][q % CNL];
+                        if (SH_FABS(x) > lim) {
+                            b->x1[q / CNL][q % CNL] = x * down, b->x2[q / CNL][q % CNL] *= down;
                             b->kexp[q] -= HP_RESCALE_EXP;
                             b->sc[q / CNL][q % CNL] = b->kexp[q] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -b->kexp[q]);
                         }
