@@ -48,18 +48,23 @@
  * (t_{−k} = (−1)^k conj(t_k) folds the negative k into the w_k-weighted sums.)
  * Stages 3 and 5 are each one pass over Δ⁺ ((l+1)² multiply-adds); over the
  * wedge, entry Δ_{rc} (c < r) serves both as (k, m) = (r, c) and, by (S), as
- * (c, r): in each stage a wedge row is one dot product and one axpy
- * (hp_dot_axpy), whose even and odd columns go to different sums — two
- * lanes of one vector.  Stage 3 runs while the rows are generated (r = l down
- * to 0); stage 5 needs every t'_k first, so the wedge is generated a second
- * time for it rather than stored: storing it (64 MB a band at l = 4000)
- * means writing it to memory and reading it back, while the recursion's
- * three rows stay in cache (measured on one vector: ~35% slower per band
- * at l = 300, 10–15% faster at l = 1000, and O(l) scratch instead of O(l²)).  Cost per band and vector:
- * 2(l+1)² multiply-adds, like ZXZXZ's two X products, plus 2·3·(l+1)²/2 for
- * the two generations of Δ, shared by all vectors and rotations of a batch.
- * Row tails below HP_TINY (beyond the turning point m² + r² ≈ l², where Δ
- * decays like an Airy function) are skipped by both stages (hp_active).
+ * (c, r): in each stage a wedge row is one dot product and one axpy, whose
+ * even and odd columns go to different sums.  Stage 5 needs every t'_k
+ * first, so the wedge is generated a second time for it rather than stored
+ * (64 MB a band at l = 4000; O(l) scratch instead of O(l²)).  Both stages
+ * run over column blocks (hp_cols, rot_halfpi_cols.h): the recursion is
+ * column by column, so a block of 32 columns (doubles) is generated down its
+ * rows in registers, 64 rows at a time into a small buffer, and every job
+ * (vector and rotation of a batch) takes those rows with its axpy
+ * accumulators for the block in registers and its dot's partial sums in one
+ * 8-lane vector a row: per element, a store and a load of the buffer
+ * instead of three rows read and one written per pass.  Cost per band and
+ * vector: 2(l+1)² multiply-adds (a multiply and an add each), like ZXZXZ's
+ * two X products, plus 2·3·(l+1)²/2 flops (2 multiplies, 1 subtract an
+ * element) for the two generations of Δ, shared by all vectors and rotations
+ * of a batch.  A block's rows while all its entries are below HP_TINY
+ * (beyond the turning point m² + r² ≈ l², where Δ decays like an Airy
+ * function) are skipped by both stages.
  *
  * Generating Δ⁺ (the wedge, row r = m' from l down to 0, all m ≤ r at once):
  *   Δ_{l,m} = (−1)^{l−m} √C(2l, l+m) / 2^l                                  ([4])
@@ -71,8 +76,14 @@
  *   = 2m d_{m'm} at cosβ = 0.  Downward in m' each column goes from the
  *   classically forbidden region (m² + m'² > l², where the wanted solution
  *   grows in the direction of the recursion) into the oscillatory one: the
- *   stable direction.  Measured against the same recursion in binary128 the
- *   wedge is within 8.5e-16 (absolute) at l = 1000.
+ *   stable direction.  It runs on y_r = Δ_r·P_r, P_r = Π_{j=r+1..l} B_j:
+ *     y_r = 2m y_{r+1} − B_{r+2}² y_{r+2},
+ *   integer coefficients (exact), two multiplies and a subtract an element;
+ *   the stages multiply each row's sums and factors by rs_r = 1/P_r (O(1) a
+ *   row; P_r from P_r² in long double, divided by 2^HP_ROW_EXP, rows and
+ *   P alike, when it grows past it).  Measured against the recursion above
+ *   in binary128 the wedge is within 4.7e-16 (absolute) at l = 1000 (with
+ *   the recursion on Δ itself, 3 multiplies an element: 7.1e-16).
  * Underflow: the seeds go down to 2^−l (m = l), below double's range for
  * l > 1022.  A column whose seed is below 2^HP_LOW_EXP is carried scaled:
  * the recursion keeps mantissa · 2^{kexp[m]} (the seed's mantissa, kexp =
@@ -93,14 +104,19 @@ SH__ROT_DECLARE_APPLY(halfpi);
 #define HP_LOW_EXP (-60)
 #define HP_RESCALE_EXP 30
 #define HP_FLUSH_K 90
+#define HP_ROW_EXP 60
+#define HP_CHECK_MASK 0 /* the scaled columns checked every row */
 #else
 #define HP_LOW_EXP (-600)
 #define HP_RESCALE_EXP 400
 #define HP_FLUSH_K 1000
+#define HP_ROW_EXP 400
+#define HP_CHECK_MASK 7 /* every 8 rows */
 #endif
 
 /* One vector of HP_VBYTES: NL lanes (4 doubles or 8 floats), columns c,
- * c+1, … alternately even and odd.  Lane arithmetic is defined element by
+ * c+1, … alternately even and odd (the stages' column blocks have their own
+ * vectors, rot_halfpi_cols.h).  Lane arithmetic is defined element by
  * element (and ISO C mode keeps the compiler from contracting a·b + c into
  * an FMA), so the result does not depend on the instructions used: the
  * hot functions are compiled for AVX-512, AVX2 and the baseline
@@ -125,58 +141,40 @@ HP_INLINE void SH_R(hp_st)(sh_real *p, VR v) { memcpy(p, &v, sizeof v); }
 #define HP_CLONES
 #endif
 
-/* Over columns c = 0..n−1 of a wedge row: the dot product Σ row[c]·z[c],
- * even c into *se and odd c into *so, and the axpy T[c] += row[c]·(ke or ko
- * for even or odd c).  Fixed summation order: four vectors of partial sums
- * (8 doubles, 16 floats), combined pairwise at the end, then the tail. */
-HP_INLINE void SH_R(hp_dot_axpy)(int n, const sh_real *row, const sh_real *z, sh_real *T,
-                                     sh_real ke, sh_real ko, sh_real *se, sh_real *so)
-{
-    VR k, a0, a1, a2, a3;
-    for (int i = 0; i < NL; i++) k[i] = (i & 1) ? ko : ke, a0[i] = a1[i] = a2[i] = a3[i] = 0;
-    int c = 0;
-    for (; c + 4 * NL <= n; c += 4 * NL) {
-        const VR r0 = SH_R(hp_ld)(row + c), r1 = SH_R(hp_ld)(row + c + NL);
-        const VR r2 = SH_R(hp_ld)(row + c + 2 * NL), r3 = SH_R(hp_ld)(row + c + 3 * NL);
-        a0 += r0 * SH_R(hp_ld)(z + c);
-        a1 += r1 * SH_R(hp_ld)(z + c + NL);
-        a2 += r2 * SH_R(hp_ld)(z + c + 2 * NL);
-        a3 += r3 * SH_R(hp_ld)(z + c + 3 * NL);
-        SH_R(hp_st)(T + c, SH_R(hp_ld)(T + c) + r0 * k);
-        SH_R(hp_st)(T + c + NL, SH_R(hp_ld)(T + c + NL) + r1 * k);
-        SH_R(hp_st)(T + c + 2 * NL, SH_R(hp_ld)(T + c + 2 * NL) + r2 * k);
-        SH_R(hp_st)(T + c + 3 * NL, SH_R(hp_ld)(T + c + 3 * NL) + r3 * k);
-    }
-    a0 = (a0 + a1) + (a2 + a3);
-    sh_real e = 0, o = 0;
-    for (int i = 0; i < NL; i += 2) e += a0[i], o += a0[i + 1];
-    for (; c + 2 <= n; c += 2) {
-        e += row[c] * z[c];
-        o += row[c + 1] * z[c + 1];
-        T[c] += row[c] * ke;
-        T[c + 1] += row[c + 1] * ko;
-    }
-    if (c < n) { /* c even */
-        e += row[c] * z[c];
-        T[c] += row[c] * ke;
-    }
-    *se = e;
-    *so = o;
-}
+/* The stages run over column blocks of HP_W columns (256 bytes), HP_R rows
+ * at a time, a row's partial sums in HP_AL lanes (64 bytes) (hp_cols). */
+#define HP_W ((int)(256 / sizeof(sh_real)))
+#define HP_AL ((int)(64 / sizeof(sh_real)))
+#define HP_R 64
+
+/* HP_TINY: see hp_cols */
+#ifdef SH_REAL_FLOAT
+#define HP_TINY 0x1p-45f
+typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffff
+#else
+#define HP_TINY 0x1p-90
+typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
+#define HP_ABSMASK 0x7fffffffffffffffLL
+#endif
 
 /* ---- scratch ------------------------------------------------------------ */
 /* Per band l ≤ L and nj ≤ J jobs: three wedge rows, three recursion rows,
- * B, 1/B, 2m, the column scales, ten per-job vectors, kexp: O(l), either
- * precision. */
+ * B², 2m, the row factors and thresholds, the column scales, the seed row
+ * (values, mantissas, scales), ten per-job vectors, kexp and the seed's, the
+ * row rescale flags: O(l), either precision. */
 #ifndef SH_REAL_FLOAT
 static size_t hp_nreal(int L, int J)
 {
     const size_t n = (size_t)L + 1;
-    return 3 * n + 3 * n + 2 * (n + 1) + 2 * n + 10 * n * (size_t)J + 16;
+    /* per job: ten vectors padded to whole column blocks (≤ n + 64 reals of
+     * either precision) and the dot's partial sums (64 bytes a row); the
+     * block buffer: HP_R rows of 256 bytes (see hp_cols) */
+    return 3 * n + 3 * n + (n + 1) + 2 * n + 2 * n + 3 * n + (10 * (n + 64) + 8 * n) * (size_t)J + 2048 + 16;
 }
 size_t sh__rot_halfpi_work_bytes(int L, int J)
 {
-    return hp_nreal(L, J) * sizeof(double) + ((size_t)L + 1) * sizeof(int) + 64;
+    return hp_nreal(L, J) * sizeof(double) + 3 * ((size_t)L + 1) * sizeof(int) + 64;
 }
 #endif
 
@@ -184,11 +182,17 @@ typedef struct {
     int l, ms;          /* band; first scaled column (l+1: none) */
     sh_real *w[3];      /* wedge rows (true values) by r mod 3 */
     sh_real *rec[3];    /* recursion rows of the scaled columns, by r mod 3 */
-    sh_real *B, *iB;    /* B_j, 1/B_j, j = 0..l+1 */
+    sh_real *C;         /* B_j² = (l+j)(l−j+1), j = 0..l+1 (integers) */
     sh_real *twom;      /* 2m */
+    sh_real *rs, *tau;  /* row r: Δ = rs[r]·(stored value); HP_TINY / rs[r] */
+    int *resc;          /* resc[r]: rows r+1, r+2 divided by 2^HP_ROW_EXP before row r */
     sh_real *scale;     /* 2^−kexp[m] (0: flushed) */
     int *kexp;
+    sh_real *sw, *sx, *ssc; /* the seed row (hp_init): w, rec, scale of row l */
+    int *skexp;             /* and kexp */
+    sh_real *buf;       /* hp_cols' block of rows */
     sh_real *job;       /* per-job vectors */
+    size_t np, js;      /* their length (n padded to whole blocks), a job's stride */
 } SH_R(hp_gen);
 #define HPGEN SH_R(hp_gen)
 
@@ -203,61 +207,114 @@ static void SH_R(hp_layout)(int l, int nj, void *work, HPGEN *g)
     g->rec[0] = p, p += n;
     g->rec[1] = p, p += n;
     g->rec[2] = p, p += n;
-    g->B = p, p += n + 1;
-    g->iB = p, p += n + 1;
+    g->C = p, p += n + 1;
     g->twom = p, p += n;
+    g->rs = p, p += n;
+    g->tau = p, p += n;
     g->scale = p, p += n;
-    g->job = p, p += 10 * n * (size_t)nj;
+    g->sw = p, p += n;
+    g->sx = p, p += n;
+    g->ssc = p, p += n;
+    g->buf = p, p += HP_R * HP_W;
+    g->np = (n + HP_W - 1) / HP_W * HP_W;
+    g->js = 10 * g->np + HP_AL * n;
+    g->job = p, p += g->js * (size_t)nj;
     g->kexp = (int *)(p + 1);
+    g->skexp = g->kexp + n;
+    g->resc = g->skexp + n;
 }
 
-/* The seed row Δ_{l,m} (long double, [4]) and the recursion coefficients. */
+/* The seed row Δ_{l,m} (long double, [4]) into sw, sx, ssc, skexp, and the
+ * recursion coefficients: once per band (both generations start from it,
+ * hp_start). */
 static void SH_R(hp_init)(HPGEN *g)
 {
     const int l = g->l;
-    sh_real *w0 = g->w[l % 3];
+    sh_real *w0 = g->sw;
     long double e2 = 1;
-    for (int k = 1; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
+    int k = 1;
+    for (; k + 3 <= l; k += 4) { /* four factors at once: numerator and denominator exact (< 2^53) */
+        const long double a = (long double)((2.0 * k - 1) * (2.0 * k + 1)) * (long double)((2.0 * k + 3) * (2.0 * k + 5));
+        const long double b = (long double)((2.0 * k) * (2.0 * k + 2)) * (long double)((2.0 * k + 4) * (2.0 * k + 6));
+        e2 *= a / b;
+    }
+    for (; k <= l; k++) e2 *= (long double)(2 * k - 1) / (2 * k);
     long double e = sqrtl(e2);
+    const long double low = ldexpl(1.0L, HP_LOW_EXP - 1);
     g->ms = l + 1;
     for (int m = 0; m <= l; m++) {
         if (m) e *= sqrtl((long double)(l - m + 1) / (l + m));
         const long double v = ((l - m) & 1) ? -e : e;
-        int ex;
-        const long double f = frexpl(v, &ex);
         g->twom[m] = (sh_real)(2 * m);
-        if (ex >= HP_LOW_EXP && g->ms > l) {
+        /* frexpl's exponent ≥ HP_LOW_EXP  ⟺  |v| ≥ 2^(HP_LOW_EXP−1) */
+        if (g->ms > l && e >= low) {
             w0[m] = (sh_real)v;
-            g->kexp[m] = 0;
-            g->scale[m] = 1;
+            g->sx[m] = 0;
+            g->skexp[m] = 0;
+            g->ssc[m] = 1;
         } else { /* seeds decrease with m: every later column is scaled too */
+            int ex;
+            const long double f = frexpl(v, &ex);
             if (g->ms > l) g->ms = m;
-            g->kexp[m] = -ex;
-            g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->kexp[m]);
-            g->rec[l % 3][m] = (sh_real)f;
-            g->rec[(l + 1) % 3][m] = 0;
-            w0[m] = (sh_real)f * g->scale[m];
+            g->skexp[m] = -ex;
+            g->ssc[m] = g->skexp[m] > HP_FLUSH_K ? 0 : (sh_real)ldexp(1.0, -g->skexp[m]);
+            g->sx[m] = (sh_real)f;
+            w0[m] = (sh_real)f * g->ssc[m];
         }
     }
-    memset(g->w[(l + 1) % 3], 0, ((size_t)l + 1) * sizeof(sh_real)); /* row l+1 */
-    for (int j = 0; j <= l + 1; j++) {
-        const double b = sqrt((double)(l + j) * (double)(l - j + 1));
-        g->B[j] = (sh_real)b;
-        g->iB[j] = b > 0 ? (sh_real)(1.0 / b) : 0;
+    for (int j = 0; j <= l + 1; j++) g->C[j] = (sh_real)((double)(l + j) * (double)(l - j + 1));
+    /* the row factors: P_r = Π_{j=r+1..l} B_j · 2^{−HP_ROW_EXP·(rescales so
+     * far)}, P_l = 1, from Q = P² in long double (times the integers B_j²:
+     * relative error ≲ l·5e-20), then rs = 1/√Q in double (≲ 1.5 ulp) */
+    long double Q = 1;
+    const long double big2 = ldexpl(1.0L, 2 * HP_ROW_EXP), down2 = ldexpl(1.0L, -2 * HP_ROW_EXP);
+    g->rs[l] = 1;
+    g->tau[l] = HP_TINY;
+    g->resc[l] = 0;
+    for (int r = l - 1; r >= 0; r--) {
+        g->resc[r] = Q > big2;
+        if (g->resc[r]) Q *= down2;
+        Q *= (long double)(l + r + 1) * (long double)(l - r);
+        const double P = sqrt((double)Q);
+        g->rs[r] = (sh_real)(1 / P);
+        g->tau[r] = (sh_real)(HP_TINY * P);
     }
 }
 
-/* out[m] = (2m·x1[m] − b2·x2[m])·ib for m in [m0, m1): the recursion, a vector
+/* The generator at row l again (the seed row of hp_init, row l+1 zero). */
+static void SH_R(hp_start)(HPGEN *g)
+{
+    const int l = g->l;
+    const size_t n = (size_t)l + 1, ns = n - (size_t)g->ms;
+    memcpy(g->w[l % 3], g->sw, n * sizeof(sh_real));
+    memset(g->w[(l + 1) % 3], 0, n * sizeof(sh_real)); /* row l+1 */
+    memcpy(g->rec[l % 3] + g->ms, g->sx + g->ms, ns * sizeof(sh_real));
+    memset(g->rec[(l + 1) % 3] + g->ms, 0, ns * sizeof(sh_real));
+    memcpy(g->scale, g->ssc, n * sizeof(sh_real));
+    memcpy(g->kexp, g->skexp, n * sizeof(int));
+}
+
+/* out[m] = 2m·x1[m] − c·x2[m] for m in [m0, m1): the recursion, a vector
  * at a time (the same operations on every column). */
 HP_INLINE void SH_R(hp_rec3)(int m0, int m1, const sh_real *tm, const sh_real *x1,
-                             const sh_real *x2, sh_real b2, sh_real ib, sh_real *out)
+                             const sh_real *x2, sh_real c, sh_real *out)
 {
-    VR vb, vi;
-    for (int i = 0; i < NL; i++) vb[i] = b2, vi[i] = ib;
+    VR vc;
+    for (int i = 0; i < NL; i++) vc[i] = c;
     int m = m0;
     for (; m + NL <= m1; m += NL)
-        SH_R(hp_st)(out + m, (SH_R(hp_ld)(tm + m) * SH_R(hp_ld)(x1 + m) - vb * SH_R(hp_ld)(x2 + m)) * vi);
-    for (; m < m1; m++) out[m] = (tm[m] * x1[m] - b2 * x2[m]) * ib;
+        SH_R(hp_st)(out + m, SH_R(hp_ld)(tm + m) * SH_R(hp_ld)(x1 + m) - vc * SH_R(hp_ld)(x2 + m));
+    for (; m < m1; m++) out[m] = tm[m] * x1[m] - c * x2[m];
+}
+
+/* x[m] *= f for m in [0, n) */
+HP_INLINE void SH_R(hp_scal)(int n, sh_real f, sh_real *x)
+{
+    VR vf;
+    for (int i = 0; i < NL; i++) vf[i] = f;
+    int m = 0;
+    for (; m + NL <= n; m += NL) SH_R(hp_st)(x + m, SH_R(hp_ld)(x + m) * vf);
+    for (; m < n; m++) x[m] *= f;
 }
 
 /* Wedge row r < l from rows r+1 and r+2 (row l+1 is zero). */
@@ -265,16 +322,28 @@ HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
 {
     const int nu = r + 1 < g->ms ? r + 1 : g->ms; /* unscaled columns 0..nu−1 */
     sh_real *w = g->w[r % 3];
-    const sh_real b2 = g->B[r + 2], ib = g->iB[r + 1];
-    /* Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1} */
-    SH_R(hp_rec3)(0, nu, g->twom, g->w[(r + 1) % 3], g->w[(r + 2) % 3], b2, ib, w);
+    const sh_real c = g->C[r + 2];
+    if (g->resc[r]) { /* rows r+1, r+2 (the columns still needed, 0..r) / 2^HP_ROW_EXP */
+        const sh_real down = (sh_real)ldexp(1.0, -HP_ROW_EXP);
+        SH_R(hp_scal)(nu, down, g->w[(r + 1) % 3]);
+        SH_R(hp_scal)(nu, down, g->w[(r + 2) % 3]);
+        for (int m = nu; m <= r; m++) { /* scaled columns: the exponent only */
+            g->kexp[m] += HP_ROW_EXP;
+            g->scale[m] = g->kexp[m] > HP_FLUSH_K ? 0 : g->scale[m] * down;
+        }
+    }
+    /* Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1}, on the values
+     * y_r = Δ_r·P_r (hp_init): y_r = 2m y_{r+1} − B_{r+2}² y_{r+2} */
+    SH_R(hp_rec3)(0, nu, g->twom, g->w[(r + 1) % 3], g->w[(r + 2) % 3], c, w);
     if (nu > r) return;
     /* scaled columns ms..r: the same recursion on the mantissas */
     sh_real *x = g->rec[r % 3];
-    SH_R(hp_rec3)(nu, r + 1, g->twom, g->rec[(r + 1) % 3], g->rec[(r + 2) % 3], b2, ib, x);
-    /* a row grows by at most ~2√(2l) < 2^7.5 (l < 4097), so a check every
-     * 8 rows keeps the mantissas below 2^(HP_RESCALE_EXP + 60), far from overflow */
-    if (!(r & 7)) {
+    SH_R(hp_rec3)(nu, r + 1, g->twom, g->rec[(r + 1) % 3], g->rec[(r + 2) % 3], c, x);
+    /* a row grows by at most ~2√(2l)·B_{r+1} < 2^19.5 (l < 4097), so a check
+     * every HP_CHECK_MASK+1 rows keeps the mantissas below
+     * 2^(HP_RESCALE_EXP + 160) (double; float: 2^(HP_RESCALE_EXP + 20)),
+     * far from overflow */
+    if (!(r & HP_CHECK_MASK)) {
         const sh_real lim = (sh_real)ldexp(1.0, HP_RESCALE_EXP), down = (sh_real)ldexp(1.0, -HP_RESCALE_EXP);
         sh_real *y1 = g->rec[(r + 1) % 3];
         for (int m = nu; m <= r; m++)
@@ -290,71 +359,89 @@ HP_INLINE void SH_R(hp_row)(HPGEN *g, int r)
     for (; m <= r; m++) w[m] = x[m] * g->scale[m];
 }
 
-/* Columns 0..n−1 of wedge row r (n ≤ r+1) hold every entry of magnitude
- * ≥ HP_TINY; the stages skip the rest.  Entries beyond the turning point
- * m² + r² ≈ l² decay fast (and the flushed scaled columns are 0), so near
- * r = l most of a row is skipped.  Skipping |Δ| < HP_TINY changes a stage's
- * sum by less than l·HP_TINY·max|z| (≤ 1e-23 relative). */
-#ifdef SH_REAL_FLOAT
-#define HP_TINY 0x1p-45f
-typedef int32_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
-#define HP_ABSMASK 0x7fffffff
-#else
-#define HP_TINY 0x1p-90
-typedef int64_t SH_R(hp_vi) __attribute__((vector_size(HP_VBYTES)));
-#define HP_ABSMASK 0x7fffffffffffffffLL
-#endif
-HP_INLINE int SH_R(hp_active)(const sh_real *w, int r)
+/* ---- the stages' column blocks -------------------------------------------- */
+/* Stages 3 and 5 have one form: over the wedge, row r (values y = Δ_r/rs[r])
+ * gives a dot product with z_q (q = r mod 2), whose even and odd columns are
+ * summed apart, and an axpy T_q[c] += y_c·(kp[2r] for even c, kp[2r+1] for odd c);
+ * the diagonal c = r goes to the dot (stage 3) or to the axpy (stage 5).
+ * They run over blocks of HP_W columns: a block's recursion (every column
+ * has its own, hp_init) runs from row l down to its first column, HP_R rows
+ * at a time into g->buf, in registers; then every job takes those rows,
+ * its axpy accumulators for the block's columns in registers and the dot's
+ * partial sums in acc (NL lanes a row, one vector added per block).  Memory
+ * traffic per element is the buffer's store and load, instead of three rows
+ * read and one written per pass; the per-job arithmetic is the same whatever
+ * nj, so a job's bits do not depend on its batch (nor on threads).
+ * Skipped: a block's first rows while all its entries are below HP_TINY
+ * (the classically forbidden region near r = l, where Δ grows downward; the
+ * flushed scaled columns are 0): changes a stage's sums by less than
+ * l·HP_TINY·max|z| (≤ 1e-23 relative). */
+typedef struct {
+    const sh_real *z[2];    /* the dot's inputs for even, odd r */
+    sh_real *T[2];          /* the axpy's targets for even, odd r */
+    const sh_real *kp;      /* its factors, row r: kp[2r] (even columns), kp[2r+1] (odd) */
+    sh_real *acc;           /* the dot's partial sums, HP_AL a row */
+} SH_R(hp_job);
+#define HPJOB SH_R(hp_job)
+
+/* Job j's ten vectors: zc (hE), zs (hO), E, O, GE, GO, U, V, kp (two: 2n
+ * values, and up to HP_AL − 2 past them read but not used); acc. */
+#define HP_JV(g, j, i) ((g)->job + (g)->js * (size_t)(j) + (g)->np * (size_t)(i))
+
+#define HPC_VB 64
+#define HPC(x) SH_R(hp_##x##_w)
+#include "rotate/rot_halfpi_cols.h"
+#undef HPC
+#undef HPC_VB
+#define HPC_VB 32
+#define HPC(x) SH_R(hp_##x##_n)
+#include "rotate/rot_halfpi_cols.h"
+#undef HPC
+#undef HPC_VB
+#define HPC_VB 16
+#define HPC(x) SH_R(hp_##x##_s)
+#include "rotate/rot_halfpi_cols.h"
+#undef HPC
+#undef HPC_VB
+
+/* Which instance of rot_halfpi_cols.h fits the registers: 64-byte vectors
+ * with AVX-512, 32 with AVX2, else 16 (SSE2, NEON); all give the same bits. */
+HP_INLINE uint64_t SH_R(hp_cols)(HPGEN *g, int nj, const HPJOB *J, int st5)
 {
-    int n = r + 1;
-    SH_R(hp_vi) mask, tau;
-    VR t;
-    for (int i = 0; i < NL; i++) mask[i] = HP_ABSMASK, t[i] = HP_TINY;
-    memcpy(&tau, &t, sizeof tau);
-    while (n >= NL) { /* a vector of |w| < HP_TINY (compared as integers: |w| ≥ 0) */
-        SH_R(hp_vi) a;
-        memcpy(&a, w + n - NL, sizeof a);
-        const SH_R(hp_vi) big = (a & mask) >= tau;
-        int any = 0;
-        for (int i = 0; i < NL; i++) any |= big[i] != 0;
-        if (any) break;
-        n -= NL;
-    }
-    while (n > 0 && !(SH_FABS(w[n - 1]) >= HP_TINY)) n--;
-    return n;
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    if (__builtin_cpu_supports("avx512f")) return SH_R(hp_cols_w)(g, nj, J, st5);
+    if (__builtin_cpu_supports("avx2")) return SH_R(hp_cols_n)(g, nj, J, st5);
+#endif
+    return SH_R(hp_cols_s)(g, nj, J, st5);
 }
 
-/* The next wedge row, r = l, l−1, …, 0 in turn (row l is the seed row of
- * hp_init), and in *na its active length for the stages (0 without jobs). */
-HP_INLINE const sh_real *SH_R(hp_next)(HPGEN *g, int r, int nj, int *na, uint64_t *count)
+/* The dot's sums of row r (even, odd columns) from acc. */
+HP_INLINE void SH_R(hp_sums)(const sh_real *acc, int r, sh_real *se, sh_real *so)
 {
-    if (r < g->l) {
-        SH_R(hp_row)(g, r);
-        *count += 3u * (uint64_t)(r + 1);
-    }
-    const sh_real *row = g->w[r % 3];
-    *na = nj ? SH_R(hp_active)(row, r) : 0;
-    return row;
+    sh_real e = 0, o = 0;
+    for (int i = 0; i < HP_AL; i += 2) e += acc[(size_t)HP_AL * r + i], o += acc[(size_t)HP_AL * r + i + 1];
+    *se = e;
+    *so = o;
 }
 
 /* ---- the band kernel ------------------------------------------------------ */
 /* The stages of sh__rot_halfpi_band (the letters and numbers of the header
  * comment), each over every job; inlined (HP_INLINE) so that every clone of
  * the kernel (HP_CLONES) compiles them for its instruction set.  Job j keeps
- * its ten vectors of n = l+1 at g->job + 10·n·j (zc, zs, E, O, GE, GO, U, V;
- * stage B overwrites zc, zs with hE, hO).  Each returns its multiplications. */
+ * its vectors at HP_JV (zc, zs, E, O, GE, GO, U, V, kp; stage B
+ * overwrites zc, zs with hE, hO).  Each returns its multiplications. */
 
 /* A: Z(γ), σ, √2 into zc, zs; E and O cleared. */
 HP_INLINE uint64_t SH_R(hp_stage_a)(HPGEN *g, int nocs, int nj, const sh_real *const *cs, int M,
                                     const sh_real *const *in)
 {
     const int l = g->l;
-    const size_t n = (size_t)l + 1;
     const sh_real r2 = SH_SQRT((sh_real)2);
     uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n;
+        sh_real *zc = HP_JV(g, j, 0), *zs = HP_JV(g, j, 1);
         const sh_real *x = in[j] + l, *csg = cs[j] + 4 * (size_t)(M + 1);
+        memset(zc, 0, g->js * sizeof *zc); /* the padding too */
         const sh_real fl = nocs ? -1 : 1;
         zc[0] = x[0];
         zs[0] = 0;
@@ -364,53 +451,56 @@ HP_INLINE uint64_t SH_R(hp_stage_a)(HPGEN *g, int nocs, int nj, const sh_real *c
             zc[m] = sg * (c * cm - s * sm);
             zs[m] = sg * (c * sm + s * cm);
         }
-        memset(E, 0, 2 * n * sizeof *E);
         count += 6u * (uint64_t)l;
     }
     return count;
 }
 
-/* 3: the wedge generated (rows l..0), each row's dot products into E, O. */
-HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj)
+/* 3: the wedge generated (rows l..0, hp_cols), its dot products into E, O:
+ * (k, m) = (r, c): the dot into E_r, O_r; (k, m) = (c, r), c < r, by (S):
+ * (−1)^{r−c} Δ_{rc} z^{(c)}_r into E_c (r even) or O_c (r odd). */
+HP_INLINE uint64_t SH_R(hp_stage3)(HPGEN *g, int nj, HPJOB *J)
 {
     const int l = g->l;
     const size_t n = (size_t)l + 1;
-    uint64_t count = 0;
     SH_R(hp_init)(g);
-    for (int r = l; r >= 0; r--) {
-        int na;
-        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
-        const int off = na < r ? na : r;
-        for (int j = 0; j < nj; j++) {
-            sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
-            const sh_real *z = ((l - r) & 1) ? zs : zc;
-            const sh_real *zev = (l & 1) ? zs : zc, *zod = (l & 1) ? zc : zs;
-            sh_real se, so;
-            /* (k, m) = (r, c): dot into E_r, O_r; (k, m) = (c, r), c < r, by (S):
-             * (−1)^{r−c} Δ_{rc} z^{(c)}_r into E_c (r even) or O_c (r odd) */
-            SH_R(hp_dot_axpy)(off, row, z, (r & 1) ? O : E, sr * zev[r], -sr * zod[r], &se, &so);
-            if (na > r) {
-                if (r & 1) so += row[r] * z[r];
-                else se += row[r] * z[r];
-            }
-            E[r] += se;
-            O[r] += so;
-            count += 2u * (uint64_t)off + 1;
+    SH_R(hp_start)(g);
+    for (int j = 0; j < nj; j++) {
+        sh_real *zc = HP_JV(g, j, 0), *zs = HP_JV(g, j, 1), *kp = HP_JV(g, j, 8);
+        const sh_real *zev = (l & 1) ? zs : zc, *zod = (l & 1) ? zc : zs;
+        J[j].z[0] = (l & 1) ? zs : zc; /* z = zs for l − r odd */
+        J[j].z[1] = (l & 1) ? zc : zs;
+        J[j].T[0] = HP_JV(g, j, 2), J[j].T[1] = HP_JV(g, j, 3);
+        J[j].kp = kp, J[j].acc = HP_JV(g, j, 10);
+        for (int r = 0; r <= l; r++) {
+            const sh_real sr = (r & 1) ? -g->rs[r] : g->rs[r];
+            kp[2 * r] = sr * zev[r], kp[2 * r + 1] = -sr * zod[r];
         }
+        memset(J[j].acc, 0, HP_AL * n * sizeof(sh_real));
+    }
+    uint64_t count = SH_R(hp_cols)(g, nj, J, 0);
+    for (int j = 0; j < nj; j++) {
+        sh_real *E = HP_JV(g, j, 2), *O = HP_JV(g, j, 3);
+        for (int r = 0; r <= l; r++) {
+            sh_real se, so;
+            SH_R(hp_sums)(J[j].acc, r, &se, &so);
+            E[r] += g->rs[r] * se;
+            O[r] += g->rs[r] * so;
+        }
+        count += 4 * n;
     }
     return count;
 }
 
 /* B: t_k, e^{−ikβ}, and the stage-5 coefficients h (hE for even m', hO
- * for odd m', w_k included) and G = (−1)^k h; U and V cleared. */
+ * for odd m', w_k included) and G = (−1)^k h (U and V: cleared by A). */
 HP_INLINE uint64_t SH_R(hp_stage_b)(HPGEN *g, int nj, const sh_real *const *cs, int M)
 {
     const int l = g->l;
-    const size_t n = (size_t)l + 1;
     uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        sh_real *zc = g->job + 10 * n * j, *zs = zc + n, *E = zs + n, *O = E + n;
-        sh_real *hE = zc, *hO = zs, *GE = O + n, *GO = GE + n, *U = GO + n; /* V = U + n */
+        sh_real *E = HP_JV(g, j, 2), *O = HP_JV(g, j, 3);
+        sh_real *hE = HP_JV(g, j, 0), *hO = HP_JV(g, j, 1), *GE = HP_JV(g, j, 4), *GO = HP_JV(g, j, 5);
         const sh_real *csb = cs[j] + 2 * (size_t)(M + 1);
         for (int k = 0; k <= l; k++) {
             const int same = !((l - k) & 1);
@@ -422,36 +512,41 @@ HP_INLINE uint64_t SH_R(hp_stage_b)(HPGEN *g, int nj, const sh_real *const *cs, 
             GE[k] = (k & 1) ? -hE[k] : hE[k];
             GO[k] = (k & 1) ? -hO[k] : hO[k];
         }
-        memset(U, 0, 2 * n * sizeof *U);
         count += 6u * (uint64_t)(l + 1);
     }
     return count;
 }
 
-/* 5: the wedge generated again (rows l..0), each row's sums into U, V. */
-HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj)
+/* 5: the wedge generated again (rows l..0, hp_cols), its sums into U, V:
+ * (k, m') = (r, c): U/V_c += Δ_{rc} h_r (the axpy, into U for l − r even);
+ * (k, m') = (c, r), c < r: (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r
+ * (c ≢ l) (the dot, with G). */
+HP_INLINE uint64_t SH_R(hp_stage5)(HPGEN *g, int nj, HPJOB *J)
 {
     const int l = g->l;
     const size_t n = (size_t)l + 1;
-    uint64_t count = 0;
-    SH_R(hp_init)(g);
-    for (int r = l; r >= 0; r--) {
-        int na;
-        const sh_real *row = SH_R(hp_next)(g, r, nj, &na, &count), sr = (r & 1) ? -1 : 1;
-        const int same = !((l - r) & 1), off = na < r ? na : r;
-        for (int j = 0; j < nj; j++) {
-            sh_real *hE = g->job + 10 * n * j, *hO = hE + n, *GE = hE + 4 * n, *GO = GE + n;
-            sh_real *U = GO + n, *V = U + n;
+    SH_R(hp_start)(g); /* hp_init: stage 3 */
+    for (int j = 0; j < nj; j++) {
+        const sh_real *hE = HP_JV(g, j, 0), *hO = HP_JV(g, j, 1);
+        sh_real *kp = HP_JV(g, j, 8), *U = HP_JV(g, j, 6), *V = HP_JV(g, j, 7);
+        J[j].z[0] = HP_JV(g, j, 4), J[j].z[1] = HP_JV(g, j, 5);
+        J[j].T[0] = (l & 1) ? V : U; /* U for l − r even */
+        J[j].T[1] = (l & 1) ? U : V;
+        J[j].kp = kp, J[j].acc = HP_JV(g, j, 10);
+        for (int r = 0; r <= l; r++) kp[2 * r] = g->rs[r] * hE[r], kp[2 * r + 1] = g->rs[r] * hO[r];
+        memset(J[j].acc, 0, HP_AL * n * sizeof(sh_real));
+    }
+    uint64_t count = SH_R(hp_cols)(g, nj, J, 1);
+    for (int j = 0; j < nj; j++) {
+        sh_real *U = HP_JV(g, j, 6), *V = HP_JV(g, j, 7);
+        for (int r = 0; r <= l; r++) {
             sh_real se, so;
-            /* (k, m') = (r, c): U/V_c += Δ_{rc} h_r; (k, m') = (c, r), c < r:
-             * (−1)^{r−c} Δ_{rc} h_c into U_r (c ≡ l) or V_r (c ≢ l) */
-            sh_real *T = same ? U : V;
-            SH_R(hp_dot_axpy)(off, row, (r & 1) ? GO : GE, T, hE[r], hO[r], &se, &so);
-            if (na > r) T[r] += row[r] * ((r & 1) ? hO[r] : hE[r]);
+            const sh_real sr = (r & 1) ? -g->rs[r] : g->rs[r];
+            SH_R(hp_sums)(J[j].acc, r, &se, &so);
             if (l & 1) U[r] += sr * so, V[r] += sr * se;
             else U[r] += sr * se, V[r] += sr * so;
-            count += 2u * (uint64_t)off + 1;
         }
+        count += 4 * n;
     }
     return count;
 }
@@ -461,11 +556,10 @@ HP_INLINE uint64_t SH_R(hp_stage_d)(HPGEN *g, int nocs, int nj, const sh_real *c
                                     sh_real *const *out)
 {
     const int l = g->l;
-    const size_t n = (size_t)l + 1;
     const sh_real r2 = SH_SQRT((sh_real)2);
     uint64_t count = 0;
     for (int j = 0; j < nj; j++) {
-        const sh_real *U = g->job + 10 * n * j + 6 * n, *V = U + n;
+        const sh_real *U = HP_JV(g, j, 6), *V = HP_JV(g, j, 7);
         const sh_real *csa = cs[j];
         sh_real *y = out[j] + l;
         const sh_real fl = nocs ? -1 : 1, t2 = 2 * r2;
@@ -495,12 +589,15 @@ HP_CLONES void SH_R(sh__rot_halfpi_band)(int l, int nocs, int nj, const sh_real 
 {
     HPGEN g;
     SH_R(hp_layout)(l, nj, work, &g);
+    HPJOB jb[16], *J = nj <= 16 ? jb : malloc((size_t)nj * sizeof *J);
+    if (!J) abort(); /* callers batch at most 16 */
     uint64_t count = 0;
     count += SH_R(hp_stage_a)(&g, nocs, nj, cs, M, in); /* Z(γ), σ, √2 */
-    count += SH_R(hp_stage3)(&g, nj);                    /* × Δ (the wedge's first generation) */
+    count += SH_R(hp_stage3)(&g, nj, J);                 /* × Δ (the wedge's first generation) */
     count += SH_R(hp_stage_b)(&g, nj, cs, M);            /* e^{−ikβ} */
-    count += SH_R(hp_stage5)(&g, nj);                    /* × Δ (the second generation) */
+    count += SH_R(hp_stage5)(&g, nj, J);                 /* × Δ (the second generation) */
     count += SH_R(hp_stage_d)(&g, nocs, nj, cs, out);    /* e^{−im'α}, out */
+    if (J != jb) free(J);
     if (mults) *mults += count;
 }
 
@@ -511,11 +608,12 @@ HP_CLONES void SH_R(sh__rot_halfpi_delta)(int l, void *work, sh_real *d)
     HPGEN g;
     SH_R(hp_layout)(l, 0, work, &g);
     SH_R(hp_init)(&g);
+    SH_R(hp_start)(&g);
     const int n = l + 1;
     for (int r = l; r >= 0; r--) {
         if (r < l) SH_R(hp_row)(&g, r);
         for (int c = 0; c <= r; c++) {
-            const sh_real v = g.w[r % 3][c];
+            const sh_real v = g.rs[r] * g.w[r % 3][c];
             d[(size_t)r * n + c] = v;
             d[(size_t)c * n + r] = ((r - c) & 1) ? -v : v;
         }
