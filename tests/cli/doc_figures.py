@@ -17,7 +17,7 @@ figure that is not a measurement (a parameter, a limit, a paper's printed
 value, a figure of a test in docs/ranges.md) is listed with its reason in
 tests/cli/doc_figures_exempt.tsv (page or "*" for every page, figure or "*"
 for the whole page, why).  A paragraph (up to the next blank line) whose
-figures a unit test measures, rather than an experiment, says so where it
+figures a test or a peer benchmark under tests/ measures, rather than an experiment, says so where it
 starts: <!-- figures from: tests/PATH --> (the file must exist).
 
 Usage: doc_figures.py ROOT [PAGE...]   (default pages: README.md docs/*.md)
