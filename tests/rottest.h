@@ -186,14 +186,7 @@ static inline void rot_check_apply(sh_rot_method method, sh_precision prec, doub
             ck_assert_int_eq(sh_rot_plan_blocks(p, B), SH_OK);
             for (int i = 0; i < n; i++) c[i] = 2 * rot_urand() - 1;
             ck_assert_int_eq(sh_rot_plan_apply(p, c, g), SH_OK);
-            for (int l = 0; l < order; l++) {
-                const int w = 2 * l + 1;
-                for (int a = 0; a < w; a++) {
-                    double s = 0;
-                    for (int b = 0; b < w; b++) s += B[sh_rot_block_offset(l) + (size_t)a * w + b] * c[l * l + b];
-                    h[l * l + a] = s;
-                }
-            }
+            rot_blocks_mul(order, B, c, h);
             for (int i = 0; i < n; i++)
                 ck_close(g[i], h[i], tol, 1.0, "%s apply vs blocks %s conv %d i %d",
                          sh_rot_method_name(method), name, conv, i);

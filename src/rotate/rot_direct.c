@@ -196,9 +196,10 @@ static void SH_R(dr_blocks_r)(int order, const sh_real *r, sh_real *blocks, uint
     }
 }
 
-/* The state from R: r = R with entries 2, 5, 6, 7 negated (header), the
- * first eight as 16-byte vectors times a ±1 table (exact: x·(−1) = −x),
- * R[8] copied. */
+/* The state from R: dr_signs(R, 0, r) (entries 2, 5, 6, 7 negated, the cs
+ * case), written for the per-rotation set: the first eight as 16-byte
+ * vectors times a ±1 table (exact: x·(−1) = −x), R[8] copied — the entry by
+ * entry copy and flips cost ~26 instructions there. */
 static inline __attribute__((always_inline)) void SH_R(dr_state_from)(const sh_real *R, sh_real *r)
 {
     typedef sh_real v_t __attribute__((vector_size(16)));
