@@ -3,13 +3,16 @@
  *
  * Truths: the MPFR reference (orders 1..10 at the extreme and random
  * rotations, both conventions and precisions; single bands 50, 200, 400),
- * the pointwise identity, d^l(π/2) in closed form at small l and by its
- * orthogonality to l = 4000, two other methods (zxzxz, and blanco's
+ * the pointwise identity, d^l(π/2) in closed form at small l, by its
+ * orthogonality to l = 4000 and against its recursion in binary128 (MPFR)
+ * at l = 1000 and 2000, two other methods (zxzxz, and blanco's
  * O(l²) single band, an m-recursion at fixed l that shares no code with
  * halfpi, up to l = 2000), and the identities R(a)R(b) = R(ab) and the round
  * trip Rᵀ(R x) = x to lmax 1000 (and band 4096).  Threads: the result is
  * compared bit for bit with one thread. */
 #include "rottest.h"
+
+#include <mpfr.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -146,6 +149,72 @@ START_TEST(test_delta_orthogonal_high)
         const double e = delta_probe(ls[k]);
         fprintf(stderr, "d^%d(pi/2): probe orthogonality %.3g\n", ls[k], e);
         ck_assert_msg(e <= 1e-13, "d^%d(pi/2) orthogonality %.3g", ls[k], e);
+    }
+}
+END_TEST
+
+/* d^l(π/2) (m', m ≥ 0) against the same three-term recursion carried out
+ * here in binary128 (MPFR, 113 bits: no underflow, rounding 2^-113), written
+ * from its definition (rot_halfpi.c's header): the seed row Δ_{l,m} =
+ * (−1)^{l−m} √C(2l, l+m) / 2^l, then downward in m' for every column m,
+ * Δ_{r,m} = (2m Δ_{r+1,m} − B_{r+2} Δ_{r+2,m}) / B_{r+1}, B_j =
+ * √((l+j)(l−j+1)).  The difference is the double code's own rounding
+ * (absolute: |Δ| ≤ 1). */
+static double delta_vs_binary128(int l)
+{
+    const int n = l + 1;
+    double *d = malloc((size_t)n * n * sizeof *d);
+    ck_assert_ptr_nonnull(d);
+    ck_assert_int_eq(sh_wigner_d_halfpi(l, d), SH_OK);
+    mpfr_t e, t, b1, b2, x0, x1, x2;
+    mpfr_inits2(113, e, t, b1, b2, x0, x1, x2, (mpfr_ptr)0);
+    /* e_0² = Π_{k=1..l} (2k−1)/(2k) */
+    mpfr_set_ui(e, 1, MPFR_RNDN);
+    for (int k = 1; k <= l; k++) {
+        mpfr_mul_ui(e, e, 2 * (unsigned)k - 1, MPFR_RNDN);
+        mpfr_div_ui(e, e, 2 * (unsigned)k, MPFR_RNDN);
+    }
+    mpfr_sqrt(e, e, MPFR_RNDN);
+    double worst = 0;
+    for (int m = 0; m <= l; m++) {
+        if (m) { /* e_m = e_{m−1} √((l−m+1)/(l+m)) */
+            mpfr_set_ui(t, (unsigned)(l - m + 1), MPFR_RNDN);
+            mpfr_div_ui(t, t, (unsigned)(l + m), MPFR_RNDN);
+            mpfr_sqrt(t, t, MPFR_RNDN);
+            mpfr_mul(e, e, t, MPFR_RNDN);
+        }
+        mpfr_set(x1, e, MPFR_RNDN); /* row l */
+        if ((l - m) & 1) mpfr_neg(x1, x1, MPFR_RNDN);
+        mpfr_set_ui(x2, 0, MPFR_RNDN); /* row l+1 */
+        worst = fmax(worst, fabs(d[(size_t)l * n + m] - mpfr_get_d(x1, MPFR_RNDN)));
+        for (int r = l - 1; r >= 0; r--) {
+            mpfr_set_ui(b1, (unsigned)(l + r + 1), MPFR_RNDN); /* B_{r+1} */
+            mpfr_mul_ui(b1, b1, (unsigned)(l - r), MPFR_RNDN);
+            mpfr_sqrt(b1, b1, MPFR_RNDN);
+            mpfr_set_ui(b2, (unsigned)(l + r + 2), MPFR_RNDN); /* B_{r+2} (0 at r+2 = l+1) */
+            mpfr_mul_ui(b2, b2, (unsigned)(l - r - 1), MPFR_RNDN);
+            mpfr_sqrt(b2, b2, MPFR_RNDN);
+            mpfr_mul_ui(x0, x1, 2 * (unsigned)m, MPFR_RNDN);
+            mpfr_mul(t, b2, x2, MPFR_RNDN);
+            mpfr_sub(x0, x0, t, MPFR_RNDN);
+            mpfr_div(x0, x0, b1, MPFR_RNDN);
+            worst = fmax(worst, fabs(d[(size_t)r * n + m] - mpfr_get_d(x0, MPFR_RNDN)));
+            mpfr_swap(x2, x1);
+            mpfr_swap(x1, x0);
+        }
+    }
+    mpfr_clears(e, t, b1, b2, x0, x1, x2, (mpfr_ptr)0);
+    free(d);
+    return worst;
+}
+
+START_TEST(test_delta_vs_binary128)
+{
+    const int ls[] = {1000, 2000};
+    for (size_t k = 0; k < sizeof ls / sizeof *ls; k++) {
+        const double e = delta_vs_binary128(ls[k]);
+        fprintf(stderr, "d^%d(pi/2) against the recursion in binary128: %.2g (absolute)\n", ls[k], e);
+        ck_assert_msg(e <= 1e-15, "d^%d(pi/2) off the binary128 recursion by %.3g", ls[k], e);
     }
 }
 END_TEST
@@ -399,6 +468,7 @@ static Suite *suite(void)
     tcase_add_test(tc, test_reference_band_400);
     tcase_add_test(tc, test_delta_closed_form);
     tcase_add_test(tc, test_delta_orthogonal_high);
+    tcase_add_test(tc, test_delta_vs_binary128);
     tcase_add_test(tc, test_stream_vs_plans);
     tcase_add_test(tc, test_band_vs_blanco_high);
     tcase_add_test(tc, test_identities_lmax1000);
