@@ -27,6 +27,8 @@ static sh_peer_sharp *sharp_gauss(int lmax, int *nr, int *np, double **x, double
     ck_assert_int_eq(sh_peer_sharp_rings(s, nr, np, NULL, NULL, phi0), SH_OK);
     *x = malloc(sizeof(double) * *nr * 2);
     ck_assert_int_eq(sh_peer_sharp_rings(s, nr, np, *x, *x + *nr, phi0), SH_OK);
+    /* libsharp's pairs, as it computes them: the rings at exactly ±cosθ */
+    for (int k = 0; k < *nr / 2; k++) ck_assert_double_eq((*x)[*nr - 1 - k], -(*x)[k]);
     return s;
 }
 

@@ -110,10 +110,14 @@ int sh_peer_sharp_rings(const sh_peer_sharp *s, int *nrings, int *nphi, double *
     *nphi = s->nphi;
     for (int i = 0; i < s->geom->npairs; i++)
         for (int k = 0; k < 2; k++) {
-            const sharp_ringinfo *r = k ? &s->geom->pair[i].r2 : &s->geom->pair[i].r1;
+            const sharp_ringinfo *r1 = &s->geom->pair[i].r1, *r = k ? &s->geom->pair[i].r2 : r1;
             if (r->nph <= 0) continue;
             const int ring = (int)(r->ofs / s->nphi);
-            if (cos_theta) cos_theta[ring] = r->cth;
+            /* libsharp runs one Legendre recursion per ring pair, at the
+             * first ring's cosθ, and takes the second ring's values from it
+             * by parity ([1], Sec. 3): the second ring it computes with is
+             * at −cosθ₁, not at its own cth, which can differ by an ulp. */
+            if (cos_theta) cos_theta[ring] = k ? -r1->cth : r->cth;
             if (weight) weight[ring] = r->weight;
             if (phi0) *phi0 = r->phi0;
         }

@@ -29,8 +29,11 @@ int sh_peer_sharp_gauss(int lmax, sh_peer_sharp **out);
  * libsharp recomputes cosθ from it, so its rings differ from shlab's by
  * rounding near the poles). */
 int sh_peer_sharp_grid(int lmax, const sh_grid *g, sh_peer_sharp **out);
-/* libsharp's rings as libsharp holds them (cosθ, weight): build an sh_grid
- * on exactly these rings to compare the transforms alone. */
+/* libsharp's rings as libsharp computes with them (cosθ, weight): build an
+ * sh_grid on exactly these rings to compare the transforms alone.  The
+ * second ring of each of libsharp's pairs is given at exactly −cosθ of the
+ * first, where libsharp evaluates it (its own cth of that ring can differ by
+ * an ulp); the pairs are then pairs for shlab too. */
 int sh_peer_sharp_rings(const sh_peer_sharp *s, int *nrings, int *nphi, double *cos_theta,
                         double *weight, double *phi0);
 /* One thread count for libsharp's OpenMP regions (process-wide: it calls
