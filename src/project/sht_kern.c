@@ -25,10 +25,11 @@
  * coefficients.  The recursion is seeded by the sectoral T_0 = Q_m^m, which
  * sht.c carries as mant · 2^(800·k)
  * (Fukushima 2012's extended exponent, as legendre.c; k ≤ 0 per lane).  While
- * some lane of a block has k < 0 the "checked" loop runs: a lane whose mantissa
- * passes 2^400 is rescaled by 2^−800 and k += 1; only lanes with k = 0 are
- * accumulated (the others are < 2^−400).  Once every lane has k = 0 the plain
- * loop runs, two steps at a time so that the parity of l − m is fixed per step.
+ * some lane of a block has k < 0 the "checked" loop runs: every few steps a
+ * lane whose mantissa passed 2^400 is rescaled by 2^−800 and k += 1; only
+ * lanes with k = 0 are accumulated (the others are < 2^−400).  Once every
+ * lane has k = 0 the plain loop runs, two steps at a time so that the parity
+ * of l − m is fixed per step.
  *
  *  [1] S. A. Holmes, W. E. Featherstone, J. Geodesy 76 (2002) 279.
  *  [2] T. Fukushima, J. Geodesy 86 (2012) 271.
@@ -101,6 +102,39 @@ static inline double hsum(vd v)
     return s;
 }
 #endif
+
+/* The lane sums of VL vectors at once, r[k] = Σ_lanes a[k]: a transpose by
+ * pairwise sums (log₂ VL rounds of shuffles and adds, every add a full
+ * vector), instead of VL separate reductions. */
+#if defined(SHT_KERN_AVX512)
+static inline vd hsum_vl(const vd *a)
+{
+    __m512d s[4], t[2];
+    for (int k = 0; k < 4; k++) /* [a2k₀+a2k₁, a2k+1₀+a2k+1₁, a2k₂+a2k₃, …] */
+        s[k] = _mm512_add_pd(_mm512_unpacklo_pd((__m512d)a[2 * k], (__m512d)a[2 * k + 1]),
+                             _mm512_unpackhi_pd((__m512d)a[2 * k], (__m512d)a[2 * k + 1]));
+    for (int k = 0; k < 2; k++) /* 128-bit lanes: [s0.0+s0.1, s0.2+s0.3, s1.0+s1.1, s1.2+s1.3] */
+        t[k] = _mm512_add_pd(_mm512_shuffle_f64x2(s[2 * k], s[2 * k + 1], 0x88),
+                             _mm512_shuffle_f64x2(s[2 * k], s[2 * k + 1], 0xdd));
+    return (vd)_mm512_add_pd(_mm512_shuffle_f64x2(t[0], t[1], 0x88), _mm512_shuffle_f64x2(t[0], t[1], 0xdd));
+}
+#elif defined(SHT_KERN_AVX2)
+static inline vd hsum_vl(const vd *a)
+{
+    const __m256d s0 = _mm256_add_pd(_mm256_unpacklo_pd((__m256d)a[0], (__m256d)a[1]),
+                                     _mm256_unpackhi_pd((__m256d)a[0], (__m256d)a[1]));
+    const __m256d s1 = _mm256_add_pd(_mm256_unpacklo_pd((__m256d)a[2], (__m256d)a[3]),
+                                     _mm256_unpackhi_pd((__m256d)a[2], (__m256d)a[3]));
+    return (vd)_mm256_add_pd(_mm256_permute2f128_pd(s0, s1, 0x20), _mm256_permute2f128_pd(s0, s1, 0x31));
+}
+#else
+static inline vd hsum_vl(const vd *a)
+{
+    vd r;
+    for (int k = 0; k < VL; k++) r[k] = hsum(a[k]);
+    return r;
+}
+#endif
 static inline int all_set(vm m) { return msk_bits(m) == (1u << VL) - 1; }
 static inline int any_set(vm m) { return msk_bits(m) != 0; }
 
@@ -132,49 +166,70 @@ AI int blk_load(blk_t *B, const sht_kjob *j, int b, const int nv)
     return all_set(live) ? 3 : any_set(some) ? 2 : 1;
 }
 
-/* One step with rescaling: T_i = α_i x T_{i−1} − T_{i−2}; a lane whose
- * mantissa passes 2^400 while its scale k < 0 is multiplied by 2^−800 and
- * k += 1.  q (if not NULL) gets the new values of the live lanes, 0 elsewhere. */
-AI void step_checked(blk_t *B, double alpha, vd *q, const int nv)
+/* While some lane of a block is not live (k < 0) the block runs in groups of
+ * up to RESCALE_EVERY steps: plain steps, then one check that rescales every
+ * lane with k < 0 whose last two values passed 2^400 (both by 2^−800, exactly;
+ * k += 1) and makes the mask of live lanes (k = 0) for the next group.  Between
+ * checks a value grows by less than 2^20 a step (by at most |α_i x| + 1, and
+ * α_i ≤ √(2m) roughly: 45 at lmax 1023, 90 at 4096), so it stays below
+ * 2^480, far from overflow; a
+ * lane that passes 2^400 inside a group is accumulated from the next check
+ * on, and what it would have added before is below 2^(400+60−800) = 2^−340
+ * of an O(1) sum. */
+#define RESCALE_EVERY 4
+
+/* T_i = α_i x T_{i−1} − T_{i−2} for every lane (scaled or not). */
+AI void step_plain(blk_t *B, double alpha, const int nv)
 {
     for (int v = 0; v < nv; v++) {
-        vd pn = alpha * B->x[v] * B->p1[v] - B->p2[v];
-        const vm big = (vabs(pn) > 0x1p400) & (B->sc[v] < 0.0);
-        const vd f = sel(big, bc(0x1p-800), bc(1.0));
-        pn *= f;
-        B->p1[v] *= f;
-        B->sc[v] += sel(big, bc(1.0), bc(0.0));
+        const vd pn = alpha * B->x[v] * B->p1[v] - B->p2[v];
         B->p2[v] = B->p1[v];
         B->p1[v] = pn;
-        if (q) q[v] = sel(B->sc[v] == 0.0, pn, bc(0.0));
     }
 }
 
-AI int blk_any_live(const blk_t *B, const int nv)
+/* The check: rescale, and live[v] = all ones on the lanes with k = 0.
+ * Returns the number of vectors whose lanes all live. */
+AI int blk_rescale(blk_t *B, vm *live, const int nv)
+{
+    int all = 0;
+    for (int v = 0; v < nv; v++) {
+        const vm big = ((vabs(B->p1[v]) > 0x1p400) | (vabs(B->p2[v]) > 0x1p400)) & (B->sc[v] < 0.0);
+        const vd f = sel(big, bc(0x1p-800), bc(1.0));
+        B->p1[v] *= f;
+        B->p2[v] *= f;
+        B->sc[v] += sel(big, bc(1.0), bc(0.0));
+        live[v] = B->sc[v] == 0.0;
+        all += all_set(live[v]);
+    }
+    return all;
+}
+
+AI int blk_any_live(const vm *live, const int nv)
 {
     vm m = {0};
-    for (int v = 0; v < nv; v++) m |= B->sc[v] == 0.0;
+    for (int v = 0; v < nv; v++) m |= live[v];
     return any_set(m);
 }
 
-AI int blk_all_live(const blk_t *B, const int nv)
-{
-    vm m = (vm){0} - 1;
-    for (int v = 0; v < nv; v++) m &= B->sc[v] == 0.0;
-    return all_set(m);
-}
-
-/* Steps while no lane lives: nothing to accumulate.  The test for a live lane
- * is made every 4 steps; a lane that came alive in between is then ≤ 2^−400
- * times the growth of 3 steps (< 2^−340), and those terms are dropped. */
+/* Steps while no lane lives: nothing to accumulate.  Returns the first step
+ * after the check that found a live lane (or nl). */
 AI int run_dead(blk_t *B, const double *al, int i, int nl, const int nv)
 {
+    vm live[NVMAX];
     while (i < nl) {
-        const int e = i + 4 < nl ? i + 4 : nl;
-        for (; i < e; i++) step_checked(B, al[i], NULL, nv);
-        if (blk_any_live(B, nv)) break;
+        const int e = i + RESCALE_EVERY < nl ? i + RESCALE_EVERY : nl;
+        for (; i < e; i++) step_plain(B, al[i], nv);
+        blk_rescale(B, live, nv);
+        if (blk_any_live(live, nv)) break;
     }
     return i;
+}
+
+/* The values of the live lanes, 0 on the others. */
+AI void live_values(const blk_t *B, const vm *live, vd *q, const int nv)
+{
+    for (int v = 0; v < nv; v++) q[v] = (vd)((vm)B->p1[v] & live[v]);
 }
 
 /* ------------------------------------------------------------ analysis */
@@ -218,33 +273,50 @@ AI void analysis_body(const sht_kjob *j, const int nc)
     const int nl = j->lmax - j->m + 1, np = j->npad, s = 2 * nc;
     const double *al = j->alpha, *in = j->in;
     vd *acc = (vd *)j->acc;
-    memset(acc, 0, sizeof(vd) * (size_t)nl * s);
+    int z = nl; /* acc of bands i ≥ z hold sums; below z nothing was added yet */
     for (int b = 0; b < np; b += VL * NVA) {
         blk_t B;
         const int kind = blk_load(&B, j, b, NVA);
         if (!kind) continue;
         vd q[NVMAX];
-        int i = 1;
-        if (kind == 1) i = run_dead(&B, al, 1, nl, NVA);
-        else {
+        int i = kind == 1 ? run_dead(&B, al, 1, nl, NVA) : 0; /* the first band this block adds to */
+        if (i < z) { /* zero only the bands some block reaches (near a pole, high m start late) */
+            memset(acc + (size_t)i * s, 0, sizeof(vd) * (size_t)(z - i) * s);
+            z = i;
+        }
+        if (i == 0) {
+            i = 1;
             for (int v = 0; v < NVA; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
             acc_analysis(acc, q, in, B.doff, nc, 0, NVA); /* i = 0: l = m */
         }
-        if (kind != 3) /* some lanes still scaled: checked steps, live lanes accumulated */
-            while (i < nl) {
-                const int e = i + 4 < nl ? i + 4 : nl;
+        if (kind != 3) { /* some lanes still scaled: live lanes accumulated, a check every few steps */
+            vm live[NVMAX];
+            while (i < nl && blk_rescale(&B, live, NVA) < NVA) {
+                const int e = i + RESCALE_EVERY < nl ? i + RESCALE_EVERY : nl;
                 for (; i < e; i++) {
-                    step_checked(&B, al[i], q, NVA);
+                    step_plain(&B, al[i], NVA);
+                    live_values(&B, live, q, NVA);
                     acc_analysis(acc + (size_t)i * s, q, in, B.doff, nc, i & 1, NVA);
                 }
-                if (blk_all_live(&B, NVA)) break;
             }
+        }
         if (i & 1) plain_analysis(&B, al, i, nl, acc, in, nc, 1, NVA);
         else plain_analysis(&B, al, i, nl, acc, in, nc, 0, NVA);
     }
-    /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i) */
-    for (int i = 0; i < nl; i++)
-        for (int k = 0; k < s; k++) j->out[(size_t)i * s + k] += j->g[i] * hsum(acc[(size_t)i * s + k]);
+    /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i), VL sums at a time */
+    const int n = nl * s;
+    int t = z * s, i = z, k = 0; /* t = i·s + k */
+    for (; t + VL <= n; t += VL) {
+        const vd r = hsum_vl(acc + t);
+        for (int q = 0; q < VL; q++) {
+            j->out[t + q] += j->g[i] * r[q];
+            if (++k == s) k = 0, i++;
+        }
+    }
+    for (; t < n; t++) {
+        j->out[t] += j->g[i] * hsum(acc[t]);
+        if (++k == s) k = 0, i++;
+    }
 }
 
 /* (A constant channel count, as in synthesis, was measured slower here.) */
@@ -298,15 +370,17 @@ AI void synthesis_body(const sht_kjob *j, const int nc)
                 for (int v = 0; v < NVS; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
                 acc_synthesis(E, q, cin, nc, NVS); /* l = m */
             }
-            if (kind != 3)
-                while (i < nl) {
-                    const int e = i + 4 < nl ? i + 4 : nl;
+            if (kind != 3) {
+                vm live[NVMAX];
+                while (i < nl && blk_rescale(&B, live, NVS) < NVS) {
+                    const int e = i + RESCALE_EVERY < nl ? i + RESCALE_EVERY : nl;
                     for (; i < e; i++) {
-                        step_checked(&B, al[i], q, NVS);
+                        step_plain(&B, al[i], NVS);
+                        live_values(&B, live, q, NVS);
                         acc_synthesis((i & 1) ? O : E, q, cin + (size_t)i * s, nc, NVS);
                     }
-                    if (blk_all_live(&B, NVS)) break;
                 }
+            }
             if (i & 1) plain_synthesis(&B, al, i, nl, E, O, cin, nc, 1, NVS);
             else plain_synthesis(&B, al, i, nl, E, O, cin, nc, 0, NVS);
         }
