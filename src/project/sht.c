@@ -85,6 +85,7 @@ struct sh_sht {
     fftw_complex **fold;        /* nphi, when nphi ≤ 2·lmax (aliasing), else NULL */
     double **gsp;               /* the m-spectra of one group's rings: [(2g + side)·nchan + c][m][2] */
     double **acc;               /* analysis lane accumulators, 64-byte aligned */
+    double **mout;              /* analysis sums of one m and chunk: (lmax+1)·nchan·2 */
     sh_progress_fn progress;
     void *pctx;
 };
@@ -231,7 +232,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
          ((double)(nchan + 1) * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
-          L1 * nchan * 2 * 8 + 8 + 2.0 * 8 * nchan * L1 * 2);
+          L1 * nchan * 2 * 8 + L1 * nchan * 2 + 8 + 2.0 * 8 * nchan * L1 * 2);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     b += (double)polar_len(order - 1, polar_m(order - 1)) * sizeof(double) + SHT_POLAR_M * sizeof(size_t);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
@@ -255,8 +256,9 @@ void sh_sht_destroy(sh_sht *p)
         if (p->fold) fftw_free(p->fold[t]);
         if (p->gsp) free(p->gsp[t]);
         if (p->acc) free(p->acc[t]);
+        if (p->mout) free(p->mout[t]);
     }
-    free(p->ring), free(p->fbuf), free(p->spec), free(p->fold), free(p->gsp), free(p->acc);
+    free(p->ring), free(p->fbuf), free(p->spec), free(p->fold), free(p->gsp), free(p->acc), free(p->mout);
     free(p->pn), free(p->ps), free(p->px), free(p->psin), free(p->w), free(p->rc), free(p->moff);
     free(p->pal), free(p->poff);
     free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->alm);
@@ -315,9 +317,10 @@ static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
     p->fold = calloc(T, sizeof *p->fold);
     p->gsp = calloc(T, sizeof *p->gsp);
     p->acc = calloc(T, sizeof *p->acc);
+    p->mout = calloc(T, sizeof *p->mout);
     int bad = !p->pn || !p->ps || !p->px || !p->psin || (g->weight && !p->w) || !p->rc || !p->moff ||
               !p->fm || (pm && (!p->pal || !p->poff)) || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
-              !p->ring || !p->fbuf || !p->spec || !p->fold || !p->gsp || !p->acc || !p->alm;
+              !p->ring || !p->fbuf || !p->spec || !p->fold || !p->gsp || !p->acc || !p->mout || !p->alm;
     const size_t accn = (size_t)(L + 1) * nchan * 2 * 8;
     for (int t = 0; t < T && !bad; t++) {
         p->ring[t] = fftw_malloc(sizeof(double) * (size_t)nchan * N);
@@ -325,8 +328,9 @@ static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
         p->spec[t] = fftw_malloc(sizeof(fftw_complex) * (size_t)(N / 2 + 1));
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
+        p->mout[t] = malloc(sizeof(double) * (size_t)(L + 1) * nchan * 2);
         p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)(L + 1) * 2);
-        bad = !p->ring[t] || !p->fbuf[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->gsp[t];
+        bad = !p->ring[t] || !p->fbuf[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->mout[t] || !p->gsp[t];
     }
     return bad;
 }
@@ -577,6 +581,24 @@ static inline __attribute__((always_inline)) void alm_convert(sh_sht *p, sh_conv
 
 /* ------------------------------------------------------------- analysis */
 
+#define MRUN 8 /* m to a thread at a time in the analysis's Legendre stage */
+
+/* The sums of one m (out, as the kernels write them) into coeffs:
+ * c_l^{±m} = √2·Σ (m > 0), odd m negated in nocs. */
+static void put_m(const sh_sht *p, sh_convention conv, int m, const double *out, double *coeffs)
+{
+    const int L = p->lmax, nc = p->nchan;
+    const size_t nn = (size_t)p->order * p->order;
+    const double f = mfactor(conv, m);
+    for (int l = m; l <= L; l++)
+        for (int c = 0; c < nc; c++) {
+            const double *o = out + ((size_t)(l - m) * nc + c) * 2;
+            double *cc = coeffs + c * nn;
+            cc[sh_index(l, m)] = f * o[0];
+            if (m) cc[sh_index(l, -m)] = f * o[1];
+        }
+}
+
 /* One group's rings, spectra in gsp (first min(N/2, lmax) + 1 bins; have[g][side]
  * = 0 where there is no ring), scaled by the ring weights and the φ0 phase and
  * written m by m into the chunk as S = north + south and D = north − south,
@@ -618,7 +640,10 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     if (!p->w) return sh_error(SH_EINVAL, "sh_sht_analysis: the grid has no weights");
     if (conv != SH_CS && conv != SH_NOCS) return sh_error(SH_EINVAL, "unknown convention");
     const int L = p->lmax, nc = p->nchan, N = p->nphi;
-    memset(p->alm, 0, sizeof(double) * p->moff[L] * nc + 2 * nc * sizeof(double));
+    /* One chunk (every ring pair at once): the sums of each m go straight into
+     * coeffs.  Several: they are added up m-major in alm, then converted. */
+    const int direct = p->nchunks == 1;
+    if (!direct) memset(p->alm, 0, sizeof(double) * p->moff[L] * nc + 2 * nc * sizeof(double));
     first_err err = {0, 0, ""};
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;
@@ -653,21 +678,27 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
             scatter_group(p, t, i0, n, (const double (*)[2])w);
         }
         if (err.st) break;
-        /* (2) Legendre sums, m by m, added to the m-major coefficients */
-#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
+        /* (2) Legendre sums, m by m (runs of MRUN m to a thread, so that the
+         * rows of coeffs one m writes are written by one thread) */
+#pragma omp parallel for schedule(dynamic, MRUN) num_threads(p->nthreads)
         for (int m = 0; m <= L; m++) {
+            const int t = thread_id();
             sht_kjob j = job_for(p, m, npad);
             j.in = data_at(p, 0, m, 0, 0);
-            j.out = p->alm + p->moff[m] * nc;
-            j.acc = p->acc[thread_id()];
+            j.out = p->mout[t];
+            j.acc = p->acc[t];
             p->ana(&j);
             if (m < p->pol.pm) sh__sht_polar_analysis(&p->pol, &j, n);
+            if (direct) put_m(p, conv, m, j.out, coeffs);
+            else {
+                double *a = p->alm + p->moff[m] * nc;
+                for (size_t q = 0; q < (size_t)(L - m + 1) * nc * 2; q++) a[q] += j.out[q];
+            }
         }
         if (p->progress) p->progress(p->pctx, ch + 1, p->nchunks, "ring chunks");
     }
     if (err.st) return sh_error(err.st, "%s", err.msg);
-    /* c_l^{±m} = √2·Σ (m > 0), odd m negated in nocs */
-    alm_convert(p, conv, coeffs, NULL, 1); /* inlined: one loop per direction */
+    if (!direct) alm_convert(p, conv, coeffs, NULL, 1); /* inlined: one loop per direction */
     return SH_OK;
 }
 

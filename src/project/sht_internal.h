@@ -35,7 +35,8 @@ typedef struct {
     size_t sstride, dstride;    /* group strides of the seeds and of in/out */
     const double *alpha, *g;    /* scaled recursion of this m (sht_kern.c), indexed by l − m */
     /* analysis: in  = rows (4c + k)·SHT_GRP, k = S_re, S_im, D_re, D_im (north ± south),
-     *           out[(l−m)·nchan·2 + 2c + k] += g_{l−m} Σ_lanes Q_l^m · (S or D)_k, k = re, im;
+     *           out[(l−m)·nchan·2 + 2c + k] = g_{l−m} Σ_lanes Q_l^m · (S or D)_k, k = re, im
+     *           (the polar path then adds its lanes' sums);
      *           acc: scratch of (lmax−m+1)·nchan·2·8 doubles, 64-byte aligned.
      * synthesis: in = [(l−m)·nchan·2 + 2c + k] coefficients of this m (times g),
      *           out = rows (4c + k)·SHT_GRP, k = north re, north im, south re, south im. */

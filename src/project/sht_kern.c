@@ -303,18 +303,19 @@ AI void analysis_body(const sht_kjob *j, const int nc)
         if (i & 1) plain_analysis(&B, al, i, nl, acc, in, nc, 1, NVA);
         else plain_analysis(&B, al, i, nl, acc, in, nc, 0, NVA);
     }
-    /* out_i += g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i), VL sums at a time */
+    /* out_i = g_i · Σ_lanes acc_i  (Q_l^m = g_i T_i), VL sums at a time; 0 below z */
     const int n = nl * s;
+    memset(j->out, 0, sizeof(double) * (size_t)z * s);
     int t = z * s, i = z, k = 0; /* t = i·s + k */
     for (; t + VL <= n; t += VL) {
         const vd r = hsum_vl(acc + t);
         for (int q = 0; q < VL; q++) {
-            j->out[t + q] += j->g[i] * r[q];
+            j->out[t + q] = j->g[i] * r[q];
             if (++k == s) k = 0, i++;
         }
     }
     for (; t < n; t++) {
-        j->out[t] += j->g[i] * hsum(acc[t]);
+        j->out[t] = j->g[i] * hsum(acc[t]);
         if (++k == s) k = 0, i++;
     }
 }
