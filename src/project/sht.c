@@ -58,6 +58,7 @@ struct sh_sht {
     int order, lmax, nrings, nphi, nchan, nthreads;
     int npairs, chunk, nchunks; /* chunk: pairs per chunk, a multiple of SHT_LANES */
     int chunk_alloc;            /* the chunk the buffers were sized for */
+    int seeded;                 /* 1 + the chunk whose seeds cmant, cscl hold (0: none) */
     double phi0;
     int *pn, *ps;               /* pair → north ring, south ring (−1: single ring) */
     double *px, *psin;          /* pair → cosθ, sinθ of its north ring */
@@ -145,6 +146,7 @@ int sh__sht_set_chunk(sh_sht *p, int pairs)
         return sh_error(SH_EINVAL, "chunk of %d pairs (a multiple of %d, at most %d)", pairs, SHT_LANES,
                         p ? p->chunk_alloc : 0);
     p->chunk = pairs;
+    p->seeded = 0;
     p->nchunks = (p->npairs + pairs - 1) / pairs;
     return SH_OK;
 }
@@ -648,11 +650,12 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;
         const int npad = (n + SHT_LANES - 1) / SHT_LANES * SHT_LANES;
+        const int seed = p->seeded != ch + 1; /* one chunk: the seeds of the last transform still hold */
         /* (1) rings, a group of lanes at a time: seeds; fill, FFT, scatter */
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
         for (int i0 = 0; i0 < npad; i0 += GRP) {
             const int t = thread_id();
-            seeds_group(p, q0, n, i0);
+            if (seed) seeds_group(p, q0, n, i0);
             const int kmax = N / 2 < L ? N / 2 : L;
             double w[GRP][2] = {{0}};
             for (int g = 0; g < GRP && i0 + g < n; g++)
@@ -677,6 +680,7 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
                 }
             scatter_group(p, t, i0, n, (const double (*)[2])w);
         }
+        p->seeded = ch + 1;
         if (err.st) break;
         /* (2) Legendre sums, m by m (runs of MRUN m to a thread, so that the
          * rows of coeffs one m writes are written by one thread) */
@@ -775,8 +779,11 @@ int sh__sht_synthesis_cb(sh_sht *p, sh_convention conv, const double *coeffs, co
     for (int ch = 0; ch < p->nchunks && !err.st; ch++) {
         const int q0 = ch * p->chunk, n = p->npairs - q0 < p->chunk ? p->npairs - q0 : p->chunk;
         const int npad = (n + SHT_LANES - 1) / SHT_LANES * SHT_LANES;
+        if (p->seeded != ch + 1) { /* one chunk: the seeds of the last transform still hold */
 #pragma omp parallel for schedule(static) num_threads(p->nthreads)
-        for (int i0 = 0; i0 < npad; i0 += GRP) seeds_group(p, q0, n, i0);
+            for (int i0 = 0; i0 < npad; i0 += GRP) seeds_group(p, q0, n, i0);
+            p->seeded = ch + 1;
+        }
         /* (1) Legendre sums, m by m: a_m, b_m of every ring of the chunk */
 #pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
         for (int m = 0; m <= L; m++) {
