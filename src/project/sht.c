@@ -74,7 +74,8 @@ struct sh_sht {
     sht_kern_fn ana, syn;
     fftw_plan r2c, c2r;
     /* chunk buffers */
-    double *cx, *cmant, *cscl;  /* cx[chunk]; cmant, cscl: [group][m][SHT_GRP] */
+    double *cx, *cmant, *cscl;  /* cx[chunk]; cmant, cscl: [m][chunk_alloc lanes] (m-major: a
+                                   kernel job reads one run; they are written once per chunk) */
     double *cdata;              /* [group][m][nchan·4][SHT_GRP] (sht_internal.h) */
     double *alm;                /* coefficients m-major: m at alm + moff[m]·nchan, then
                                    [(l−m)·nchan + c]·2 + {0, 1} for c_l^{m}, c_l^{−m} */
@@ -459,8 +460,7 @@ static inline int thread_id(void)
 }
 
 
-/* Group strides (doubles) of the chunk buffers. */
-static inline size_t seed_stride(const sh_sht *p) { return (size_t)(p->lmax + 1) * GRP; }
+/* Group stride (doubles) of the chunk's data (the seeds' groups are contiguous). */
 static inline size_t data_stride(const sh_sht *p) { return (size_t)(p->lmax + 1) * p->nchan * 4 * GRP; }
 
 /* Sectoral seeds of lanes [i0, i0+GRP) (one group) of the chunk starting at
@@ -472,8 +472,8 @@ static void seeds_group(sh_sht *p, int q0, int n, int i0)
     typedef double v8 __attribute__((vector_size(GRP * sizeof(double))));
     typedef long long m8 __attribute__((vector_size(GRP * sizeof(double))));
     const int L = p->lmax;
-    double *mant = p->cmant + (size_t)(i0 / GRP) * seed_stride(p);
-    double *scl = p->cscl + (size_t)(i0 / GRP) * seed_stride(p);
+    const size_t ms = (size_t)p->chunk_alloc; /* m stride */
+    double *mant = p->cmant + i0, *scl = p->cscl + i0;
     v8 s, P, k = {0};
     for (int g = 0; g < GRP; g++) {
         const int live = i0 + g < n;
@@ -489,19 +489,20 @@ static void seeds_group(sh_sht *p, int q0, int n, int i0)
             P *= (v8)(((m8)big & low) | ((m8)one & ~low));
             k -= (v8)((m8)one & low);
         }
-        memcpy(mant + (size_t)m * GRP, &P, sizeof P);
-        memcpy(scl + (size_t)m * GRP, &k, sizeof k);
+        memcpy(mant + m * ms, &P, sizeof P);
+        memcpy(scl + m * ms, &k, sizeof k);
         if (m < p->pol.pm) /* the polar path does these lanes: the kernels see zero */
             for (int g = 0; g < GRP; g++)
-                if (sht_polar_lane(&p->pol, p->cx[i0 + g])) mant[(size_t)m * GRP + g] = 0.0;
+                if (sht_polar_lane(&p->pol, p->cx[i0 + g])) mant[m * ms + g] = 0.0;
     }
 }
 
 static sht_kjob job_for(const sh_sht *p, int m, int npad)
 {
     const int nl = p->lmax - m + 1;
-    sht_kjob j = {m, p->lmax, p->nchan, npad, p->cx, p->cmant + (size_t)m * GRP, p->cscl + (size_t)m * GRP,
-                  seed_stride(p), data_stride(p), p->rc + p->moff[m], p->rc + p->moff[m] + nl,
+    sht_kjob j = {m, p->lmax, p->nchan, npad, p->cx, p->cmant + (size_t)m * p->chunk_alloc,
+                  p->cscl + (size_t)m * p->chunk_alloc,
+                  GRP, data_stride(p), p->rc + p->moff[m], p->rc + p->moff[m] + nl,
                   NULL, NULL, NULL};
     return j;
 }
