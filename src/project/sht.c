@@ -76,7 +76,7 @@ struct sh_sht {
     /* chunk buffers */
     double *cx, *cmant, *cscl;  /* cx[chunk]; cmant, cscl: [m][chunk_alloc lanes] (m-major: a
                                    kernel job reads one run; they are written once per chunk) */
-    double *cdata;              /* [group][m][nchan·4][SHT_GRP] (sht_internal.h) */
+    double *cdata;              /* [m][group][nchan·4][SHT_GRP] (sht_internal.h) */
     double *alm;                /* coefficients m-major: m at alm + moff[m]·nchan, then
                                    [(l−m)·nchan + c]·2 + {0, 1} for c_l^{m}, c_l^{−m} */
     /* per-thread scratch */
@@ -461,7 +461,7 @@ static inline int thread_id(void)
 
 
 /* Group stride (doubles) of the chunk's data (the seeds' groups are contiguous). */
-static inline size_t data_stride(const sh_sht *p) { return (size_t)(p->lmax + 1) * p->nchan * 4 * GRP; }
+static inline size_t data_stride(const sh_sht *p) { return (size_t)p->nchan * 4 * GRP; }
 
 /* Sectoral seeds of lanes [i0, i0+GRP) (one group) of the chunk starting at
  * pair q0 (n pairs): Q_m^m(x) = mant·2^(800·k) by the product of legendre.c,
@@ -510,7 +510,7 @@ static sht_kjob job_for(const sh_sht *p, int m, int npad)
 /* Row r of lane i0 + g's m-data in the chunk buffer (the group of i0). */
 static inline double *data_at(sh_sht *p, int i0, int m, int c, int k)
 {
-    return p->cdata + (size_t)(i0 / GRP) * data_stride(p) + (((size_t)m * p->nchan + c) * 4 + k) * GRP;
+    return p->cdata + (size_t)m * p->chunk_alloc * p->nchan * 4 + (size_t)(i0 / GRP) * data_stride(p) + ((size_t)c * 4 + k) * GRP;
 }
 
 /* The first failure among rings, by ring index, so that the reported error

@@ -21,9 +21,12 @@
 #define SHT_RESCALE 400
 
 /* Lanes (ring pairs) are stored in groups of SHT_GRP, one cache line of
- * doubles: the chunk buffers are group-major, [group][m][row][SHT_GRP], so
- * that the ring stage writes and reads one group's region contiguously and
- * the Legendre stage reads, for one m, a line per group and row. */
+ * doubles: the chunk buffers are m-major, [m][group][row][SHT_GRP], so that
+ * the Legendre stage reads (analysis) or writes (synthesis) the rows of one m
+ * as one run, and the ring stage a line per group, row and m.  (Group-major,
+ * [group][m][row][SHT_GRP], which the ring stage would write contiguously,
+ * measured 2–6 % slower at lmax 1023: the kernels' side, touched once per m
+ * and block, is the one that must not stride.) */
 #define SHT_GRP 8
 
 /* One job of the Legendre stage: one m, every ring pair of one chunk.  Lane
@@ -46,7 +49,7 @@ typedef struct {
 
 typedef void (*sht_kern_fn)(const sht_kjob *);
 
-/* Offset of lane i in a group-major array with group stride `stride`. */
+/* Offset of lane i in an array of groups with group stride `stride`. */
 static inline size_t sht_lane_off(int i, size_t stride) { return (size_t)(i / SHT_GRP) * stride + i % SHT_GRP; }
 
 /* The polar path (sht_polar.c).  Next to a pole the recursion of the kernels

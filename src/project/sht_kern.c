@@ -138,8 +138,9 @@ static inline vd hsum_vl(const vd *a)
 static inline int all_set(vm m) { return msk_bits(m) == (1u << VL) - 1; }
 static inline int any_set(vm m) { return msk_bits(m) != 0; }
 
-/* State of one block: nv ≤ NVMAX vectors of lanes; off[v]: where vector v's lanes
- * start in a group-major array of group stride 1 row (see lane_off). */
+/* State of one block: nv ≤ NVMAX vectors of lanes; doff[v]: where vector v's
+ * lanes start in the data rows of this m (group stride dstride, see
+ * sht_lane_off). */
 typedef struct {
     vd x[NVMAX], p1[NVMAX], p2[NVMAX], sc[NVMAX];
     size_t doff[NVMAX];
