@@ -47,7 +47,6 @@
 #endif
 
 #define GRP SHT_GRP
-#define MRUN 8 /* m to a thread at a time in the analysis's Legendre stage */
 _Static_assert(SHT_LANES % GRP == 0, "groups must tile a chunk");
 
 /* Working memory budget for the chunk buffers (the m-spectra of a chunk). */
@@ -88,7 +87,7 @@ struct sh_sht {
     fftw_complex **fold;        /* nphi, when nphi ≤ 2·lmax (aliasing), else NULL */
     double **gsp;               /* the m-spectra of one group's rings: [(2g + side)·nchan + c][m][2] */
     double **acc;               /* analysis lane accumulators, 64-byte aligned */
-    double **mout;              /* analysis sums of a run of MRUN m: MRUN·(lmax+1)·nchan·2 */
+    double **mout;              /* analysis sums of one m and chunk: (lmax+1)·nchan·2 */
     sh_progress_fn progress;
     void *pctx;
 };
@@ -236,7 +235,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
          ((double)(nchan + 1) * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
-          L1 * nchan * 2 * 8 + L1 * nchan * 2 * MRUN + 8 + 2.0 * 8 * nchan * L1 * 2);
+          L1 * nchan * 2 * 8 + L1 * nchan * 2 + 8 + 2.0 * 8 * nchan * L1 * 2);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     b += (double)polar_len(order - 1, polar_m(order - 1)) * sizeof(double) + SHT_POLAR_M * sizeof(size_t);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
@@ -332,7 +331,7 @@ static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
         p->spec[t] = fftw_malloc(sizeof(fftw_complex) * (size_t)(N / 2 + 1));
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
-        p->mout[t] = malloc(sizeof(double) * (size_t)(L + 1) * nchan * 2 * MRUN);
+        p->mout[t] = malloc(sizeof(double) * (size_t)(L + 1) * nchan * 2);
         p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)(L + 1) * 2);
         bad = !p->ring[t] || !p->fbuf[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->mout[t] || !p->gsp[t];
     }
@@ -585,26 +584,21 @@ static inline __attribute__((always_inline)) void alm_convert(sh_sht *p, sh_conv
 
 /* ------------------------------------------------------------- analysis */
 
+#define MRUN 8 /* m to a thread at a time in the analysis's Legendre stage */
 
-/* The sums of a run of m (m0 ≤ m < m1; those of m at out + (m − m0)·os, as
- * the kernels write them) into coeffs, row by row, so that the run's values
- * of a row are written together (two short runs of the row per l):
+/* The sums of one m (out, as the kernels write them) into coeffs:
  * c_l^{±m} = √2·Σ (m > 0), odd m negated in nocs. */
-static void put_run(const sh_sht *p, sh_convention conv, int m0, int m1, const double *out, size_t os,
-                    double *coeffs)
+static void put_m(const sh_sht *p, sh_convention conv, int m, const double *out, double *coeffs)
 {
     const int L = p->lmax, nc = p->nchan;
     const size_t nn = (size_t)p->order * p->order;
-    double f[MRUN];
-    for (int m = m0; m < m1; m++) f[m - m0] = mfactor(conv, m);
-    for (int l = m0; l <= L; l++)
+    const double f = mfactor(conv, m);
+    for (int l = m; l <= L; l++)
         for (int c = 0; c < nc; c++) {
-            double *row = coeffs + c * nn + (size_t)l * (l + 1); /* m at row[m] */
-            for (int m = m0; m < m1 && m <= l; m++) {
-                const double *o = out + (m - m0) * os + ((size_t)(l - m) * nc + c) * 2;
-                row[m] = f[m - m0] * o[0];
-                if (m) row[-m] = f[m - m0] * o[1];
-            }
+            const double *o = out + ((size_t)(l - m) * nc + c) * 2;
+            double *cc = coeffs + c * nn;
+            cc[sh_index(l, m)] = f * o[0];
+            if (m) cc[sh_index(l, -m)] = f * o[1];
         }
 }
 
@@ -689,25 +683,22 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
         }
         p->seeded = ch + 1;
         if (err.st) break;
-        /* (2) Legendre sums, m by m, in runs of MRUN m to a thread (put
-         * together into the rows of coeffs) */
-#pragma omp parallel for schedule(dynamic) num_threads(p->nthreads)
-        for (int m0 = 0; m0 <= L; m0 += MRUN) {
-            const int t = thread_id(), m1 = m0 + MRUN <= L + 1 ? m0 + MRUN : L + 1;
-            const size_t os = (size_t)(L + 1) * nc * 2;
-            for (int m = m0; m < m1; m++) {
-                sht_kjob j = job_for(p, m, npad);
-                j.in = data_at(p, 0, m, 0, 0);
-                j.out = p->mout[t] + (m - m0) * os;
-                j.acc = p->acc[t];
-                p->ana(&j);
-                if (m < p->pol.pm) sh__sht_polar_analysis(&p->pol, &j, n);
-                if (!direct) {
-                    double *a = p->alm + p->moff[m] * nc;
-                    for (size_t q = 0; q < (size_t)(L - m + 1) * nc * 2; q++) a[q] += j.out[q];
-                }
+        /* (2) Legendre sums, m by m (runs of MRUN m to a thread, so that the
+         * rows of coeffs one m writes are written by one thread) */
+#pragma omp parallel for schedule(dynamic, MRUN) num_threads(p->nthreads)
+        for (int m = 0; m <= L; m++) {
+            const int t = thread_id();
+            sht_kjob j = job_for(p, m, npad);
+            j.in = data_at(p, 0, m, 0, 0);
+            j.out = p->mout[t];
+            j.acc = p->acc[t];
+            p->ana(&j);
+            if (m < p->pol.pm) sh__sht_polar_analysis(&p->pol, &j, n);
+            if (direct) put_m(p, conv, m, j.out, coeffs);
+            else {
+                double *a = p->alm + p->moff[m] * nc;
+                for (size_t q = 0; q < (size_t)(L - m + 1) * nc * 2; q++) a[q] += j.out[q];
             }
-            if (direct) put_run(p, conv, m0, m1, p->mout[t], os, coeffs);
         }
         if (p->progress) p->progress(p->pctx, ch + 1, p->nchunks, "ring chunks");
     }
