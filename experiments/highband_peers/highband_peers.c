@@ -16,12 +16,12 @@
  *   finds healpix_cxx, and `shlab bench --peers`, which says when libsharp
  *   was not found): shlab's rotation against rotate_alm at lmax 100, 300,
  *   1000 (max abs difference, ‖Δ‖₂/‖x‖₂, one thread each), both round trips,
- *   and shlab's transforms against libsharp's at lmax 255 and 511 (‖Δ‖₂/‖·‖₂
+ *   and shlab's transforms against libsharp's at lmax 255, 511, 1023 (‖Δ‖₂/‖·‖₂
  *   of the first repeat).
  * Timing part: the ratios shlab / HEALPix (one-shot, stream kept, per
  *   rotation in a batch of 8; per repetition, interleaved in one process) at
  *   lmax 100, 300, 1000; shlab / libsharp (analysis, synthesis; thread CPU
- *   clock) at lmax 255, 511 on Gauss grids and on a 1024 × 512 lat-long map
+ *   clock) at lmax 255, 511, 1023 on Gauss grids and on a 1024 × 512 lat-long map
  *   of 3 channels; the peak RSS of a process doing one one-shot rotation;
  *   shlab's speed-up from 1 to 2 threads (interleaved).  A speed claim is
  *   judged only when its run meets the noise criterion (the paired ratio's
@@ -42,10 +42,11 @@
 #include <time.h>
 #include <unistd.h>
 
-enum { NL = 3, MAXREP = 64, NS = 8 };
+enum { NL = 3, MAXREP = 64, NSL = 3, NS = 4 * NSL };
 static const int HP_LMAX[NL] = {100, 300, 1000};
+static const int SH_LMAX[NSL] = {255, 511, 1023}; /* bench --peers: 4 rows each (2 grids × 2 transforms) */
 static const double LOAD_MAX = 0.25, SPREAD_MAX = 0.05;
-static const double GOAL_ONESHOT = 0.2, GOAL_REUSE = 0.1, GOAL_SHARP = 2.0, GOAL_SPEEDUP = 1.7, GOAL_RSS_MB = 64,
+static const double GOAL_ONESHOT = 0.05, GOAL_REUSE = 0.1, GOAL_SHARP = 0.9, GOAL_SPEEDUP = 1.8, GOAL_RSS_MB = 64,
                     GOAL_ROUNDTRIP = 4e-13;
 
 /* ---- seeded N(0, 1) coefficients: the generator of peer_healpix.h ------ */
@@ -228,7 +229,7 @@ typedef struct {
     double agree[NL][2], rt_shlab[NL][2], rt_healpix[NL][2], rss[NL];
     run_noise noise;
 } hp_result;
-/* shlab bench --peers --format json, parsed: lmax 255, 511 × gauss, latlong × analysis, synthesis */
+/* shlab bench --peers --format json, parsed: SH_LMAX × gauss, latlong × analysis, synthesis */
 typedef struct {
     int lmax, channels;
     char grid[48], transform[16];
@@ -297,9 +298,9 @@ static int run_healpix(const char *bin, hp_result *hp)
 static int run_sharp(const char *shlab, sharp_result *sr)
 {
     char cmd[4200];
-    snprintf(cmd, sizeof cmd, "'%s' bench --peers --lmax 255,511 --latlong 1024 --repeat 21 --threads 1 --quiet "
+    snprintf(cmd, sizeof cmd, "'%s' bench --peers --lmax %d,%d,%d --latlong 1024 --repeat 21 --threads 1 --quiet "
                               "--format json",
-             shlab);
+             shlab, SH_LMAX[0], SH_LMAX[1], SH_LMAX[2]);
     memset(sr, 0, sizeof *sr);
     const run_mark m = mark();
     FILE *p = popen(cmd, "r");
@@ -405,14 +406,17 @@ static void peers_part(const hp_result *hp, const sharp_result *sr)
                      "<= 1e-12", meas, "1e-12", hp->agree[1][0] <= 1e-12,
                      "highband_peers/peers/healpix.dat (tests/peers/test_peer_healpix.cc checks ten rotations)",
                      "shlab and rotate_alm differ by more than 1e-12 at lmax 300.");
-    const sharp_row *a255 = sharp_find(sr, 255, 0, 0), *a511 = sharp_find(sr, 511, 0, 0);
-    const sharp_row *s255 = sharp_find(sr, 255, 0, 1), *s511 = sharp_find(sr, 511, 0, 1);
-    snprintf(meas, sizeof meas, "analysis %.2g (lmax 255), %.2g (511); synthesis %.2g, %.2g (relative L2)",
-             a255->agreement, a511->agreement, s255->agreement, s511->agreement);
+    const sharp_row *a255 = sharp_find(sr, 255, 0, 0), *a511 = sharp_find(sr, 511, 0, 0), *a1023 = sharp_find(sr, 1023, 0, 0);
+    const sharp_row *s255 = sharp_find(sr, 255, 0, 1), *s511 = sharp_find(sr, 511, 0, 1), *s1023 = sharp_find(sr, 1023, 0, 1);
+    snprintf(meas, sizeof meas,
+             "analysis %.2g (lmax 255), %.2g (511), %.2g (1023); synthesis %.2g, %.2g, %.2g (relative L2; where the "
+             "syntheses differ by more, it is libsharp's error: sht_accuracy's peers part)",
+             a255->agreement, a511->agreement, a1023->agreement, s255->agreement, s511->agreement, s1023->agreement);
     exp_claim_judged("highband-sharp-agreement", "shlab goal",
-                     "shlab's projection (analysis) agrees with libsharp map2alm on a Gauss grid at lmax 255 and 511 "
-                     "to 1e-13 (relative L2)",
-                     "<= 1e-13", meas, "1e-13", a255->agreement <= 1e-13 && a511->agreement <= 1e-13,
+                     "shlab's projection (analysis) agrees with libsharp map2alm on a Gauss grid at lmax 255, 511 and "
+                     "1023 to 1e-13 (relative L2)",
+                     "<= 1e-13", meas, "1e-13",
+                     a255->agreement <= 1e-13 && a511->agreement <= 1e-13 && a1023->agreement <= 1e-13,
                      "highband_peers/peers/sharp.dat (shlab bench --peers --format json)",
                      "the analyses differ by more than 1e-13 (relative L2).");
     snprintf(meas, sizeof meas, "max abs: shlab %.2g, HEALPix %.2g at lmax 1000 (%.2g / %.2g at 300, %.2g / %.2g at 100)",
@@ -511,8 +515,8 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
                  "lmax grid channels transform ratio_median ratio_q1 ratio_q3 spread shlab_ms libsharp_ms");
     for (int latlong = 0; latlong < 2; latlong++)
         for (int syn = 0; syn < 2; syn++) {
-            for (int lm = 255; lm <= 511; lm += 256) {
-                const sharp_row *q = sharp_find(sr, lm, latlong, syn);
+            for (int k = 0; k < NSL; k++) {
+                const sharp_row *q = sharp_find(sr, SH_LMAX[k], latlong, syn);
                 fprintf(f, "%d %s %d %s %.4g %.4g %.4g %.3f %.4g %.4g\n", q->lmax, latlong ? "latlong_1024x512" : "gauss",
                         q->channels, q->transform, q->ratio, q->q1, q->q3, (q->q3 - q->q1) / q->ratio, q->shlab_ms,
                         q->peer_ms);
@@ -545,8 +549,8 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
     char meas[1024];
     snprintf(meas, sizeof meas, "at lmax 1000 (%.3f at 300, %.3f at 100)", R[1][0].median, R[0][0].median);
     speed_claim("highband-rotate-oneshot-1000",
-                "one rotation of all bands 0..1000 from scratch takes <= 0.2x the time of HEALPix rotate_alm (one thread)",
-                "<= 0.2", &R[k1000][0], meas, noisy_load_hp, hp->noise.load, 0, GOAL_ONESHOT,
+                "one rotation of all bands 0..1000 from scratch takes <= 0.05x the time of HEALPix rotate_alm (one thread)",
+                "<= 0.05", &R[k1000][0], meas, noisy_load_hp, hp->noise.load, 0, GOAL_ONESHOT,
                 "highband_peers/timing/healpix.dat, noise.dat");
     snprintf(meas, sizeof meas, "at lmax 1000 with the stream kept; per rotation in a batch of 8: %.3f [%.3f, %.3f]",
              R[k1000][2].median, R[k1000][2].q1, R[k1000][2].q3);
@@ -555,20 +559,23 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
                 "HEALPix rotate_alm (one thread; judged on the kept stream, one rotation per call)",
                 "<= 0.1", &R[k1000][1], meas, noisy_load_hp, hp->noise.load, 0, GOAL_REUSE,
                 "highband_peers/timing/healpix.dat, noise.dat");
-    for (int syn = 0; syn < 2; syn++) {
-        const sharp_row *q = sharp_find(sr, 511, 0, syn);
-        const double spread = (q->q3 - q->q1) / q->ratio;
-        const sh_bench_ratio r = {q->ratio, q->q1, q->q3, spread, spread > SPREAD_MAX};
-        char id[64], st[256];
-        snprintf(id, sizeof id, "highband-sharp-%s-511", syn ? "synthesis" : "analysis");
-        snprintf(st, sizeof st, "%s on a Gauss grid at lmax 511 takes <= 2x the time of libsharp %s (one thread, one map)",
-                 syn ? "synthesis (sh_sht_synthesis)" : "projection (sh_sht_analysis)", syn ? "alm2map" : "map2alm");
-        snprintf(meas, sizeof meas, "(%.3g ms / %.3g ms, kernels %s)", q->shlab_ms, q->peer_ms, sr->kernel);
-        speed_claim(id, st, "<= 2", &r, meas, noisy_load_sh, sr->noise.load, 0, GOAL_SHARP,
-                    "highband_peers/timing/sharp.dat, noise.dat");
-    }
+    for (int k = 1; k < NSL; k++) /* lmax 511 and 1023 */
+        for (int syn = 0; syn < 2; syn++) {
+            const sharp_row *q = sharp_find(sr, SH_LMAX[k], 0, syn);
+            const double spread = (q->q3 - q->q1) / q->ratio;
+            const sh_bench_ratio r = {q->ratio, q->q1, q->q3, spread, spread > SPREAD_MAX};
+            char id[64], st[256];
+            snprintf(id, sizeof id, "highband-sharp-%s-%d", syn ? "synthesis" : "analysis", SH_LMAX[k]);
+            snprintf(st, sizeof st,
+                     "%s on a Gauss grid at lmax %d takes <= 0.9x the time of libsharp %s (one thread, one map)",
+                     syn ? "synthesis (sh_sht_synthesis)" : "projection (sh_sht_analysis)", SH_LMAX[k],
+                     syn ? "alm2map" : "map2alm");
+            snprintf(meas, sizeof meas, "(%.3g ms / %.3g ms, kernels %s)", q->shlab_ms, q->peer_ms, sr->kernel);
+            speed_claim(id, st, "<= 0.9", &r, meas, noisy_load_sh, sr->noise.load, 0, GOAL_SHARP,
+                        "highband_peers/timing/sharp.dat, noise.dat");
+        }
     snprintf(meas, sizeof meas, "at lmax 1000; CPU time on 2 threads / on 1: %.2f", CP[k1000].median);
-    speed_claim("highband-rotate-threads-1000", "two threads rotate all bands 0..1000 >= 1.7x as fast as one", ">= 1.7",
+    speed_claim("highband-rotate-threads-1000", "two threads rotate all bands 0..1000 >= 1.8x as fast as one", ">= 1.8",
                 &SP[k1000], meas, noisy_load_hp, hp->noise.load, GOAL_SPEEDUP, INFINITY,
                 "highband_peers/timing/speedup.dat, noise.dat");
     snprintf(meas, sizeof meas, "%.1f MiB at lmax 1000 (%.1f MiB at 300, %.1f MiB at 100)", hp->rss[k1000], hp->rss[1],
@@ -619,12 +626,12 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
               "with the stream created once; batch of 8 = eight rotations of one vector in one call, time per "
               "rotation; the speed-up is shlab's 1-thread time over its 2-thread time, interleaved; peak RSS of a "
               "fresh process doing one one-shot rotation on 1 thread.\n\n%s\n"
-              "The transforms against libsharp (`shlab bench --peers --lmax 255,511 --latlong 1024 --repeat 21 "
+              "The transforms against libsharp (`shlab bench --peers --lmax 255,511,1023 --latlong 1024 --repeat 21 "
               "--threads 1`; thread CPU clock, 21 repeats, alternating who goes first; shlab's kernels %s; "
               "[sharp.dat](sharp.dat)):\n\n%s\n"
               "![ratios against the peers](highband_peers_ratios.png)\n\n"
-              "%s ([noise.dat](noise.dat)). Goals: one-shot ≤ 0.2, kept ≤ 0.1 at lmax 1000; ≤ 2 against libsharp "
-              "at lmax 511; ≥ 1.7 on 2 threads; peak RSS ≤ 64 MB.",
+              "%s ([noise.dat](noise.dat)). Goals: one-shot ≤ 0.05, kept ≤ 0.1 at lmax 1000; ≤ 0.9 against "
+              "libsharp at lmax 511 and 1023 (Gauss grid); ≥ 1.8 on 2 threads; peak RSS ≤ 64 MB.",
               hp->nrep[0], hp->nrep[1], hp->nrep[2], tab, sr->kernel, tab2, noise_text);
     exp_part(NULL);
 }

@@ -19,10 +19,10 @@ set xrange [80:1250]
 set xtics (100, 300, 1000)
 set yrange [0.01:5]
 set ytics (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-set arrow 1 from 80, 0.2 to 1250, 0.2 nohead dt 2 lw 1.5 lc rgb ccol(4)
+set arrow 1 from 80, 0.05 to 1250, 0.05 nohead dt 2 lw 1.5 lc rgb ccol(4)
 set arrow 2 from 80, 0.1 to 1250, 0.1 nohead dt 2 lw 1.5 lc rgb ccol(1)
 set arrow 3 from 80, 1 to 1250, 1 nohead lw 1 lc rgb "#888888"
-set label 1 "goal one-shot ≤ 0.2 (lmax 1000)" at 1200, 0.2*1.12 right tc rgb ccol(4) font ",9"
+set label 1 "goal one-shot ≤ 0.05 (lmax 1000)" at 1200, 0.05*1.12 right tc rgb ccol(4) font ",9"
 set label 2 "goal kept ≤ 0.1 (lmax 1000)" at 1200, 0.1*1.12 right tc rgb ccol(1) font ",9"
 set label 3 "same time" at 1150, 1.1 right tc rgb "#666666" font ",9"
 plot h index 0 using ($1*0.97):3:4:5 with yerrorlines lw 1.8 pt 7 lc rgb ccol(4) title "one-shot (create + apply + free)", \
@@ -31,14 +31,14 @@ plot h index 0 using ($1*0.97):3:4:5 with yerrorlines lw 1.8 pt 7 lc rgb ccol(4)
 unset arrow; unset label 1; unset label 2; unset label 3
 eval stamp(noisy("shlab_bench_peers"))
 set title "transforms vs libsharp (thread CPU clock)"
-set xrange [200:650]
-set xtics (255, 511)
+set xrange [200:1300]
+set xtics (255, 511, 1023)
 set yrange [0.25:4]
 set ytics (0.25, 0.5, 1, 2, 4)
-set arrow 1 from 200, 2 to 650, 2 nohead dt 2 lw 1.5 lc rgb "#C00000"
-set arrow 3 from 200, 1 to 650, 1 nohead lw 1 lc rgb "#888888"
-set label 1 "goal ≤ 2 (Gauss, lmax 511)" at 630, 2*1.08 right tc rgb "#C00000" font ",9"
-set label 3 "same time" at 630, 1.06 right tc rgb "#666666" font ",9"
+set arrow 1 from 450, 0.9 to 1300, 0.9 nohead dt 2 lw 1.5 lc rgb "#C00000"
+set arrow 3 from 200, 1 to 1300, 1 nohead lw 1 lc rgb "#888888"
+set label 1 "goal ≤ 0.9 (Gauss, lmax 511, 1023)" at 1250, 0.9*0.9 right tc rgb "#C00000" font ",9"
+set label 3 "same time" at 1250, 1.06 right tc rgb "#666666" font ",9"
 plot s index 0 using ($1*0.985):5:6:7 with yerrorlines lw 1.8 pt 7 lc rgb ccol(2) title "Gauss grid, 1 map: analysis (map2alm)", \
      s index 1 using ($1*0.995):5:6:7 with yerrorlines lw 1.8 pt 5 dt 2 lc rgb ccol(2) title "Gauss grid, 1 map: synthesis (alm2map)", \
      s index 2 using ($1*1.005):5:6:7 with yerrorlines lw 1.8 pt 9 lc rgb ccol(6) title "lat-long 1024×512, 3 channels: analysis", \
