@@ -85,7 +85,9 @@ struct sh_sht {
                                    not aligned as FFTW planned (odd nphi) */
     fftw_complex **spec;        /* nphi/2+1 (fftw_malloc) */
     fftw_complex **fold;        /* nphi, when nphi ≤ 2·lmax (aliasing), else NULL */
-    double **gsp;               /* the m-spectra of one group's rings: [(2g + side)·nchan + c][m][2] */
+    double **gsp;               /* the m-spectra of one group's rings: [(2g + side)·nchan + c][m][2],
+                                   gslot bins (analysis) or lmax + 1 (synthesis) to a ring */
+    int gslot;                  /* bins of a ring in gsp in the analysis (gsp_slot) */
     double **acc;               /* analysis lane accumulators, 64-byte aligned */
     double **mout;              /* analysis sums of one m and chunk: (lmax+1)·nchan·2 */
     sh_progress_fn progress;
@@ -225,6 +227,13 @@ static int nthreads_eff(int nthreads)
     return nthreads < 1 ? 1 : nthreads;
 }
 
+/* Bins of a ring in gsp (analysis): N/2 + 1 when that is at most 2·(lmax + 1),
+ * so that the FFT writes there itself; otherwise lmax + 1 and a copy. */
+static int gsp_slot(int lmax, int nphi)
+{
+    return nphi / 2 + 1 > lmax + 1 && nphi / 2 + 1 <= 2 * (lmax + 1) ? nphi / 2 + 1 : lmax + 1;
+}
+
 size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
 {
     if (order < 1 || !g || g->nrings < 1 || g->nphi < 1 || nchan < 1) return 0;
@@ -235,7 +244,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
     b += T * sizeof(double) *
          ((double)(nchan + 1) * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
-          L1 * nchan * 2 * 8 + L1 * nchan * 2 + 8 + 2.0 * 8 * nchan * L1 * 2);
+          L1 * nchan * 2 * 8 + L1 * nchan * 2 + 8 + 2.0 * 8 * nchan * gsp_slot(order - 1, g->nphi) * 2);
     b += L1 * (L1 + 1) * nchan * sizeof(double);
     b += (double)polar_len(order - 1, polar_m(order - 1)) * sizeof(double) + SHT_POLAR_M * sizeof(size_t);
     return b > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)b;
@@ -332,7 +341,7 @@ static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
         p->fold[t] = N <= 2 * L ? fftw_malloc(sizeof(fftw_complex) * (size_t)N) : NULL;
         p->acc[t] = aligned_alloc(64, sizeof(double) * accn);
         p->mout[t] = malloc(sizeof(double) * (size_t)(L + 1) * nchan * 2);
-        p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)(L + 1) * 2);
+        p->gsp[t] = malloc(sizeof(double) * 2 * GRP * nchan * (size_t)p->gslot * 2);
         bad = !p->ring[t] || !p->fbuf[t] || !p->spec[t] || (N <= 2 * L && !p->fold[t]) || !p->acc[t] || !p->mout[t] || !p->gsp[t];
     }
     return bad;
@@ -417,6 +426,7 @@ int sh_sht_create(int order, const sh_grid *g, int nchan, int nthreads, sh_sht *
     p->chunk = chunk_pairs(L, nchan, p->npairs);
     p->nchunks = (p->npairs + p->chunk - 1) / p->chunk;
     p->chunk_alloc = p->chunk;
+    p->gslot = gsp_slot(L, N);
     const int pm = polar_m(L);
     if (sht_alloc(p, g, pm)) {
         sh_sht_destroy(p);
@@ -609,7 +619,7 @@ static void put_m(const sh_sht *p, sh_convention conv, int m, const double *out,
 static void scatter_group(sh_sht *p, int t, int i0, int n, const double (*w)[2])
 {
     const int L = p->lmax, N = p->nphi, nc = p->nchan;
-    const size_t M = (size_t)L + 1;
+    const size_t M = (size_t)p->gslot;
     const double *X = p->gsp[t];
     for (int m = 0; m <= L; m++) {
         /* F_m = Σ_j f_j e^{−2πijm/N}: bin k, conjugated above N/2 (aliasing) */
@@ -673,9 +683,13 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
                         double *in = p->ring[t] + (size_t)c * N;
                         if (fftw_alignment_of(in) != fftw_alignment_of(p->ring[t]))
                             in = memcpy(p->fbuf[t], in, sizeof(double) * N);
-                        fftw_execute_dft_r2c(p->r2c, in, p->spec[t]);
-                        memcpy(p->gsp[t] + ((size_t)(2 * g + side) * nc + c) * (L + 1) * 2, p->spec[t],
-                               sizeof(fftw_complex) * (size_t)(kmax + 1));
+                        double *slot = p->gsp[t] + ((size_t)(2 * g + side) * nc + c) * p->gslot * 2;
+                        if (p->gslot >= N / 2 + 1 && fftw_alignment_of(slot) == fftw_alignment_of((double *)p->spec[t])) {
+                            fftw_execute_dft_r2c(p->r2c, in, (fftw_complex *)slot);
+                        } else {
+                            fftw_execute_dft_r2c(p->r2c, in, p->spec[t]);
+                            memcpy(slot, p->spec[t], sizeof(fftw_complex) * (size_t)(kmax + 1));
+                        }
                     }
                     w[g][side] = p->w[r]; /* 0: no ring (or a ring of weight 0, which adds nothing) */
                 }
