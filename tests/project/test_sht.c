@@ -368,6 +368,44 @@ START_TEST(partial_last_chunk)
 }
 END_TEST
 
+/* A plan of one chunk keeps the sectoral seeds of its first transform for
+ * the next ones; a new chunking must drop them.  The truth is a fresh plan
+ * with the same chunking: the same bytes.  Sequence on one plan: analysis
+ * (seeds made), synthesis and analysis again (seeds kept), chunks of 64
+ * pairs (70 pairs: two chunks), analysis, then one chunk again. */
+START_TEST(seeds_kept_and_dropped)
+{
+    rcase k = case_make(40, 140, 81, 23);
+    const int nn = k.nn, nm = k.nr * k.np;
+    double *fresh[2], *m0 = malloc(sizeof(double) * nm), *m1 = malloc(sizeof(double) * nm);
+    for (int t = 0; t < 2; t++) { /* fresh plans: one chunk, two chunks */
+        sh_sht *q;
+        ck_assert_int_eq(sh_sht_create(k.order, &k.g, 1, 1, &q), SH_OK);
+        if (t) ck_assert_int_eq(sh__sht_set_chunk(q, 2 * SHT_LANES), SH_OK);
+        fresh[t] = malloc(sizeof(double) * nn);
+        ck_assert_int_eq(sh_sht_analysis(q, SH_CS, k.f, fresh[t]), SH_OK);
+        if (!t) ck_assert_int_eq(sh_sht_synthesis(q, SH_CS, k.c, m0), SH_OK);
+        sh_sht_destroy(q);
+    }
+    sh_sht *p;
+    double *a = malloc(sizeof(double) * nn);
+    ck_assert_int_eq(sh_sht_create(k.order, &k.g, 1, 1, &p), SH_OK);
+    for (int step = 0; step < 4; step++) {
+        if (step == 2) ck_assert_int_eq(sh__sht_set_chunk(p, 2 * SHT_LANES), SH_OK);
+        if (step == 3) ck_assert_int_eq(sh__sht_set_chunk(p, 3 * SHT_LANES), SH_OK); /* one chunk again */
+        if (step == 1) {
+            ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, k.c, m1), SH_OK);
+            ck_assert_msg(!memcmp(m0, m1, sizeof(double) * nm), "synthesis with the seeds kept");
+        }
+        ck_assert_int_eq(sh_sht_analysis(p, SH_CS, k.f, a), SH_OK);
+        ck_assert_msg(!memcmp(a, fresh[step == 2], sizeof(double) * nn), "analysis at step %d", step);
+    }
+    sh_sht_destroy(p);
+    free(a), free(m0), free(m1), free(fresh[0]), free(fresh[1]);
+    case_free(&k);
+}
+END_TEST
+
 /* Every instruction set compiled in and usable here against the baseline
  * kernels (they differ by FMA rounding only). */
 START_TEST(isa_kernels_agree)
@@ -488,6 +526,7 @@ static Suite *suite(void)
     tcase_add_test(tc, adjoint_identity);
     tcase_add_test(tc, threads_bitwise);
     tcase_add_test(tc, partial_last_chunk);
+    tcase_add_test(tc, seeds_kept_and_dropped);
     tcase_add_test(tc, isa_kernels_agree);
     tcase_add_test(tc, high_order_near_poles);
     tcase_add_test(tc, errors);
