@@ -1,0 +1,369 @@
+/* zxzxz_one.c — zxzxz's kernel of ONE rotation applied to ONE vector, in
+ * float, vectorised across the coefficients (AVX-512: 16 float lanes), for
+ * orders n = 4..6 (bands 0..n−1; the code is written for 2..6, but at
+ * n = 2, 3 the unrolled scalar kernel measured faster and stays).  Float
+ * only (not a rot_*.c: compiled once).  The plan reaches it through
+ * sh__rot_zxzxz_ops.one_f: rotator.c resolves it once (rotator one_mat),
+ * and rotation_plan.c's sh_rot_plan_set_matrix_f only checks the matrix
+ * and stores it in the state, which apply_f hands to the kernel, nothing in
+ * between.  Everything that depends on the rotation — the Euler data, the
+ * multiple angles — is computed here, in registers: the unrolled path's
+ * par goes through memory, and a vector load of its scalar stores is not
+ * forwarded (a first version of this kernel reading par that way took
+ * 42 ns per rotation at n = 4, 24 with scalar loads, bench per-rotation).
+ *
+ * What it computes (rot_zxzxz.c's header, [1] there): for the rotation
+ * R = Rz(α) Ry(β) Rz(γ),
+ *   R_sh = Z(α) · X₋₉₀ · Z(β) · X₊₉₀ · Z(γ),   X₋₉₀ = S X₊₉₀ S,  S = Z(π) = diag((−1)^m)
+ * (rot_zxzxz.c writes the same product as Z(α+π) X₊₉₀ Z(β+π) X₊₉₀ Z(γ); here
+ * the two S are folded into a second constant matrix instead of the
+ * angles).  The input is R itself (row-major, finiteness checked by the
+ * plan; assumed orthogonal); cos, sin of α, β, γ by rot_fast.c's algebra
+ * (zo_angles).  nocs: sin β negated, since S·R_cs(α, β, γ)·S =
+ * R_cs(α, −β, γ): one function per (order, convention).
+ *
+ * Layout ("split"): coefficient (l, m) of the vector (index l² + l + m) is
+ * kept in two registers, P for m ≥ 0 and N for m < 0, lane-aligned: lane
+ * k of N holds (l, −m) where lane k of P holds (l, m) (N's m = 0 lanes are
+ * zero).  Bands 0..4 ("lo", n(n+1)/2 ≤ 15 lanes): lane l(l+1)/2 + m;
+ * band 5 ("hi", n = 6 only): lane m of a second pair.  Then
+ *   Z(θ):  P' = c⊙P − s⊙N,  N' = s⊙P + c⊙N,   c, s = cos(mθ), sin(mθ) per lane
+ * (rot_internal.h, sh__rot_z_band: c_m ← cos(mθ) c_m − sin(mθ) c_{−m},
+ * c_{−m} ← sin(mθ) c_m + cos(mθ) c_{−m}; m = 0: c = 1, s = 0): element-wise,
+ * no shuffle — 2 multiplications + 2 fused multiply-adds per register pair.
+ *
+ * X₊₉₀ and X₋₉₀.  Row m' of X₊₉₀ of band l has its non-zeros in one class
+ * of columns (rot_zxzxz.c: A = 0, 2, 4…, B = −1, −3…, C = 1, 3…, D = −2,
+ * −4…), at most ⌊l/2⌋ + 1 of them: ≤ 3 for l ≤ 5 (≤ 2 for l ≤ 3).  So
+ * output lane i of a register is Σ_{j<J} W_j[i] · x[π_j(i)], where π_j(i) is
+ * the lane (in P or N of the same band group) of the j-th non-zero column
+ * of i's row and W_j[i] its entry of X (zero where the row has fewer than J):
+ *   O = W₀ ⊙ perm₀(P, N) + W₁ ⊙ perm₁(P, N) + W₂ ⊙ perm₂(P, N),
+ * one two-source permute (vpermt2ps) and one multiply or FMA per term and
+ * output register; J = 2 for n ≤ 4, 3 for n = 5, 6.  W of X₋₉₀ = (−1)^{m'+m}
+ * W of X₊₉₀; the permutes are the same.  The tables are built once (first
+ * resolve) from rot_zxzxz.c's X₊₉₀ (d^l(π/2) in long double; its zero
+ * pattern is checked exactly there and here: a row with more than 3
+ * non-zeros leaves the kernel unresolved and the plan on the unrolled one).
+ *
+ * Multiple angles: one 8-lane vector v_m = (cos mα, cos mβ, cos mγ, 1,
+ * sin mα, sin mβ, sin mγ, 0) by the Chebyshev recurrence
+ *   v_m = 2cos(θ)·v_{m−1} − v_{m−2}   (cos and sin alike; lane 3: 2·1 − 1 = 1)
+ * one FMA per m = 2..n−1, then per angle the c, s lane vectors of Z by one
+ * permute from (v₁|v₂, v₃|v₄) (lane 3 gives cos 0 = 1, lane 7 sin 0 = 0),
+ * plus one masked permute for m = 5 (the hi pair).  Load: the n² inputs
+ * (masked loads, nothing read past the vector) permuted into the split
+ * layout; store: the inverse permutes, masked stores.  Everything is loaded
+ * before anything is stored: in == out is allowed.
+ *
+ * Multiplications (*mults, counted as executed: each multiply or FMA lane
+ * that holds a coefficient or an angle, including the trivial ones —
+ * cos 0 = 1 at m = 0, the zero weights of a row with fewer than J
+ * non-zeros; the padding lanes are not counted): per Z 2 per live lane,
+ * 2n² (three Z: 6n²); per X, J per live lane, J·n² (two X: 2Jn²);
+ * Chebyshev 6(n−2), and 24 for the angles from R (zo_angles): n = 4, 5, 6:
+ * 196, 342, 480.  (The generated scalar kernel counts fewer, 120, 216, 344
+ * at these orders plus 12 in the set, as it skips the zeros; it runs them
+ * one instruction each.)
+ */
+#include "rotate/rot_internal.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+int sh__rot_zxzxz_xplus_band(int l, double *X); /* rot_zxzxz.c */
+sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults);
+
+#define ZO_MAXO 6
+#define ZO_MINO 4 /* below: the unrolled kernel is faster (header) */
+#define ZO_J 3 /* terms per output lane, at most (header) */
+#define ZO_ANGLE_MULTS 24u /* zo_angles */
+
+/* The per-order tables: index vectors of the permutes, weights, masks. */
+typedef struct {
+    int32_t in[4][16];        /* P_lo, N_lo from (in[0..15], in[16..31]); P_hi, N_hi from (in[16..31], in[32..47]) */
+    int32_t xi[4][ZO_J][16];  /* term j of output P_lo, N_lo (from P_lo|N_lo), P_hi, N_hi (from P_hi|N_hi) */
+    float w[2][4][ZO_J][16];  /* its weights, X₊₉₀ and X₋₉₀ */
+    int32_t cs_lo[2][3][16];  /* cos, sin of angle a (0 α, 1 β, 2 γ): index into (v1|v2, v3|v4) */
+    int32_t cs_hi[2][3][16];  /* the same for the hi lanes, m = 0..4 (lane 5: cs5) */
+    int32_t cs5[2][3][16];    /* lane 5 of the hi c, s: index into v5 */
+    int32_t out[4][16];       /* out[0..15], out[16..24] from (P_lo|N_lo), out[25..31] from (P_hi|N_hi), out[32..35] from P_hi */
+    uint16_t kin[4];          /* live lanes of P_lo, N_lo, P_hi, N_hi */
+    int J;                    /* terms used */
+    uint64_t mults;
+} zo_tab;
+
+static _Alignas(64) zo_tab zo_tabs[ZO_MAXO + 1];
+static int zo_ok[ZO_MAXO + 1];
+static pthread_once_t zo_once = PTHREAD_ONCE_INIT;
+
+/* lane of (l, |m|) in its register (header) */
+static int zo_lane(int l, int am) { return l < 5 ? l * (l + 1) / 2 + am : am; }
+/* index of (l, m) into the permute source pair (P|N) of its group */
+static int zo_src(int l, int m) { return m >= 0 ? zo_lane(l, m) : 16 + zo_lane(l, -m); }
+
+static int zo_build(int n, zo_tab *t)
+{
+    double *X = malloc(sizeof(double) * 11 * 11);
+    if (!X) return 0;
+    memset(t, 0, sizeof *t);
+    /* cos and sin index of m for angle a: v1|v2 = lanes 0..15, v3|v4 = 16..31;
+     * in v_m cos at a, sin at 4 + a; lane 3 = 1, lane 7 = 0 */
+    for (int cs = 0; cs < 2; cs++)
+        for (int a = 0; a < 3; a++)
+            for (int i = 0; i < 16; i++) {
+                const int pad = cs ? 7 : 3;
+                int m = -1;
+                for (int l = 0; l < 5; l++)
+                    if (i >= zo_lane(l, 0) && i <= zo_lane(l, l)) m = i - zo_lane(l, 0);
+                const int mh = i < 5 ? i : -1;
+#define ZO_CSIDX(m) ((m) <= 0 ? pad : 8 * ((m) - 1) + 4 * cs + a)
+                t->cs_lo[cs][a][i] = m < n ? ZO_CSIDX(m) : pad;
+                t->cs_hi[cs][a][i] = ZO_CSIDX(mh);
+#undef ZO_CSIDX
+                t->cs5[cs][a][i] = 4 * cs + a;
+            }
+    /* input: P lane (l, m) ← l² + l + m, N lane (l, m) ← l² + l − m */
+    for (int l = 0; l < n; l++)
+        for (int m = 0; m <= l; m++) {
+            const int g = l < 5 ? 0 : 2, base = l < 5 ? 0 : 16;
+            t->in[g][zo_lane(l, m)] = l * l + l + m - base;
+            t->kin[g] |= (uint16_t)(1u << zo_lane(l, m));
+            if (m > 0) {
+                t->in[g + 1][zo_lane(l, m)] = l * l + l - m - base;
+                t->kin[g + 1] |= (uint16_t)(1u << zo_lane(l, m));
+            }
+        }
+    /* X₊₉₀, X₋₉₀: output lane (l, m') takes its row's non-zero columns */
+    int ok = 1, J = 0;
+    for (int l = 0; l < n && ok; l++) {
+        const int w = 2 * l + 1;
+        if (sh__rot_zxzxz_xplus_band(l, X)) {
+            ok = 0;
+            break;
+        }
+        for (int mp = -l; mp <= l; mp++) {
+            const int O = (l < 5 ? 0 : 2) + (mp < 0), lane = zo_lane(l, mp < 0 ? -mp : mp);
+            int j = 0;
+            for (int m = -l; m <= l; m++) {
+                const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
+                if (x == 0) continue;
+                if (j == ZO_J) {
+                    ok = 0;
+                    break;
+                }
+                t->xi[O][j][lane] = zo_src(l, m);
+                t->w[0][O][j][lane] = (float)x;
+                t->w[1][O][j][lane] = (float)((((mp + m) % 2) != 0) ? -x : x);
+                j++;
+            }
+            if (j > J) J = j;
+        }
+    }
+    /* output: out[i], i = l² + l + m */
+    for (int i = 0; i < 48; i++) {
+        int l = 0;
+        while ((l + 1) * (l + 1) <= i) l++;
+        const int m = i - l * l - l;
+        if (l >= n) continue;
+        if (i < 16) t->out[0][i] = zo_src(l, m);
+        else if (i < 32 && l < 5) t->out[1][i - 16] = zo_src(l, m);
+        else if (i < 32) t->out[2][i - 16] = zo_src(l, m);
+        else t->out[3][i - 32] = zo_lane(l, m);
+    }
+    t->J = J;
+    const uint64_t nn = (uint64_t)n * n;
+    t->mults = ZO_ANGLE_MULTS + 6 * nn + 2 * (uint64_t)J * nn + (n > 2 ? 6 * (uint64_t)(n - 2) : 0);
+    free(X);
+    return ok && J >= 1;
+}
+
+static void zo_init(void)
+{
+    for (int n = 2; n <= ZO_MAXO; n++) zo_ok[n] = zo_build(n, &zo_tabs[n]);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ZO_HAVE_AVX512 1
+#include <immintrin.h>
+
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512vl,fma")
+
+#define ZO_LDI(p) _mm512_load_si512((const void *)(p))
+#define ZO_LDF(p) _mm512_load_ps((const void *)(p))
+
+/* the c, s lane vectors of angle a (header "Multiple angles") */
+static inline __attribute__((always_inline)) void zo_cs(const zo_tab *t, int N, int a, __m512 v12, __m512 v34,
+                                                        __m512 v5, __m512 *c, __m512 *s, __m512 *ch, __m512 *sh)
+{
+    *c = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs_lo[0][a]), v34);
+    *s = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs_lo[1][a]), v34);
+    if (N == 6) {
+        *ch = _mm512_mask_permutexvar_ps(_mm512_permutex2var_ps(v12, ZO_LDI(t->cs_hi[0][a]), v34), 1 << 5,
+                                         ZO_LDI(t->cs5[0][a]), v5);
+        *sh = _mm512_mask_permutexvar_ps(_mm512_permutex2var_ps(v12, ZO_LDI(t->cs_hi[1][a]), v34), 1 << 5,
+                                         ZO_LDI(t->cs5[1][a]), v5);
+    }
+}
+
+/* v1 = (cos α, cos β, cos γ, 1, sin α, sin β, sin γ, 0) of R = Rz(α) Ry(β) Rz(γ)
+ * (nocs: sin β negated), by rot_fast.c's algebra (sh__rot_par_matrix, its
+ * derivation there): cβ = r22,
+ *   sβ = |r02 + i r12|,  e^{iα} = (r02 + i r12)/sβ  (α = 0 if sβ = 0),
+ *   e^{i(α±γ)} = (p + iq)/|p + iq|,  p + iq = (r00 + r11) + i(r10 − r01) if r22 ≥ 0,
+ *                                          (r11 − r00) − i(r10 + r01) else,
+ *   e^{iγ} = e^{i(α±γ)} e^{−iα} (the sign of sin γ flipped in the second case).
+ * The two 1/√ by the AVX-512 estimate (relative error < 2⁻¹⁴) and one
+ * Newton step y ← y + (y/2)(1 − x y²) (error ≈ 1.5·2⁻²⁸ + rounding, about
+ * an ulp; not the correctly rounded sqrt and division of rot_fast.c): 4
+ * multiplications per lane instead of a square root and a division.  No
+ * branch (a mispredicted one costs more than this whole function).  24
+ * multiplications in all (ZO_ANGLE_MULTS, counted per line below). */
+static inline __attribute__((always_inline)) void zo_angles(const float *R, int nocs, __m256 *v1)
+{
+    const float r00 = R[0], r01 = R[1], r02 = R[2], r10 = R[3], r11 = R[4], r12 = R[5], r22 = R[8];
+    /* σ = +1 for (b) (r22 ≥ 0), −1 for (c): p + iq = (r11 + σ r00) + i(σ r10 − r01),
+     * sin γ = σ t; σ by the sign bit of r22 (copysign: bit operations, no
+     * branch; −0 takes (c), as valid as (b) there) */
+    const float sg1 = copysignf(1.0f, r22);
+    const float p = sg1 * r00 + r11, q = sg1 * r10 - r01;                     /* 2 */
+    const float s2 = r02 * r02 + r12 * r12, n2 = p * p + q * q;               /* 4 */
+    /* y ≈ 1/√x for x = (s2, n2): estimate, then y + (y/2)(1 − x y²) (the
+     * correction added last: one rounding on the result); lanes
+     * with x = 0 (sβ = 0: α = 0) set to 0 by a mask, no branch */
+    const __m128 x = _mm_unpacklo_ps(_mm_set_ss(s2), _mm_set_ss(n2));
+    const __m128 pos = _mm_cmp_ps(x, _mm_setzero_ps(), _CMP_GT_OQ);
+    __m128 y = _mm_rsqrt14_ps(x);
+    const __m128 e = _mm_fnmadd_ps(x, _mm_mul_ps(y, y), _mm_set1_ps(1.0f));  /* 4: 1 − x y² */
+    y = _mm_fmadd_ps(_mm_mul_ps(y, _mm_set1_ps(0.5f)), e, y);                 /* 4: y + (y/2) e */
+    y = _mm_and_ps(y, pos);
+    const float inv = _mm_cvtss_f32(y), nrm = _mm_cvtss_f32(_mm_movehdup_ps(y));
+    const float ca0 = _mm_cvtss_f32(_mm_andnot_ps(pos, _mm_set_ss(1.0f))); /* 1 if sβ = 0 */
+    const float sb = s2 * inv;                                                  /* 1 */
+    const float ca = r02 * inv + ca0, sa = r12 * inv;                           /* 2 */
+    const float cs = p * nrm, ss = q * nrm;                                     /* 2 */
+    const float cg = cs * ca + ss * sa, sg = sg1 * (ss * ca - cs * sa);         /* 5 */
+    *v1 = _mm256_setr_ps(ca, r22, cg, 1.0f, sa, nocs ? -sb : sb, sg, 0.0f);
+}
+
+/* Z(θ) on one register pair: P' = c⊙P − s⊙N, N' = s⊙P + c⊙N */
+static inline __attribute__((always_inline)) void zo_z(__m512 c, __m512 s, __m512 *P, __m512 *N)
+{
+    const __m512 p = *P, q = *N;
+    *P = _mm512_fnmadd_ps(s, q, _mm512_mul_ps(c, p));
+    *N = _mm512_fmadd_ps(s, p, _mm512_mul_ps(c, q));
+}
+
+/* output register O of X (x = 0: X₊₉₀, 1: X₋₉₀) from the pair (P|N): Σ_j W_j ⊙ perm_j */
+static inline __attribute__((always_inline)) __m512 zo_xo(const zo_tab *t, int J, int x, int O, __m512 P, __m512 N)
+{
+    __m512 o = _mm512_mul_ps(ZO_LDF(t->w[x][O][0]), _mm512_permutex2var_ps(P, ZO_LDI(t->xi[O][0]), N));
+    for (int j = 1; j < J; j++)
+        o = _mm512_fmadd_ps(ZO_LDF(t->w[x][O][j]), _mm512_permutex2var_ps(P, ZO_LDI(t->xi[O][j]), N), o);
+    return o;
+}
+
+static inline __attribute__((always_inline)) void zo_kernel(int N, int J, int nocs, const float *R,
+                                                            const float *in, float *out)
+{
+    const zo_tab *t = &zo_tabs[N];
+    const int nc = N * N;
+    /* the vector, in the split layout */
+    const __m512 x0 = _mm512_maskz_loadu_ps((__mmask16)(nc >= 16 ? 0xffff : (1u << nc) - 1), in);
+    const __m512 x1 = nc > 16 ? _mm512_maskz_loadu_ps((__mmask16)(nc >= 32 ? 0xffff : (1u << (nc - 16)) - 1), in + 16)
+                              : x0;
+    const __m512 x2 = nc > 32 ? _mm512_maskz_loadu_ps((__mmask16)((1u << (nc - 32)) - 1), in + 32) : x1;
+    __m512 Pl = _mm512_maskz_permutex2var_ps(t->kin[0], x0, ZO_LDI(t->in[0]), x1);
+    __m512 Nl = _mm512_maskz_permutex2var_ps(t->kin[1], x0, ZO_LDI(t->in[1]), x1);
+    __m512 Ph = _mm512_setzero_ps(), Nh = _mm512_setzero_ps();
+    if (N == 6) {
+        Ph = _mm512_maskz_permutex2var_ps(t->kin[2], x1, ZO_LDI(t->in[2]), x2);
+        Nh = _mm512_maskz_permutex2var_ps(t->kin[3], x1, ZO_LDI(t->in[3]), x2);
+    }
+    /* multiple angles: v1 = (cα, cβ, cγ, 1, sα, sβ, sγ, 0) from R (header "Angles") */
+    const __m256 v0 = _mm256_setr_ps(1, 1, 1, 1, 0, 0, 0, 0);
+    __m256 v1;
+    zo_angles(R, nocs, &v1);
+    const __m256 hc = _mm256_permutevar8x32_ps(v1, _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3));
+    const __m256 tc = _mm256_add_ps(hc, hc);
+    const __m256 v2 = N > 2 ? _mm256_fmsub_ps(tc, v1, v0) : v0;
+    const __m256 v3 = N > 3 ? _mm256_fmsub_ps(tc, v2, v1) : v0;
+    const __m256 v4 = N > 4 ? _mm256_fmsub_ps(tc, v3, v2) : v0;
+    const __m256 v5 = N > 5 ? _mm256_fmsub_ps(tc, v4, v3) : v0;
+#define ZO_CAT(a, b) _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(a)), _mm256_castps_pd(b), 1))
+    const __m512 v12 = ZO_CAT(v1, v2), v34 = N > 3 ? ZO_CAT(v3, v4) : v12;
+    const __m512 v5z = _mm512_castps256_ps512(v5);
+#undef ZO_CAT
+    __m512 c, s, ch = _mm512_setzero_ps(), sh = _mm512_setzero_ps();
+    /* Z(γ) */
+    zo_cs(t, N, 2, v12, v34, v5z, &c, &s, &ch, &sh);
+    zo_z(c, s, &Pl, &Nl);
+    if (N == 6) zo_z(ch, sh, &Ph, &Nh);
+    /* X₊₉₀ */
+    __m512 a0 = zo_xo(t, J, 0, 0, Pl, Nl), a1 = zo_xo(t, J, 0, 1, Pl, Nl), a2 = Ph, a3 = Nh;
+    if (N == 6) a2 = zo_xo(t, J, 0, 2, Ph, Nh), a3 = zo_xo(t, J, 0, 3, Ph, Nh);
+    /* Z(β) */
+    zo_cs(t, N, 1, v12, v34, v5z, &c, &s, &ch, &sh);
+    zo_z(c, s, &a0, &a1);
+    if (N == 6) zo_z(ch, sh, &a2, &a3);
+    /* X₋₉₀ */
+    Pl = zo_xo(t, J, 1, 0, a0, a1), Nl = zo_xo(t, J, 1, 1, a0, a1);
+    if (N == 6) Ph = zo_xo(t, J, 1, 2, a2, a3), Nh = zo_xo(t, J, 1, 3, a2, a3);
+    /* Z(α) */
+    zo_cs(t, N, 0, v12, v34, v5z, &c, &s, &ch, &sh);
+    zo_z(c, s, &Pl, &Nl);
+    if (N == 6) zo_z(ch, sh, &Ph, &Nh);
+    /* back to l² + l + m */
+    const __m512 y0 = _mm512_permutex2var_ps(Pl, ZO_LDI(t->out[0]), Nl);
+    _mm512_mask_storeu_ps(out, (__mmask16)(nc >= 16 ? 0xffff : (1u << nc) - 1), y0);
+    if (N == 5) _mm512_mask_storeu_ps(out + 16, 0x1ff, _mm512_permutex2var_ps(Pl, ZO_LDI(t->out[1]), Nl));
+    if (N == 6) {
+        const __m512 lo = _mm512_permutex2var_ps(Pl, ZO_LDI(t->out[1]), Nl);
+        const __m512 hi = _mm512_permutex2var_ps(Ph, ZO_LDI(t->out[2]), Nh);
+        _mm512_storeu_ps(out + 16, _mm512_mask_blend_ps(0xfe00, lo, hi));
+        _mm512_mask_storeu_ps(out + 32, 0xf, _mm512_permutexvar_ps(ZO_LDI(t->out[3]), Ph));
+    }
+}
+
+#define ZO_FN(o, J, nocs, sfx)                                                                     \
+    static void zo_avx512_##o##sfx(const float *R, const float *in, float *out)                    \
+    {                                                                                              \
+        zo_kernel(o, J, nocs, R, in, out);                                                         \
+    }
+#define ZO_FNS(o, J) ZO_FN(o, J, 0, c) ZO_FN(o, J, 1, n)
+ZO_FNS(2, 1)
+ZO_FNS(3, 2)
+ZO_FNS(4, 2)
+ZO_FNS(5, 3)
+ZO_FNS(6, 3)
+#undef ZO_FN
+#undef ZO_FNS
+#pragma GCC pop_options
+
+static const sh__rot_one_fn_f zo_avx512[2][ZO_MAXO + 1] = {
+    {NULL, NULL, zo_avx512_2c, zo_avx512_3c, zo_avx512_4c, zo_avx512_5c, zo_avx512_6c},
+    {NULL, NULL, zo_avx512_2n, zo_avx512_3n, zo_avx512_4n, zo_avx512_5n, zo_avx512_6n}};
+static const int zo_J[ZO_MAXO + 1] = {0, 0, 1, 2, 2, 3, 3};
+#endif
+
+/* The kernel for (order, convention, the rotator's kernel), or NULL (the
+ * plan keeps the unrolled scalar kernel): AVX-512, orders ZO_MINO..6. */
+sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults)
+{
+    if (order < ZO_MINO || order > ZO_MAXO) return NULL;
+#ifdef ZO_HAVE_AVX512
+    if (kernel != SH_KERNEL_AVX512) return NULL;
+    pthread_once(&zo_once, zo_init);
+    if (!zo_ok[order] || zo_tabs[order].J > zo_J[order]) return NULL;
+    *mults = zo_tabs[order].mults;
+    return zo_avx512[nocs != 0][order];
+#else
+    (void)kernel;
+    (void)zo_init;
+    return NULL;
+#endif
+}
