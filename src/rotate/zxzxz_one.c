@@ -181,9 +181,54 @@ static int zo_build(int n, zo_tab *t)
     return ok && J >= 1;
 }
 
+/* n = 4, packed (header "n = 4"): P lanes 0..9, N lanes 10..15 */
+typedef struct {
+    int32_t in[16], swap[16], xi[2][16], out[16];
+    float w[2][2][16];       /* [X₊₉₀, X₋₉₀][term] */
+    int32_t cs[2][3][16];    /* cos, sin of angle a: index into (v1|v2, v3|v4) */
+    uint32_t sgn[16];        /* the sign bit on the P lanes: s' = −s there */
+} zo4_tab;
+static _Alignas(64) zo4_tab zo4;
+static int zo4_ok;
+static int zo4_lane(int l, int m) { return m >= 0 ? l * (l + 1) / 2 + m : 10 + l * (l - 1) / 2 - m - 1; }
+static int zo4_build(zo4_tab *t)
+{
+    double X[7 * 7];
+    memset(t, 0, sizeof *t);
+    for (int l = 0; l < 4; l++)
+        for (int m = -l; m <= l; m++) {
+            const int k = zo4_lane(l, m), am = m < 0 ? -m : m;
+            t->in[k] = l * l + l + m;
+            t->out[l * l + l + m] = k;
+            t->swap[k] = zo4_lane(l, -m);
+            t->sgn[k] = m >= 0 ? 0x80000000u : 0u;
+            for (int cs = 0; cs < 2; cs++)
+                for (int a = 0; a < 3; a++)
+                    t->cs[cs][a][k] = am == 0 ? (cs ? 7 : 3) : 8 * (am - 1) + 4 * cs + a;
+        }
+    for (int l = 0; l < 4; l++) {
+        const int w = 2 * l + 1;
+        if (sh__rot_zxzxz_xplus_band(l, X)) return 0;
+        for (int mp = -l; mp <= l; mp++) {
+            int j = 0;
+            for (int m = -l; m <= l; m++) {
+                const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
+                if (x == 0) continue;
+                if (j == 2) return 0;
+                t->xi[j][zo4_lane(l, mp)] = zo4_lane(l, m);
+                t->w[0][j][zo4_lane(l, mp)] = (float)x;
+                t->w[1][j][zo4_lane(l, mp)] = (float)((((mp + m) % 2) != 0) ? -x : x);
+                j++;
+            }
+        }
+    }
+    return 1;
+}
+
 static void zo_init(void)
 {
     for (int n = 2; n <= ZO_MAXO; n++) zo_ok[n] = zo_build(n, &zo_tabs[n]);
+    zo4_ok = zo4_build(&zo4);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -210,44 +255,88 @@ static inline __attribute__((always_inline)) void zo_cs(const zo_tab *t, int N, 
     }
 }
 
-/* v1 = (cos α, cos β, cos γ, 1, sin α, sin β, sin γ, 0) of R = Rz(α) Ry(β) Rz(γ)
- * (nocs: sin β negated), by rot_fast.c's algebra (sh__rot_par_matrix, its
- * derivation there): cβ = r22,
- *   sβ = |r02 + i r12|,  e^{iα} = (r02 + i r12)/sβ  (α = 0 if sβ = 0),
- *   e^{i(α±γ)} = (p + iq)/|p + iq|,  p + iq = (r00 + r11) + i(r10 − r01) if r22 ≥ 0,
- *                                          (r11 − r00) − i(r10 + r01) else,
- *   e^{iγ} = e^{i(α±γ)} e^{−iα} (the sign of sin γ flipped in the second case).
- * The two 1/√ by the AVX-512 estimate (relative error < 2⁻¹⁴) and one
- * Newton step y ← y + (y/2)(1 − x y²) (error ≈ 1.5·2⁻²⁸ + rounding, about
- * an ulp; not the correctly rounded sqrt and division of rot_fast.c): 4
- * multiplications per lane instead of a square root and a division.  No
- * branch (a mispredicted one costs more than this whole function).  24
- * multiplications in all (ZO_ANGLE_MULTS, counted per line below). */
-static inline __attribute__((always_inline)) void zo_angles(const float *R, int nocs, __m256 *v1)
+/* cos, sin of α, β, γ of R = Rz(α) Ry(β) Rz(γ) (nocs: sin β negated), by
+ * the algebra of rot_fast.c (sh__rot_par_matrix, derivation there) with the
+ * roles of α and γ exchanged — γ is needed first (Z(γ) starts the chain),
+ * α last, so γ is taken straight from row 2 and α relative to it:
+ *   cβ = r22,  sβ = |r20 + i r21|,  e^{iγ} = (−r20 + i r21)/sβ  (γ = 0 if sβ = 0),
+ *   e^{i(α+σγ)} = (p + iq)/|p + iq|,  p + iq = (r11 + σ r00) + i(σ r10 − r01),
+ *   e^{iα} = e^{i(α+σγ)} · (cγ − iσ sγ),
+ * σ = +1 if r22 ≥ 0 ((b) of rot_fast.c, modulus 1 + cβ ≥ 1), −1 else ((c),
+ * 1 − cβ > 1).  (From R = [[cαcβcγ − sαsγ, …, cαsβ], […, sαsβ],
+ * [−sβcγ, sβsγ, cβ]].)  Near β = 0 or π e^{iγ} is ill-conditioned, but α
+ * is taken relative to the same γ, so the error cancels in α ± γ, all that
+ * R depends on there (rot_fast.c's argument, mirrored).  Each 1/√ by the
+ * AVX-512 estimate (relative error < 2⁻¹⁴) and one Newton step
+ * y ← y + (y/2)(1 − x y²) (error ≈ 1.5·2⁻²⁸ + rounding, about an ulp; not
+ * the correctly rounded sqrt and division of rot_fast.c): 4 multiplications
+ * instead of a square root and a division.  No branch (σ by the sign bit of
+ * r22, the degenerate sβ = 0 by a mask; a mispredicted branch would cost
+ * more than this function).  24 multiplications (ZO_ANGLE_MULTS, per line
+ * below).  Out: g1 = (1, cβ, cγ, 1, 0, sβ, sγ, 0) and t = 2(1, cβ, cγ, 1)
+ * twice (the Chebyshev factor), a1 = (cα, 1, 1, 1, sα, 0, 0, 0) and
+ * ta = 2(cα, 1, 1, 1) twice (header "Multiple angles"). */
+/* 1/√x, and 0 for x = 0 (the mask): in lane 0; *zero = 1 if x = 0, else 0 */
+static inline __attribute__((always_inline)) __m128 zo_rsqrt(__m128 v, __m128 *zero)
 {
-    const float r00 = R[0], r01 = R[1], r02 = R[2], r10 = R[3], r11 = R[4], r12 = R[5], r22 = R[8];
-    /* σ = +1 for (b) (r22 ≥ 0), −1 for (c): p + iq = (r11 + σ r00) + i(σ r10 − r01),
-     * sin γ = σ t; σ by the sign bit of r22 (copysign: bit operations, no
-     * branch; −0 takes (c), as valid as (b) there) */
-    const float sg1 = copysignf(1.0f, r22);
-    const float p = sg1 * r00 + r11, q = sg1 * r10 - r01;                     /* 2 */
-    const float s2 = r02 * r02 + r12 * r12, n2 = p * p + q * q;               /* 4 */
-    /* y ≈ 1/√x for x = (s2, n2): estimate, then y + (y/2)(1 − x y²) (the
-     * correction added last: one rounding on the result); lanes
-     * with x = 0 (sβ = 0: α = 0) set to 0 by a mask, no branch */
-    const __m128 x = _mm_unpacklo_ps(_mm_set_ss(s2), _mm_set_ss(n2));
-    const __m128 pos = _mm_cmp_ps(x, _mm_setzero_ps(), _CMP_GT_OQ);
-    __m128 y = _mm_rsqrt14_ps(x);
-    const __m128 e = _mm_fnmadd_ps(x, _mm_mul_ps(y, y), _mm_set1_ps(1.0f));  /* 4: 1 − x y² */
-    y = _mm_fmadd_ps(_mm_mul_ps(y, _mm_set1_ps(0.5f)), e, y);                 /* 4: y + (y/2) e */
-    y = _mm_and_ps(y, pos);
-    const float inv = _mm_cvtss_f32(y), nrm = _mm_cvtss_f32(_mm_movehdup_ps(y));
-    const float ca0 = _mm_cvtss_f32(_mm_andnot_ps(pos, _mm_set_ss(1.0f))); /* 1 if sβ = 0 */
-    const float sb = s2 * inv;                                                  /* 1 */
-    const float ca = r02 * inv + ca0, sa = r12 * inv;                           /* 2 */
-    const float cs = p * nrm, ss = q * nrm;                                     /* 2 */
-    const float cg = cs * ca + ss * sa, sg = sg1 * (ss * ca - cs * sa);         /* 5 */
-    *v1 = _mm256_setr_ps(ca, r22, cg, 1.0f, sa, nocs ? -sb : sb, sg, 0.0f);
+    __m128 y = _mm_rsqrt14_ss(v, v);
+    const __m128 e = _mm_fnmadd_ss(v, _mm_mul_ss(y, y), _mm_set_ss(1.0f)); /* 2: 1 − x y² */
+    y = _mm_fmadd_ss(_mm_mul_ss(y, _mm_set_ss(0.5f)), e, y);               /* 2: y + (y/2) e */
+    const __m128 pos = _mm_cmp_ss(v, _mm_setzero_ps(), _CMP_GT_OQ);
+    *zero = _mm_andnot_ps(pos, _mm_set_ss(1.0f));
+    return _mm_and_ps(y, pos);
+}
+/* a·b + c, fused (the target has FMA; -std=c11 does not contract) */
+#define ZO_FMA(a, b, c) __builtin_fmaf((a), (b), (c))
+/* insert lane 0 of b into lane k of a */
+#define ZO_INS(a, b, k) _mm_insert_ps((a), (b), (k) << 4)
+static inline __attribute__((always_inline)) void zo_angles(const float *R, int nocs, __m256 *g1, __m256 *tg,
+                                                            __m256 *a1, __m256 *ta)
+{
+    const float r00 = R[0], r01 = R[1], r10 = R[3], r11 = R[4], r20 = R[6], r21 = R[7], r22 = R[8];
+    /* β, γ */
+    const float s2 = ZO_FMA(r20, r20, r21 * r21);                             /* 2 */
+    __m128 g0;
+    const float inv = _mm_cvtss_f32(zo_rsqrt(_mm_set_ss(s2), &g0));          /* 4 */
+    const float cg = ZO_FMA(-r20, inv, _mm_cvtss_f32(g0)), sg = r21 * inv;    /* 2: cγ = 1 if sβ = 0 */
+    const float sb = s2 * inv;                                                /* 1 */
+    const __m128 glo = ZO_INS(ZO_INS(_mm_setr_ps(1, 0, 0, 1), _mm_set_ss(r22), 1), _mm_set_ss(cg), 2);
+    const __m128 ghi = ZO_INS(ZO_INS(_mm_setzero_ps(), _mm_set_ss(nocs ? -sb : sb), 1), _mm_set_ss(sg), 2);
+    const __m128 glo2 = _mm_add_ps(glo, glo);
+    *g1 = _mm256_insertf128_ps(_mm256_castps128_ps256(glo), ghi, 1);
+    *tg = _mm256_insertf128_ps(_mm256_castps128_ps256(glo2), glo2, 1);
+    /* α */
+    const float sgm = copysignf(1.0f, r22); /* σ: bit operations */
+    const float p = ZO_FMA(sgm, r00, r11), q = ZO_FMA(sgm, r10, -r01);        /* 2 */
+    const float n2 = ZO_FMA(p, p, q * q);                                     /* 2 */
+    __m128 z0;
+    const float nrm = _mm_cvtss_f32(zo_rsqrt(_mm_set_ss(n2), &z0));          /* 4 */
+    const float cs = p * nrm, ss = q * nrm, ssg = sgm * sg;                   /* 3 */
+    const float ca = ZO_FMA(cs, cg, ss * ssg), sa = ZO_FMA(ss, cg, -(cs * ssg)); /* 4 */
+    const __m128 alo = _mm_move_ss(_mm_set1_ps(1.0f), _mm_set_ss(ca));
+    const __m128 ahi = _mm_set_ss(sa);
+    const __m128 alo2 = _mm_add_ps(alo, alo);
+    *a1 = _mm256_insertf128_ps(_mm256_castps128_ps256(alo), ahi, 1);
+    *ta = _mm256_insertf128_ps(_mm256_castps128_ps256(alo2), alo2, 1);
+}
+#undef ZO_INS
+#undef ZO_FMA
+
+/* v_1 … v_N−1 (header "Multiple angles") from v1 and t = 2cos θ per lane:
+ * (v1|v2, v3|v4, v5) as the permutes of zo_cs read them */
+static inline __attribute__((always_inline)) void zo_multiple(int N, __m256 v1, __m256 t, __m512 *v12, __m512 *v34,
+                                                              __m512 *v5z)
+{
+    const __m256 v0 = _mm256_setr_ps(1, 1, 1, 1, 0, 0, 0, 0);
+    const __m256 v2 = N > 2 ? _mm256_fmsub_ps(t, v1, v0) : v0;
+    const __m256 v3 = N > 3 ? _mm256_fmsub_ps(t, v2, v1) : v0;
+    const __m256 v4 = N > 4 ? _mm256_fmsub_ps(t, v3, v2) : v0;
+    const __m256 v5 = N > 5 ? _mm256_fmsub_ps(t, v4, v3) : v0;
+#define ZO_CAT(a, b) _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(a)), _mm256_castps_pd(b), 1))
+    *v12 = ZO_CAT(v1, v2);
+    *v34 = N > 3 ? ZO_CAT(v3, v4) : *v12;
+    *v5z = _mm512_castps256_ps512(v5);
+#undef ZO_CAT
 }
 
 /* Z(θ) on one register pair: P' = c⊙P − s⊙N, N' = s⊙P + c⊙N */
@@ -284,37 +373,29 @@ static inline __attribute__((always_inline)) void zo_kernel(int N, int J, int no
         Ph = _mm512_maskz_permutex2var_ps(t->kin[2], x1, ZO_LDI(t->in[2]), x2);
         Nh = _mm512_maskz_permutex2var_ps(t->kin[3], x1, ZO_LDI(t->in[3]), x2);
     }
-    /* multiple angles: v1 = (cα, cβ, cγ, 1, sα, sβ, sγ, 0) from R (header "Angles") */
-    const __m256 v0 = _mm256_setr_ps(1, 1, 1, 1, 0, 0, 0, 0);
-    __m256 v1;
-    zo_angles(R, nocs, &v1);
-    const __m256 hc = _mm256_permutevar8x32_ps(v1, _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3));
-    const __m256 tc = _mm256_add_ps(hc, hc);
-    const __m256 v2 = N > 2 ? _mm256_fmsub_ps(tc, v1, v0) : v0;
-    const __m256 v3 = N > 3 ? _mm256_fmsub_ps(tc, v2, v1) : v0;
-    const __m256 v4 = N > 4 ? _mm256_fmsub_ps(tc, v3, v2) : v0;
-    const __m256 v5 = N > 5 ? _mm256_fmsub_ps(tc, v4, v3) : v0;
-#define ZO_CAT(a, b) _mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(a)), _mm256_castps_pd(b), 1))
-    const __m512 v12 = ZO_CAT(v1, v2), v34 = N > 3 ? ZO_CAT(v3, v4) : v12;
-    const __m512 v5z = _mm512_castps256_ps512(v5);
-#undef ZO_CAT
+    /* the angles (zo_angles) and their multiples: γ and β first, α apart */
+    __m256 g1, tg, a1, ta;
+    zo_angles(R, nocs, &g1, &tg, &a1, &ta);
+    __m512 g12, g34, g5, a12, a34, a5;
+    zo_multiple(N, g1, tg, &g12, &g34, &g5);
+    zo_multiple(N, a1, ta, &a12, &a34, &a5);
     __m512 c, s, ch = _mm512_setzero_ps(), sh = _mm512_setzero_ps();
     /* Z(γ) */
-    zo_cs(t, N, 2, v12, v34, v5z, &c, &s, &ch, &sh);
+    zo_cs(t, N, 2, g12, g34, g5, &c, &s, &ch, &sh);
     zo_z(c, s, &Pl, &Nl);
     if (N == 6) zo_z(ch, sh, &Ph, &Nh);
     /* X₊₉₀ */
-    __m512 a0 = zo_xo(t, J, 0, 0, Pl, Nl), a1 = zo_xo(t, J, 0, 1, Pl, Nl), a2 = Ph, a3 = Nh;
-    if (N == 6) a2 = zo_xo(t, J, 0, 2, Ph, Nh), a3 = zo_xo(t, J, 0, 3, Ph, Nh);
+    __m512 b0 = zo_xo(t, J, 0, 0, Pl, Nl), b1 = zo_xo(t, J, 0, 1, Pl, Nl), b2 = Ph, b3 = Nh;
+    if (N == 6) b2 = zo_xo(t, J, 0, 2, Ph, Nh), b3 = zo_xo(t, J, 0, 3, Ph, Nh);
     /* Z(β) */
-    zo_cs(t, N, 1, v12, v34, v5z, &c, &s, &ch, &sh);
-    zo_z(c, s, &a0, &a1);
-    if (N == 6) zo_z(ch, sh, &a2, &a3);
+    zo_cs(t, N, 1, g12, g34, g5, &c, &s, &ch, &sh);
+    zo_z(c, s, &b0, &b1);
+    if (N == 6) zo_z(ch, sh, &b2, &b3);
     /* X₋₉₀ */
-    Pl = zo_xo(t, J, 1, 0, a0, a1), Nl = zo_xo(t, J, 1, 1, a0, a1);
-    if (N == 6) Ph = zo_xo(t, J, 1, 2, a2, a3), Nh = zo_xo(t, J, 1, 3, a2, a3);
+    Pl = zo_xo(t, J, 1, 0, b0, b1), Nl = zo_xo(t, J, 1, 1, b0, b1);
+    if (N == 6) Ph = zo_xo(t, J, 1, 2, b2, b3), Nh = zo_xo(t, J, 1, 3, b2, b3);
     /* Z(α) */
-    zo_cs(t, N, 0, v12, v34, v5z, &c, &s, &ch, &sh);
+    zo_cs(t, N, 0, a12, a34, a5, &c, &s, &ch, &sh);
     zo_z(c, s, &Pl, &Nl);
     if (N == 6) zo_z(ch, sh, &Ph, &Nh);
     /* back to l² + l + m */
@@ -328,6 +409,41 @@ static inline __attribute__((always_inline)) void zo_kernel(int N, int J, int no
         _mm512_mask_storeu_ps(out + 32, 0xf, _mm512_permutexvar_ps(ZO_LDI(t->out[3]), Ph));
     }
 }
+
+/* n = 4, packed: the 16 coefficients in one register (header "n = 4") */
+static inline __attribute__((always_inline)) void zo4_kernel(int nocs, const float *R, const float *in, float *out)
+{
+    const zo4_tab *t = &zo4;
+    __m512 v = _mm512_permutexvar_ps(ZO_LDI(t->in), _mm512_loadu_ps(in));
+    __m256 g1, tg, a1, ta;
+    zo_angles(R, nocs, &g1, &tg, &a1, &ta);
+    __m512 g12, g34, g5, a12, a34, a5;
+    zo_multiple(4, g1, tg, &g12, &g34, &g5);
+    zo_multiple(4, a1, ta, &a12, &a34, &a5);
+    const __m512i sw = ZO_LDI(t->swap), x0 = ZO_LDI(t->xi[0]), x1 = ZO_LDI(t->xi[1]);
+    const __m512i sg = ZO_LDI(t->sgn); /* xor by integer ops: _mm512_xor_ps is AVX512DQ */
+#define ZO4_Z(A12, A34, a)                                                                         \
+    do {                                                                                           \
+        const __m512 c = _mm512_permutex2var_ps(A12, ZO_LDI(t->cs[0][a]), A34);                    \
+        const __m512 s = _mm512_castsi512_ps(                                                      \
+            _mm512_xor_si512(_mm512_castps_si512(_mm512_permutex2var_ps(A12, ZO_LDI(t->cs[1][a]), A34)), sg)); \
+        v = _mm512_fmadd_ps(s, _mm512_permutexvar_ps(sw, v), _mm512_mul_ps(c, v));                 \
+    } while (0)
+#define ZO4_X(x)                                                                                   \
+    v = _mm512_fmadd_ps(ZO_LDF(t->w[x][1]), _mm512_permutexvar_ps(x1, v),                          \
+                        _mm512_mul_ps(ZO_LDF(t->w[x][0]), _mm512_permutexvar_ps(x0, v)))
+    ZO4_Z(g12, g34, 2); /* Z(γ) */
+    ZO4_X(0);           /* X₊₉₀ */
+    ZO4_Z(g12, g34, 1); /* Z(β) */
+    ZO4_X(1);           /* X₋₉₀ */
+    ZO4_Z(a12, a34, 0); /* Z(α) */
+#undef ZO4_Z
+#undef ZO4_X
+    _mm512_storeu_ps(out, _mm512_permutexvar_ps(ZO_LDI(t->out), v));
+    (void)g5, (void)a5;
+}
+static void zo4_avx512_c(const float *R, const float *in, float *out) { zo4_kernel(0, R, in, out); }
+static void zo4_avx512_n(const float *R, const float *in, float *out) { zo4_kernel(1, R, in, out); }
 
 #define ZO_FN(o, J, nocs, sfx)                                                                     \
     static void zo_avx512_##o##sfx(const float *R, const float *in, float *out)                    \
@@ -360,6 +476,10 @@ sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, 
     pthread_once(&zo_once, zo_init);
     if (!zo_ok[order] || zo_tabs[order].J > zo_J[order]) return NULL;
     *mults = zo_tabs[order].mults;
+    if (order == 4) {
+        if (!zo4_ok) return NULL;
+        return nocs ? zo4_avx512_n : zo4_avx512_c;
+    }
     return zo_avx512[nocs != 0][order];
 #else
     (void)kernel;
