@@ -25,8 +25,7 @@
  * Layout ("split"): coefficient (l, m) of the vector (index l² + l + m) is
  * kept in two registers, P for m ≥ 0 and N for m < 0, lane-aligned: lane
  * k of N holds (l, −m) where lane k of P holds (l, m) (N's m = 0 lanes are
- * zero).  Bands 0..4 ("lo", n(n+1)/2 ≤ 15 lanes): lane l(l+1)/2 + m;
- * band 5 ("hi", n = 6 only): lane m of a second pair.  Then
+ * zero).  Bands 0..4 (n(n+1)/2 ≤ 15 lanes): lane l(l+1)/2 + m.  Then
  *   Z(θ):  P' = c⊙P − s⊙N,  N' = s⊙P + c⊙N,   c, s = cos(mθ), sin(mθ) per lane
  * (rot_internal.h, sh__rot_z_band: c_m ← cos(mθ) c_m − sin(mθ) c_{−m},
  * c_{−m} ← sin(mθ) c_m + cos(mθ) c_{−m}; m = 0: c = 1, s = 0): element-wise,
@@ -46,23 +45,40 @@
  * pattern is checked exactly there and here: a row with more than 3
  * non-zeros leaves the kernel unresolved and the plan on the unrolled one).
  *
- * Multiple angles: one 8-lane vector v_m = (cos mα, cos mβ, cos mγ, 1,
+ * n = 4 ("packed"): the 16 coefficients fit one register, P lanes 0..9
+ * (l(l+1)/2 + m) and N lanes 10..15 (10 + l(l−1)/2 + |m| − 1), so
+ *   Z(θ):  v' = c⊙v + s'⊙swap(v),   s' = −sin(|m|θ) on P lanes, +sin on N lanes
+ * (swap: the single-source permute exchanging (l, m) and (l, −m)), and each
+ * X term is a single-source permute of v; the index vectors stay in
+ * registers across the three Z and two X.  Measured 0.81× the split layout
+ * at n = 4 (kernel alone).  n = 5 keeps the split layout; n = 6 ("n = 6")
+ * keeps it for bands 0..4 and packs band 5 (11 coefficients) into one
+ * register the same way (P lanes 0..5, N lanes 6..10; its X with J = 3
+ * single-source permutes instead of 2 × 3 two-source ones): 0.91× the split
+ * band 5 (kernel alone).  (Bands 0..3 packed and band 4 apart at n = 5
+ * would trade the two-source permutes for more c, s vectors: no fewer
+ * instructions by count, not tried.)
+ *
+ * Multiple angles: 8-lane vectors v_m = (cos mα, cos mβ, cos mγ, 1,
  * sin mα, sin mβ, sin mγ, 0) by the Chebyshev recurrence
  *   v_m = 2cos(θ)·v_{m−1} − v_{m−2}   (cos and sin alike; lane 3: 2·1 − 1 = 1)
- * one FMA per m = 2..n−1, then per angle the c, s lane vectors of Z by one
- * permute from (v₁|v₂, v₃|v₄) (lane 3 gives cos 0 = 1, lane 7 sin 0 = 0),
- * plus one masked permute for m = 5 (the hi pair).  Load: the n² inputs
- * (masked loads, nothing read past the vector) permuted into the split
- * layout; store: the inverse permutes, masked stores.  Everything is loaded
- * before anything is stored: in == out is allowed.
+ * one FMA per m = 2..n−1 — run twice: once on the β and γ lanes, which the
+ * first two z rotations need and which come first from R (zo_angles), once
+ * on the α lane, which comes last and is needed last — then per angle the c,
+ * s lane vectors of Z by one permute from (v₁|v₂, v₃|v₄) (lane 3 gives
+ * cos 0 = 1, lane 7 sin 0 = 0), plus one masked permute for m = 5 (the hi
+ * pair).  Load: the n² inputs (masked loads, nothing read past the vector)
+ * permuted into the layout; store: the inverse permutes, masked stores.
+ * Everything is loaded before anything is stored: in == out is allowed.
  *
  * Multiplications (*mults, counted as executed: each multiply or FMA lane
  * that holds a coefficient or an angle, including the trivial ones —
  * cos 0 = 1 at m = 0, the zero weights of a row with fewer than J
  * non-zeros; the padding lanes are not counted): per Z 2 per live lane,
  * 2n² (three Z: 6n²); per X, J per live lane, J·n² (two X: 2Jn²);
- * Chebyshev 6(n−2), and 24 for the angles from R (zo_angles): n = 4, 5, 6:
- * 196, 342, 480.  (The generated scalar kernel counts fewer, 120, 216, 344
+ * Chebyshev 6(n−2) (per m, 4 live lanes in the β, γ run and 2 in the α
+ * run), and 24 for the angles from R (zo_angles): n = 4, 5, 6: 196, 342,
+ * 480.  (The generated scalar kernel counts fewer, 120, 216, 344
  * at these orders plus 12 in the set, as it skips the zeros; it runs them
  * one instruction each.)
  */
@@ -225,8 +241,55 @@ static int zo4_build(zo4_tab *t)
     return 1;
 }
 
+/* n = 6, band 5 packed in one register (header "n = 6"): P lanes 0..5,
+ * N lanes 6..10 */
+typedef struct {
+    int32_t in[16], swap[16], xi[ZO_J][16], out1[16], out2[16];
+    float w[2][ZO_J][16];
+    int32_t cs[2][3][16], cs5[2][3][16];
+    uint32_t sgn[16];
+} zoh_tab;
+static _Alignas(64) zoh_tab zoh;
+static int zoh_ok;
+static int zoh_lane(int m) { return m >= 0 ? m : 5 - m; }
+static int zoh_build(zoh_tab *t)
+{
+    const int l = 5, w = 11;
+    double X[11 * 11];
+    memset(t, 0, sizeof *t);
+    for (int m = -l; m <= l; m++) {
+        const int k = zoh_lane(m), am = m < 0 ? -m : m;
+        t->in[k] = l * l + l + m - 16; /* into (in[16..31], in[32..47]) */
+        t->swap[k] = zoh_lane(-m);
+        t->sgn[k] = m >= 0 ? 0x80000000u : 0u;
+        for (int cs = 0; cs < 2; cs++)
+            for (int a = 0; a < 3; a++) {
+                t->cs[cs][a][k] = am == 0 || am == 5 ? (cs ? 7 : 3) : 8 * (am - 1) + 4 * cs + a;
+                t->cs5[cs][a][k] = 4 * cs + a;
+            }
+        const int i = l * l + l + m; /* 25..35 */
+        if (i < 32) t->out1[i - 16] = k;
+        else t->out2[i - 32] = k;
+    }
+    if (sh__rot_zxzxz_xplus_band(l, X)) return 0;
+    for (int mp = -l; mp <= l; mp++) {
+        int j = 0;
+        for (int m = -l; m <= l; m++) {
+            const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
+            if (x == 0) continue;
+            if (j == ZO_J) return 0;
+            t->xi[j][zoh_lane(mp)] = zoh_lane(m);
+            t->w[0][j][zoh_lane(mp)] = (float)x;
+            t->w[1][j][zoh_lane(mp)] = (float)((((mp + m) % 2) != 0) ? -x : x);
+            j++;
+        }
+    }
+    return 1;
+}
+
 static void zo_init(void)
 {
+    zoh_ok = zoh_build(&zoh);
     for (int n = 2; n <= ZO_MAXO; n++) zo_ok[n] = zo_build(n, &zo_tabs[n]);
     zo4_ok = zo4_build(&zo4);
 }
@@ -242,17 +305,32 @@ static void zo_init(void)
 #define ZO_LDF(p) _mm512_load_ps((const void *)(p))
 
 /* the c, s lane vectors of angle a (header "Multiple angles") */
-static inline __attribute__((always_inline)) void zo_cs(const zo_tab *t, int N, int a, __m512 v12, __m512 v34,
-                                                        __m512 v5, __m512 *c, __m512 *s, __m512 *ch, __m512 *sh)
+static inline __attribute__((always_inline)) void zo_cs(const zo_tab *t, int a, __m512 v12, __m512 v34, __m512 *c,
+                                                        __m512 *s)
 {
     *c = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs_lo[0][a]), v34);
     *s = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs_lo[1][a]), v34);
-    if (N == 6) {
-        *ch = _mm512_mask_permutexvar_ps(_mm512_permutex2var_ps(v12, ZO_LDI(t->cs_hi[0][a]), v34), 1 << 5,
-                                         ZO_LDI(t->cs5[0][a]), v5);
-        *sh = _mm512_mask_permutexvar_ps(_mm512_permutex2var_ps(v12, ZO_LDI(t->cs_hi[1][a]), v34), 1 << 5,
-                                         ZO_LDI(t->cs5[1][a]), v5);
-    }
+}
+/* Z(θ) of angle a on the packed band 5 (n = 6): v' = c⊙v + s'⊙swap(v) */
+static inline __attribute__((always_inline)) __m512 zoh_z(int a, __m512 v12, __m512 v34, __m512 v5, __m512i sw,
+                                                          __m512i sg, __m512 h)
+{
+    const zoh_tab *t = &zoh;
+    const __mmask16 k5 = (1u << 5) | (1u << 10); /* |m| = 5: from v5 */
+    const __m512 c = _mm512_mask_permutexvar_ps(_mm512_permutex2var_ps(v12, ZO_LDI(t->cs[0][a]), v34), k5,
+                                                ZO_LDI(t->cs5[0][a]), v5);
+    const __m512 s = _mm512_mask_permutexvar_ps(_mm512_permutex2var_ps(v12, ZO_LDI(t->cs[1][a]), v34), k5,
+                                                ZO_LDI(t->cs5[1][a]), v5);
+    const __m512 sp = _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(s), sg));
+    return _mm512_fmadd_ps(sp, _mm512_permutexvar_ps(sw, h), _mm512_mul_ps(c, h));
+}
+/* X (x = 0: X₊₉₀, 1: X₋₉₀) on the packed band 5 */
+static inline __attribute__((always_inline)) __m512 zoh_x(int x, const __m512i *xi, __m512 h)
+{
+    const zoh_tab *t = &zoh;
+    __m512 o = _mm512_mul_ps(ZO_LDF(t->w[x][0]), _mm512_permutexvar_ps(xi[0], h));
+    o = _mm512_fmadd_ps(ZO_LDF(t->w[x][1]), _mm512_permutexvar_ps(xi[1], h), o);
+    return _mm512_fmadd_ps(ZO_LDF(t->w[x][2]), _mm512_permutexvar_ps(xi[2], h), o);
 }
 
 /* cos, sin of α, β, γ of R = Rz(α) Ry(β) Rz(γ) (nocs: sin β negated), by
@@ -368,46 +446,50 @@ static inline __attribute__((always_inline)) void zo_kernel(int N, int J, int no
     const __m512 x2 = nc > 32 ? _mm512_maskz_loadu_ps((__mmask16)((1u << (nc - 32)) - 1), in + 32) : x1;
     __m512 Pl = _mm512_maskz_permutex2var_ps(t->kin[0], x0, ZO_LDI(t->in[0]), x1);
     __m512 Nl = _mm512_maskz_permutex2var_ps(t->kin[1], x0, ZO_LDI(t->in[1]), x1);
-    __m512 Ph = _mm512_setzero_ps(), Nh = _mm512_setzero_ps();
-    if (N == 6) {
-        Ph = _mm512_maskz_permutex2var_ps(t->kin[2], x1, ZO_LDI(t->in[2]), x2);
-        Nh = _mm512_maskz_permutex2var_ps(t->kin[3], x1, ZO_LDI(t->in[3]), x2);
-    }
+    /* n = 6: band 5 packed (header "n = 6") */
+    __m512 H = _mm512_setzero_ps();
+    if (N == 6) H = _mm512_maskz_permutex2var_ps(0x7ff, x1, ZO_LDI(zoh.in), x2);
     /* the angles (zo_angles) and their multiples: γ and β first, α apart */
     __m256 g1, tg, a1, ta;
     zo_angles(R, nocs, &g1, &tg, &a1, &ta);
     __m512 g12, g34, g5, a12, a34, a5;
     zo_multiple(N, g1, tg, &g12, &g34, &g5);
     zo_multiple(N, a1, ta, &a12, &a34, &a5);
-    __m512 c, s, ch = _mm512_setzero_ps(), sh = _mm512_setzero_ps();
+    __m512i hsw = _mm512_setzero_si512(), hsg = hsw, hxi[ZO_J] = {hsw, hsw, hsw};
+    if (N == 6) {
+        hsw = ZO_LDI(zoh.swap), hsg = ZO_LDI(zoh.sgn);
+        for (int j = 0; j < ZO_J; j++) hxi[j] = ZO_LDI(zoh.xi[j]);
+    }
+    __m512 c, s;
     /* Z(γ) */
-    zo_cs(t, N, 2, g12, g34, g5, &c, &s, &ch, &sh);
+    zo_cs(t, 2, g12, g34, &c, &s);
     zo_z(c, s, &Pl, &Nl);
-    if (N == 6) zo_z(ch, sh, &Ph, &Nh);
+    if (N == 6) H = zoh_z(2, g12, g34, g5, hsw, hsg, H);
     /* X₊₉₀ */
-    __m512 b0 = zo_xo(t, J, 0, 0, Pl, Nl), b1 = zo_xo(t, J, 0, 1, Pl, Nl), b2 = Ph, b3 = Nh;
-    if (N == 6) b2 = zo_xo(t, J, 0, 2, Ph, Nh), b3 = zo_xo(t, J, 0, 3, Ph, Nh);
+    __m512 b0 = zo_xo(t, J, 0, 0, Pl, Nl), b1 = zo_xo(t, J, 0, 1, Pl, Nl);
+    if (N == 6) H = zoh_x(0, hxi, H);
     /* Z(β) */
-    zo_cs(t, N, 1, g12, g34, g5, &c, &s, &ch, &sh);
+    zo_cs(t, 1, g12, g34, &c, &s);
     zo_z(c, s, &b0, &b1);
-    if (N == 6) zo_z(ch, sh, &b2, &b3);
+    if (N == 6) H = zoh_z(1, g12, g34, g5, hsw, hsg, H);
     /* X₋₉₀ */
     Pl = zo_xo(t, J, 1, 0, b0, b1), Nl = zo_xo(t, J, 1, 1, b0, b1);
-    if (N == 6) Ph = zo_xo(t, J, 1, 2, b2, b3), Nh = zo_xo(t, J, 1, 3, b2, b3);
+    if (N == 6) H = zoh_x(1, hxi, H);
     /* Z(α) */
-    zo_cs(t, N, 0, a12, a34, a5, &c, &s, &ch, &sh);
+    zo_cs(t, 0, a12, a34, &c, &s);
     zo_z(c, s, &Pl, &Nl);
-    if (N == 6) zo_z(ch, sh, &Ph, &Nh);
+    if (N == 6) H = zoh_z(0, a12, a34, a5, hsw, hsg, H);
     /* back to l² + l + m */
     const __m512 y0 = _mm512_permutex2var_ps(Pl, ZO_LDI(t->out[0]), Nl);
     _mm512_mask_storeu_ps(out, (__mmask16)(nc >= 16 ? 0xffff : (1u << nc) - 1), y0);
     if (N == 5) _mm512_mask_storeu_ps(out + 16, 0x1ff, _mm512_permutex2var_ps(Pl, ZO_LDI(t->out[1]), Nl));
     if (N == 6) {
         const __m512 lo = _mm512_permutex2var_ps(Pl, ZO_LDI(t->out[1]), Nl);
-        const __m512 hi = _mm512_permutex2var_ps(Ph, ZO_LDI(t->out[2]), Nh);
+        const __m512 hi = _mm512_permutexvar_ps(ZO_LDI(zoh.out1), H);
         _mm512_storeu_ps(out + 16, _mm512_mask_blend_ps(0xfe00, lo, hi));
-        _mm512_mask_storeu_ps(out + 32, 0xf, _mm512_permutexvar_ps(ZO_LDI(t->out[3]), Ph));
+        _mm512_mask_storeu_ps(out + 32, 0xf, _mm512_permutexvar_ps(ZO_LDI(zoh.out2), H));
     }
+    (void)a5;
 }
 
 /* n = 4, packed: the 16 coefficients in one register (header "n = 4") */
@@ -476,6 +558,7 @@ sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, 
     pthread_once(&zo_once, zo_init);
     if (!zo_ok[order] || zo_tabs[order].J > zo_J[order]) return NULL;
     *mults = zo_tabs[order].mults;
+    if (order == 6 && !zoh_ok) return NULL;
     if (order == 4) {
         if (!zo4_ok) return NULL;
         return nocs ? zo4_avx512_n : zo4_avx512_c;
