@@ -1,7 +1,8 @@
 /* zxzxz_one.c — zxzxz's kernel of ONE rotation applied to ONE vector, in
  * float, vectorised across the coefficients (AVX-512: 16 float lanes), for
- * orders n = 4..6 (bands 0..n−1; the code is written for 2..6, but at
- * n = 2, 3 the unrolled scalar kernel measured faster and stays).  Float
+ * orders n = 4..6 (bands 0..n−1; at n = 3 a first version of this kernel
+ * measured 20.7 ns per rotation against the unrolled scalar kernel's 19.0,
+ * so n ≤ 3 keeps that, and `direct` is faster still there).  Float
  * only (not a rot_*.c: compiled once).  The plan reaches it through
  * sh__rot_zxzxz_ops.one_f: rotator.c resolves it once (rotator one_mat),
  * and rotation_plan.c's sh_rot_plan_set_matrix_f only checks the matrix
@@ -98,18 +99,16 @@ sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, 
 #define ZO_J 3 /* terms per output lane, at most (header) */
 #define ZO_ANGLE_MULTS 24u /* zo_angles */
 
-/* The per-order tables: index vectors of the permutes, weights, masks. */
+/* The per-order tables of the split layout (n = 5, 6; bands 0..4): index
+ * vectors of the permutes, weights, masks. */
 typedef struct {
-    int32_t in[4][16];        /* P_lo, N_lo from (in[0..15], in[16..31]); P_hi, N_hi from (in[16..31], in[32..47]) */
-    int32_t xi[4][ZO_J][16];  /* term j of output P_lo, N_lo (from P_lo|N_lo), P_hi, N_hi (from P_hi|N_hi) */
-    float w[2][4][ZO_J][16];  /* its weights, X₊₉₀ and X₋₉₀ */
-    int32_t cs_lo[2][3][16];  /* cos, sin of angle a (0 α, 1 β, 2 γ): index into (v1|v2, v3|v4) */
-    int32_t cs_hi[2][3][16];  /* the same for the hi lanes, m = 0..4 (lane 5: cs5) */
-    int32_t cs5[2][3][16];    /* lane 5 of the hi c, s: index into v5 */
-    int32_t out[4][16];       /* out[0..15], out[16..24] from (P_lo|N_lo), out[25..31] from (P_hi|N_hi), out[32..35] from P_hi */
-    uint16_t kin[4];          /* live lanes of P_lo, N_lo, P_hi, N_hi */
-    int J;                    /* terms used */
-    uint64_t mults;
+    int32_t in[2][16];        /* P, N from (in[0..15], in[16..31]) */
+    int32_t xi[2][ZO_J][16];  /* term j of output P, N (from P|N) */
+    float w[2][2][ZO_J][16];  /* its weights, X₊₉₀ and X₋₉₀ */
+    int32_t cs[2][3][16];     /* cos, sin of angle a (0 α, 1 β, 2 γ): index into (v1|v2, v3|v4) */
+    int32_t out[2][16];       /* out[0..15], out[16..24] from (P|N) */
+    uint16_t kin[2];          /* live lanes of P, N */
+    int J;                    /* terms per lane, all bands 0..n−1 (band 5: zoh) */
 } zo_tab;
 
 static _Alignas(64) zo_tab zo_tabs[ZO_MAXO + 1];
@@ -121,80 +120,69 @@ static int zo_lane(int l, int am) { return l < 5 ? l * (l + 1) / 2 + am : am; }
 /* index of (l, m) into the permute source pair (P|N) of its group */
 static int zo_src(int l, int m) { return m >= 0 ? zo_lane(l, m) : 16 + zo_lane(l, -m); }
 
+/* multiplications of one call (header) */
+static uint64_t zo_mults(int n, int J)
+{
+    const uint64_t nn = (uint64_t)n * n;
+    return ZO_ANGLE_MULTS + 6 * nn + 2 * (uint64_t)J * nn + 6 * (uint64_t)(n - 2);
+}
+
 static int zo_build(int n, zo_tab *t)
 {
-    double *X = malloc(sizeof(double) * 11 * 11);
-    if (!X) return 0;
+    double X[11 * 11];
+    const int nl = n < 5 ? n : 5; /* the bands in P, N */
     memset(t, 0, sizeof *t);
     /* cos and sin index of m for angle a: v1|v2 = lanes 0..15, v3|v4 = 16..31;
      * in v_m cos at a, sin at 4 + a; lane 3 = 1, lane 7 = 0 */
-    for (int cs = 0; cs < 2; cs++)
+    for (int l = 0; l < nl; l++)
+        for (int m = 0; m <= l; m++)
+            for (int cs = 0; cs < 2; cs++)
+                for (int a = 0; a < 3; a++)
+                    t->cs[cs][a][zo_lane(l, m)] = m == 0 ? (cs ? 7 : 3) : 8 * (m - 1) + 4 * cs + a;
+    for (int cs = 0; cs < 2; cs++) /* the lanes past the bands: cos 0, sin 0 */
         for (int a = 0; a < 3; a++)
-            for (int i = 0; i < 16; i++) {
-                const int pad = cs ? 7 : 3;
-                int m = -1;
-                for (int l = 0; l < 5; l++)
-                    if (i >= zo_lane(l, 0) && i <= zo_lane(l, l)) m = i - zo_lane(l, 0);
-                const int mh = i < 5 ? i : -1;
-#define ZO_CSIDX(m) ((m) <= 0 ? pad : 8 * ((m) - 1) + 4 * cs + a)
-                t->cs_lo[cs][a][i] = m < n ? ZO_CSIDX(m) : pad;
-                t->cs_hi[cs][a][i] = ZO_CSIDX(mh);
-#undef ZO_CSIDX
-                t->cs5[cs][a][i] = 4 * cs + a;
-            }
+            for (int i = nl * (nl + 1) / 2; i < 16; i++) t->cs[cs][a][i] = cs ? 7 : 3;
     /* input: P lane (l, m) ← l² + l + m, N lane (l, m) ← l² + l − m */
-    for (int l = 0; l < n; l++)
+    for (int l = 0; l < nl; l++)
         for (int m = 0; m <= l; m++) {
-            const int g = l < 5 ? 0 : 2, base = l < 5 ? 0 : 16;
-            t->in[g][zo_lane(l, m)] = l * l + l + m - base;
-            t->kin[g] |= (uint16_t)(1u << zo_lane(l, m));
+            t->in[0][zo_lane(l, m)] = l * l + l + m;
+            t->kin[0] |= (uint16_t)(1u << zo_lane(l, m));
             if (m > 0) {
-                t->in[g + 1][zo_lane(l, m)] = l * l + l - m - base;
-                t->kin[g + 1] |= (uint16_t)(1u << zo_lane(l, m));
+                t->in[1][zo_lane(l, m)] = l * l + l - m;
+                t->kin[1] |= (uint16_t)(1u << zo_lane(l, m));
             }
         }
-    /* X₊₉₀, X₋₉₀: output lane (l, m') takes its row's non-zero columns */
-    int ok = 1, J = 0;
-    for (int l = 0; l < n && ok; l++) {
+    /* X₊₉₀, X₋₉₀: output lane (l, m') takes its row's non-zero columns (J
+     * over every band, band 5's written by zoh_build) */
+    int J = 0;
+    for (int l = 0; l < n; l++) {
         const int w = 2 * l + 1;
-        if (sh__rot_zxzxz_xplus_band(l, X)) {
-            ok = 0;
-            break;
-        }
+        if (sh__rot_zxzxz_xplus_band(l, X)) return 0;
         for (int mp = -l; mp <= l; mp++) {
-            const int O = (l < 5 ? 0 : 2) + (mp < 0), lane = zo_lane(l, mp < 0 ? -mp : mp);
+            const int O = mp < 0, lane = zo_lane(l, mp < 0 ? -mp : mp);
             int j = 0;
             for (int m = -l; m <= l; m++) {
                 const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
                 if (x == 0) continue;
-                if (j == ZO_J) {
-                    ok = 0;
-                    break;
+                if (j == ZO_J) return 0;
+                if (l < 5) {
+                    t->xi[O][j][lane] = zo_src(l, m);
+                    t->w[0][O][j][lane] = (float)x;
+                    t->w[1][O][j][lane] = (float)((((mp + m) % 2) != 0) ? -x : x);
                 }
-                t->xi[O][j][lane] = zo_src(l, m);
-                t->w[0][O][j][lane] = (float)x;
-                t->w[1][O][j][lane] = (float)((((mp + m) % 2) != 0) ? -x : x);
                 j++;
             }
             if (j > J) J = j;
         }
     }
-    /* output: out[i], i = l² + l + m */
-    for (int i = 0; i < 48; i++) {
-        int l = 0;
-        while ((l + 1) * (l + 1) <= i) l++;
-        const int m = i - l * l - l;
-        if (l >= n) continue;
-        if (i < 16) t->out[0][i] = zo_src(l, m);
-        else if (i < 32 && l < 5) t->out[1][i - 16] = zo_src(l, m);
-        else if (i < 32) t->out[2][i - 16] = zo_src(l, m);
-        else t->out[3][i - 32] = zo_lane(l, m);
-    }
+    /* output: out[i], i = l² + l + m < 25 */
+    for (int l = 0; l < nl; l++)
+        for (int m = -l; m <= l; m++) {
+            const int i = l * l + l + m;
+            t->out[i >> 4][i & 15] = zo_src(l, m);
+        }
     t->J = J;
-    const uint64_t nn = (uint64_t)n * n;
-    t->mults = ZO_ANGLE_MULTS + 6 * nn + 2 * (uint64_t)J * nn + (n > 2 ? 6 * (uint64_t)(n - 2) : 0);
-    free(X);
-    return ok && J >= 1;
+    return J >= 1;
 }
 
 /* n = 4, packed (header "n = 4"): P lanes 0..9, N lanes 10..15 */
@@ -289,9 +277,9 @@ static int zoh_build(zoh_tab *t)
 
 static void zo_init(void)
 {
-    zoh_ok = zoh_build(&zoh);
-    for (int n = 2; n <= ZO_MAXO; n++) zo_ok[n] = zo_build(n, &zo_tabs[n]);
     zo4_ok = zo4_build(&zo4);
+    for (int n = 5; n <= ZO_MAXO; n++) zo_ok[n] = zo_build(n, &zo_tabs[n]);
+    zoh_ok = zoh_build(&zoh);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -308,8 +296,8 @@ static void zo_init(void)
 static inline __attribute__((always_inline)) void zo_cs(const zo_tab *t, int a, __m512 v12, __m512 v34, __m512 *c,
                                                         __m512 *s)
 {
-    *c = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs_lo[0][a]), v34);
-    *s = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs_lo[1][a]), v34);
+    *c = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs[0][a]), v34);
+    *s = _mm512_permutex2var_ps(v12, ZO_LDI(t->cs[1][a]), v34);
 }
 /* Z(θ) of angle a on the packed band 5 (n = 6): v' = c⊙v + s'⊙swap(v) */
 static inline __attribute__((always_inline)) __m512 zoh_z(int a, __m512 v12, __m512 v34, __m512 v5, __m512i sw,
@@ -533,9 +521,6 @@ static void zo4_avx512_n(const float *R, const float *in, float *out) { zo4_kern
         zo_kernel(o, J, nocs, R, in, out);                                                         \
     }
 #define ZO_FNS(o, J) ZO_FN(o, J, 0, c) ZO_FN(o, J, 1, n)
-ZO_FNS(2, 1)
-ZO_FNS(3, 2)
-ZO_FNS(4, 2)
 ZO_FNS(5, 3)
 ZO_FNS(6, 3)
 #undef ZO_FN
@@ -543,9 +528,9 @@ ZO_FNS(6, 3)
 #pragma GCC pop_options
 
 static const sh__rot_one_fn_f zo_avx512[2][ZO_MAXO + 1] = {
-    {NULL, NULL, zo_avx512_2c, zo_avx512_3c, zo_avx512_4c, zo_avx512_5c, zo_avx512_6c},
-    {NULL, NULL, zo_avx512_2n, zo_avx512_3n, zo_avx512_4n, zo_avx512_5n, zo_avx512_6n}};
-static const int zo_J[ZO_MAXO + 1] = {0, 0, 1, 2, 2, 3, 3};
+    {NULL, NULL, NULL, NULL, zo4_avx512_c, zo_avx512_5c, zo_avx512_6c},
+    {NULL, NULL, NULL, NULL, zo4_avx512_n, zo_avx512_5n, zo_avx512_6n}};
+static const int zo_J[ZO_MAXO + 1] = {0, 0, 1, 2, 2, 3, 3}; /* compiled: at most */
 #endif
 
 /* The kernel for (order, convention, the rotator's kernel), or NULL (the
@@ -556,13 +541,9 @@ sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, 
 #ifdef ZO_HAVE_AVX512
     if (kernel != SH_KERNEL_AVX512) return NULL;
     pthread_once(&zo_once, zo_init);
-    if (!zo_ok[order] || zo_tabs[order].J > zo_J[order]) return NULL;
-    *mults = zo_tabs[order].mults;
-    if (order == 6 && !zoh_ok) return NULL;
-    if (order == 4) {
-        if (!zo4_ok) return NULL;
-        return nocs ? zo4_avx512_n : zo4_avx512_c;
-    }
+    const int ok = order == 4 ? zo4_ok : zo_ok[order] && zo_tabs[order].J <= zo_J[order] && (order < 6 || zoh_ok);
+    if (!ok) return NULL;
+    *mults = zo_mults(order, zo_J[order]);
     return zo_avx512[nocs != 0][order];
 #else
     (void)kernel;

@@ -11,8 +11,7 @@
  * (β = 10^−u, u uniform in [1, 7], and π minus that, α and γ random).
  * The multiplication count is the header's formula (24 for the angles,
  * 2n² per z rotation, J·n² per X product, 6(n−2) for the Chebyshev
- * recurrence; J = 1 at n = 2, 2 at n = 3, 4, 3 at n = 5, 6), not read
- * from a run. */
+ * recurrence; J = 2 at n = 4, 3 at n = 5, 6), not read from a run. */
 #include "rottest.h"
 
 #define ZO_NQ 300
@@ -33,7 +32,7 @@
 
 static uint64_t zo_mults(int n)
 {
-    const uint64_t J = n == 2 ? 1 : n <= 4 ? 2 : 3, nn = (uint64_t)n * n;
+    const uint64_t J = n <= 4 ? 2 : 3, nn = (uint64_t)n * n;
     return 24 + 3 * 2 * nn + 2 * J * nn + 6 * (uint64_t)(n - 2);
 }
 
