@@ -392,8 +392,8 @@ static __attribute__((noinline)) int set_matrix_own_f(sh_rot_plan *p, const floa
 int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
 {
     if (p->r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float matrix for a double plan");
-    if (p->r->one_mat) return set_matrix_one_f(p, R);
-    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC) return set_matrix_fast_f(p, R);
+    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC)
+        return p->r->one_mat ? set_matrix_one_f(p, R) : set_matrix_fast_f(p, R);
     if (p->r->ops->set_mat_f) return set_matrix_own_f(p, R);
     return set_rot(p, NULL, R, 0);
 }
