@@ -11,7 +11,8 @@
  * (β = 10^−u, u uniform in [1, 7], and π minus that, α and γ random).
  * The multiplication count is the header's formula (24 for the angles,
  * 2n² per z rotation, J·n² per X product, 6(n−2) for the Chebyshev
- * recurrence; J = 2 at n = 4, 3 at n = 5, 6), not read from a run. */
+ * recurrence and 6 more for its step-2 factor at n ≥ 5; J = 2 at n = 4, 3
+ * at n = 5, 6), not read from a run. */
 #include "rottest.h"
 
 #define ZO_NQ 300
@@ -33,7 +34,7 @@
 static uint64_t zo_mults(int n)
 {
     const uint64_t J = n <= 4 ? 2 : 3, nn = (uint64_t)n * n;
-    return 24 + 3 * 2 * nn + 2 * J * nn + 6 * (uint64_t)(n - 2);
+    return 24 + 3 * 2 * nn + 2 * J * nn + 6 * (uint64_t)(n - 2) + (n > 4 ? 6 : 0);
 }
 
 /* case k: rottest's set and quaternions, then near-gimbal rotations */
