@@ -105,7 +105,13 @@ typedef struct {
      * the state set_P or set_mat_P wrote (P: the plan's precision) and
      * applies it in that convention, in == out allowed; *mults = its
      * multiplications.  The rotator resolves it once (sh_rotator.one_P);
-     * the plan's apply then calls it with nothing in between. */
+     * the plan's apply then calls it with nothing in between.  A method
+     * with unrolled kernels (zxzxz, zxzxz_one.c) may have one too, in
+     * place of the unrolled one-lane kernel of its order (one_mat, below):
+     * its state is then the rotation's matrix R itself (9 floats,
+     * row-major, as given: the convention is the kernel's), which every
+     * set of the plan writes; the par of the unrolled batches is then made
+     * from it when a batch needs it. */
     sh__rot_one_fn_d (*one_d)(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults);
     sh__rot_one_fn_f (*one_f)(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults);
 } sh__rot_ops;
@@ -300,6 +306,7 @@ struct sh_rotator {
     sh__rot_one_fn_d one_d; /* the method's one-vector kernel (ops->one_P), or NULL */
     sh__rot_one_fn_f one_f;
     uint64_t one_mults;   /* its multiplications per call */
+    int one_mat;          /* 1: an unrolled method's one_P, whose state is R (above) */
     int stream;           /* halfpi in double: all bands by sh_rot_stream, on threads */
     int threads;          /* the stream's threads (1 for the plans) */
     sh_progress_fn progress;

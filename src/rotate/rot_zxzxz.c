@@ -85,6 +85,7 @@ SH__ROT_DECLARE_BLOCKS(zxzxz);
 SH__ROT_DECLARE_APPLY(zxzxz);
 SH__ROT_DECLARE_TABLES(zxzxz);
 SH__ROT_DECLARE_SET_PAR(zxzxz);
+sh__rot_one_fn_f sh__rot_zxzxz_one_f(int, int, sh_rot_kernel, uint64_t *); /* zxzxz_one.c */
 
 #include <stdlib.h>
 #include <string.h>
@@ -547,5 +548,6 @@ const sh__rot_ops sh__rot_zxzxz_ops = {
     .apply_f = sh__rot_zxzxz_apply_f,
     .band_d = zx_band_double,
     .band_work_bytes = zx_band_work,
+    .one_f = sh__rot_zxzxz_one_f,
 };
 #endif

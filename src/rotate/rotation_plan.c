@@ -34,6 +34,7 @@ struct sh_rot_plan {
     double par_d[SH__PAR_N]; /* unrolled: the rotation (nocs: β negated) */
     float par_f[SH__PAR_N];
     int blocks_ok;      /* unrolled ivanic: blocks holds the rotation's blocks */
+    int par_stale;      /* one_mat: par not yet made from the state's R (apply_many makes it) */
 };
 
 int sh__rot_plan_new(const sh_rotator *r, int owns, sh_rot_plan **out)
@@ -112,6 +113,24 @@ static int compute_blocks(sh_rot_plan *p, void *blocks, uint64_t *mults)
     return st;
 }
 
+/* A one-vector kernel that reads R (rotator one_mat: zxzxz_one.c, float
+ * plans): the state is the rotation's matrix in float, as given (the
+ * kernel applies the convention).  The sets other than
+ * sh_rot_plan_set_matrix_f come here with R in double, or R in float
+ * (rf), or a quaternion (its matrix, rotation.c). */
+static void one_mat_state(sh_rot_plan *p, const double *rd, const float *rf, int quat)
+{
+    float *st = p->state;
+    double R[9], q[4];
+    if (quat) {
+        for (int i = 0; i < 4; i++) q[i] = rf ? rf[i] : rd[i];
+        sh__rot_quat_matrix(q, R);
+        rd = R, rf = NULL;
+    }
+    for (int i = 0; i < 9; i++) st[i] = rf ? rf[i] : (float)rd[i];
+    p->par_stale = 0;
+}
+
 /* The unrolled kernels: par in the plan's precision, nocs by β → −β
  * (rot_fast.c), counted multiplications of one vector. */
 static void fast_par_done(sh_rot_plan *p, const double *pd)
@@ -152,6 +171,7 @@ int sh_rot_plan_set(sh_rot_plan *p, const sh_rotation *rot)
         if (p->r->prec == SH_PREC_FLOAT) sh__rot_par_euler_f(rot, p->par_f);
         else sh__rot_par_euler_d(rot, p->par_d);
         fast_par_done(p, NULL);
+        if (p->r->one_mat) one_mat_state(p, rot->R, NULL, 0);
         return SH_OK;
     }
     const sh__rot_progress_scope outer = sh__rot_progress_enter(p->r, "bands of the rotation");
@@ -273,6 +293,7 @@ static int set_rot(sh_rot_plan *p, const double *rd, const float *rf, int quat)
         }
         p->have_angles = 0;
         fast_par_done(p, NULL);
+        if (p->r->one_mat) one_mat_state(p, rd, rf, quat);
         return SH_OK;
     }
     if (!quat && p->r->ops->set_mat_d) return set_mat(p, rd, rf);
@@ -339,6 +360,27 @@ static __attribute__((noinline)) int set_matrix_fast_f(sh_rot_plan *p, const flo
     p->have_rot = 1;
     return SH_OK;
 }
+/* one_mat (zxzxz_one.c): R checked finite (rot_finite.h) and copied into
+ * the state, the first eight entries as two 16-byte vectors (the kernel's
+ * loads of them are then forwarded from these stores); par is made only if
+ * a batch asks (apply_many) */
+static __attribute__((noinline)) int set_matrix_one_f(sh_rot_plan *p, const float R[9])
+{
+    if (!sh__finite9_f(R)) return sh_error(SH_EINVAL, "rotation plan: matrix entries must be finite");
+    typedef float v4 __attribute__((vector_size(16)));
+    v4 a, b;
+    float *st = p->state;
+    memcpy(&a, R, 16);
+    memcpy(&b, R + 4, 16);
+    memcpy(st, &a, 16);
+    memcpy(st + 4, &b, 16);
+    st[8] = R[8];
+    p->set_mults = 0;
+    p->par_stale = 1;
+    p->have_angles = 0;
+    p->have_rot = 1;
+    return SH_OK;
+}
 static __attribute__((noinline)) int set_matrix_own_f(sh_rot_plan *p, const float R[9])
 {
     p->have_rot = p->have_angles = 0;
@@ -350,7 +392,8 @@ static __attribute__((noinline)) int set_matrix_own_f(sh_rot_plan *p, const floa
 int sh_rot_plan_set_matrix_f(sh_rot_plan *p, const float R[9])
 {
     if (p->r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "rotation plan: float matrix for a double plan");
-    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC) return set_matrix_fast_f(p, R);
+    if (p->r->fmeth >= 0 && p->r->fmeth != SH__FAST_IVANIC)
+        return p->r->one_mat ? set_matrix_one_f(p, R) : set_matrix_fast_f(p, R);
     if (p->r->ops->set_mat_f) return set_matrix_own_f(p, R);
     return set_rot(p, NULL, R, 0);
 }
@@ -544,6 +587,10 @@ static int apply_many(sh_rot_plan *p, size_t K, const void *in, void *out, int f
         return SH_OK;
     }
     if (p->r->fmeth >= 0) {
+        if (p->par_stale) { /* set by sh_rot_plan_set_matrix_f for the one-vector kernel: R in the state */
+            par_matrix_f(p->r, p->state, p->par_f);
+            p->par_stale = 0;
+        }
         if (fl) p->r->ffv->many(p->r->fmeth, p->r->order, p->par_f, K, in, out);
         else p->r->fdv->many(p->r->fmeth, p->r->order, p->par_d, K, in, out);
         p->apply_mults = fast_mults(p);

@@ -26,6 +26,7 @@
  * a plan in one object.
  */
 #include "rotate/rot_internal.h"
+#include "rotate/rot_finite.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -186,6 +187,12 @@ static int rotator_new(const sh_rotator_opts *o, int stream, sh_rotator **out)
             r->one_f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
         else if (r->prec == SH_PREC_DOUBLE && r->ops->one_d)
             r->one_d = r->ops->one_d(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
+    } else if (r->fmeth == SH__FAST_ZXZXZ && r->prec == SH_PREC_FLOAT && r->ops->one_f) {
+        /* zxzxz's one-vector kernel (zxzxz_one.c), where it has one for this
+         * order and kernel, in place of the unrolled one: it reads R */
+        uint64_t m = 0;
+        const sh__rot_one_fn_f f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &m);
+        if (f) r->one_f = f, r->one_mults = m, r->one_mat = 1, r->fn_f = NULL;
     }
     if ((st = mem_check(r->order, method, r->prec, sh__rot_plan_state_bytes(r) +
                                                          sh__rot_tables_bytes(r->order, r->ops, r->prec)))) {
@@ -356,6 +363,11 @@ int sh_rotator_apply_matrix_f(const sh_rotator *r, const float R[9], const float
 {
     if (!r || !R || !in || !out) return sh_error(SH_EINVAL, "sh_rotator_apply_matrix_f: NULL argument");
     if (r->prec != SH_PREC_FLOAT) return sh_error(SH_EINVAL, "sh_rotator_apply_matrix_f: a double rotator");
+    if (r->one_mat) { /* the one-vector kernel reads R itself */
+        if (!sh__finite9_f(R)) return sh_error(SH_EINVAL, "sh_rotator_apply_matrix_f: matrix entries must be finite");
+        r->one_f(R, in, out);
+        return SH_OK;
+    }
     if (r->fn_f && r->fmeth != SH__FAST_IVANIC) { /* unrolled: nothing to allocate */
         float par[SH__PAR_N];
         int st = sh__rot_plan_par_matrix_f(r, R, par);
