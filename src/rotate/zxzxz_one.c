@@ -188,6 +188,30 @@ static int zo_build(int n, zo_tab *t)
     return J >= 1;
 }
 
+/* The non-zero entries of X₊₉₀'s band l, row by row, as terms of the output
+ * lanes of a packed layout (lane[i]: the lane of m = i − l): term j of lane
+ * (m') reads lane (m) with weight x for X₊₉₀ (wp) and (−1)^(m'+m) x for
+ * X₋₉₀ = S X₊₉₀ S (wm).  0 if a row has more than maxj non-zeros. */
+static int x_terms(int l, const int *lane, int maxj, int32_t (*xi)[16], float (*wp)[16], float (*wm)[16])
+{
+    double X[11 * 11];
+    const int w = 2 * l + 1;
+    if (sh__rot_zxzxz_xplus_band(l, X)) return 0;
+    for (int mp = -l; mp <= l; mp++) {
+        int j = 0;
+        for (int m = -l; m <= l; m++) {
+            const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
+            if (x == 0) continue;
+            if (j == maxj) return 0;
+            xi[j][lane[mp + l]] = lane[m + l];
+            wp[j][lane[mp + l]] = (float)x;
+            wm[j][lane[mp + l]] = (float)((((mp + m) % 2) != 0) ? -x : x);
+            j++;
+        }
+    }
+    return 1;
+}
+
 /* n = 4, packed (header "n = 4"): P lanes 0..9, N lanes 10..15 */
 typedef struct {
     int32_t in[16], swap[16], xi[2][16], out[16];
@@ -200,7 +224,6 @@ static int zo4_ok;
 static int zo4_lane(int l, int m) { return m >= 0 ? l * (l + 1) / 2 + m : 10 + l * (l - 1) / 2 - m - 1; }
 static int zo4_build(zo4_tab *t)
 {
-    double X[7 * 7];
     memset(t, 0, sizeof *t);
     for (int l = 0; l < 4; l++)
         for (int m = -l; m <= l; m++) {
@@ -214,20 +237,9 @@ static int zo4_build(zo4_tab *t)
                     t->cs[cs][a][k] = am == 0 ? (cs ? 7 : 3) : 8 * (am - 1) + 4 * cs + a;
         }
     for (int l = 0; l < 4; l++) {
-        const int w = 2 * l + 1;
-        if (sh__rot_zxzxz_xplus_band(l, X)) return 0;
-        for (int mp = -l; mp <= l; mp++) {
-            int j = 0;
-            for (int m = -l; m <= l; m++) {
-                const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
-                if (x == 0) continue;
-                if (j == 2) return 0;
-                t->xi[j][zo4_lane(l, mp)] = zo4_lane(l, m);
-                t->w[0][j][zo4_lane(l, mp)] = (float)x;
-                t->w[1][j][zo4_lane(l, mp)] = (float)((((mp + m) % 2) != 0) ? -x : x);
-                j++;
-            }
-        }
+        int lane[7];
+        for (int m = -l; m <= l; m++) lane[m + l] = zo4_lane(l, m);
+        if (!x_terms(l, lane, 2, t->xi, t->w[0], t->w[1])) return 0;
     }
     return 1;
 }
@@ -245,8 +257,7 @@ static int zoh_ok;
 static int zoh_lane(int m) { return m >= 0 ? m : 5 - m; }
 static int zoh_build(zoh_tab *t)
 {
-    const int l = 5, w = 11;
-    double X[11 * 11];
+    const int l = 5;
     memset(t, 0, sizeof *t);
     for (int m = -l; m <= l; m++) {
         const int k = zoh_lane(m), am = m < 0 ? -m : m;
@@ -262,20 +273,9 @@ static int zoh_build(zoh_tab *t)
         if (i < 32) t->out1[i - 16] = k;
         else t->out2[i - 32] = k;
     }
-    if (sh__rot_zxzxz_xplus_band(l, X)) return 0;
-    for (int mp = -l; mp <= l; mp++) {
-        int j = 0;
-        for (int m = -l; m <= l; m++) {
-            const double x = X[(size_t)(mp + l) * w + (size_t)(m + l)];
-            if (x == 0) continue;
-            if (j == ZO_J) return 0;
-            t->xi[j][zoh_lane(mp)] = zoh_lane(m);
-            t->w[0][j][zoh_lane(mp)] = (float)x;
-            t->w[1][j][zoh_lane(mp)] = (float)((((mp + m) % 2) != 0) ? -x : x);
-            j++;
-        }
-    }
-    return 1;
+    int lane[11];
+    for (int m = -l; m <= l; m++) lane[m + l] = zoh_lane(m);
+    return x_terms(l, lane, ZO_J, t->xi, t->w[0], t->w[1]);
 }
 
 static void zo_init(void)

@@ -53,6 +53,15 @@ static void zo_case(int k, sh_rotation *r, char *name, size_t nn)
 
 static int zo_have(void) { return sh_rot_kernel_available(SH_KERNEL_AVX512); }
 
+/* A float zxzxz plan and rotator of order n on the AVX-512 kernel. */
+static void zo_plan_rotator(int n, sh_convention conv, sh_rot_plan **p, sh_rotator **rr)
+{
+    ck_assert_int_eq(sh_rot_plan_create_kernel(n, SH_ROT_ZXZXZ, SH_PREC_FLOAT, conv, SH_KERNEL_AVX512, p), SH_OK);
+    const sh_rotator_opts o = {.order = n, .method = SH_ROT_ZXZXZ, .prec = SH_PREC_FLOAT, .conv = conv,
+                               .kernel = SH_KERNEL_AVX512};
+    ck_assert_int_eq(sh_rotator_create(&o, rr), SH_OK);
+}
+
 /* The blocks of the float plan by its one-vector path (apply_f on each unit
  * vector), R given as a float matrix. */
 static void zo_blocks_f(sh_rot_plan *p, int n, double *B)
@@ -144,12 +153,8 @@ START_TEST(test_vs_batches)
         for (int n = 4; n <= 6; n++) {
             const int nc = n * n;
             sh_rot_plan *p = NULL;
-            ck_assert_int_eq(sh_rot_plan_create_kernel(n, SH_ROT_ZXZXZ, SH_PREC_FLOAT, conv, SH_KERNEL_AVX512, &p),
-                             SH_OK);
             sh_rotator *rr = NULL;
-            const sh_rotator_opts o = {.order = n, .method = SH_ROT_ZXZXZ, .prec = SH_PREC_FLOAT, .conv = conv,
-                                       .kernel = SH_KERNEL_AVX512};
-            ck_assert_int_eq(sh_rotator_create(&o, &rr), SH_OK);
+            zo_plan_rotator(n, conv, &p, &rr);
             static float Rs[9 * K], xs[ZO_MAXN * K], ys[ZO_MAXN * K], ym[ZO_MAXN * K];
             for (int k = 0; k < ZO_NCASES; k += K) {
                 const int nk = ZO_NCASES - k < K ? ZO_NCASES - k : K;
@@ -211,12 +216,8 @@ START_TEST(test_nonfinite)
     for (int n = 4; n <= 6; n++) {
         const int nc = n * n;
         sh_rot_plan *p = NULL;
-        ck_assert_int_eq(sh_rot_plan_create_kernel(n, SH_ROT_ZXZXZ, SH_PREC_FLOAT, SH_CS, SH_KERNEL_AVX512, &p),
-                         SH_OK);
         sh_rotator *rr = NULL;
-        const sh_rotator_opts o = {.order = n, .method = SH_ROT_ZXZXZ, .prec = SH_PREC_FLOAT, .conv = SH_CS,
-                                   .kernel = SH_KERNEL_AVX512};
-        ck_assert_int_eq(sh_rotator_create(&o, &rr), SH_OK);
+        zo_plan_rotator(n, SH_CS, &p, &rr);
         float R[9], x[ZO_MAXN], y0[ZO_MAXN], y[ZO_MAXN];
         for (int i = 0; i < 9; i++) R[i] = (float)r.R[i];
         for (int i = 0; i < nc; i++) x[i] = (float)(i + 1) / nc;
