@@ -105,7 +105,8 @@ sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, 
 /* The per-order tables of the split layout (n = 5, 6; bands 0..4): index
  * vectors of the permutes, weights, masks. */
 typedef struct {
-    int32_t in[2][16];        /* P, N from (in[0..15], in[16..31]) */
+    _Alignas(64) int32_t in[2][16]; /* P, N from (in[0..15], in[16..31]); the type 64-aligned, so
+                                       every element of an array of it is (the kernel's aligned loads) */
     int32_t xi[2][ZO_J][16];  /* term j of output P, N (from P|N) */
     float w[2][2][ZO_J][16];  /* its weights, X₊₉₀ and X₋₉₀ */
     int32_t cs[2][3][16];     /* cos, sin of angle a (0 α, 1 β, 2 γ): index into (v1|v2, v3|v4) */
@@ -214,7 +215,8 @@ static int x_terms(int l, const int *lane, int maxj, int32_t (*xi)[16], float (*
 
 /* n = 4, packed (header "n = 4"): P lanes 0..9, N lanes 10..15 */
 typedef struct {
-    int32_t in[16], swap[16], xi[2][16], out[16];
+    _Alignas(64) int32_t in[16];
+    int32_t swap[16], xi[2][16], out[16];
     float w[2][2][16];       /* [X₊₉₀, X₋₉₀][term] */
     int32_t cs[2][3][16];    /* cos, sin of angle a: index into (v1|v2, v3|v4) */
     uint32_t sgn[16];        /* the sign bit on the P lanes: s' = −s there */
@@ -247,7 +249,8 @@ static int zo4_build(zo4_tab *t)
 /* n = 6, band 5 packed in one register (header "n = 6"): P lanes 0..5,
  * N lanes 6..10 */
 typedef struct {
-    int32_t in[16], swap[16], xi[ZO_J][16], out1[16], out2[16];
+    _Alignas(64) int32_t in[16];
+    int32_t swap[16], xi[ZO_J][16], out1[16], out2[16];
     float w[2][ZO_J][16];
     int32_t cs[2][3][16], cs5[2][3][16];
     uint32_t sgn[16];
