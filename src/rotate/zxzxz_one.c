@@ -292,8 +292,14 @@ static void zo_init(void)
 #define ZO_HAVE_AVX512 1
 #include <immintrin.h>
 
+/* every function to the pop below is compiled for AVX-512 (GCC's pragma; clang,
+ * which builds the fuzzers, has its own) */
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx512f,avx512vl,fma"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512vl,fma")
+#endif
 
 #define ZO_LDI(p) _mm512_load_si512((const void *)(p))
 #define ZO_LDF(p) _mm512_load_ps((const void *)(p))
@@ -534,7 +540,11 @@ ZO_FNS(5, 3)
 ZO_FNS(6, 3)
 #undef ZO_FN
 #undef ZO_FNS
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 
 static const sh__rot_one_fn_f zo_avx512[2][ZO_MAXO + 1] = {
     {NULL, NULL, NULL, NULL, zo4_avx512_c, zo_avx512_5c, zo_avx512_6c},
