@@ -544,8 +544,9 @@ static void note_err(first_err *e, int st, int ring)
  * in blocks of LBLK bands, m by m: a block's bands of one m are one short run
  * of alm, and on the flat side the block writes 2·LBLK rows that each advance
  * by one value per m, so every cache line on either side is used whole while
- * it is in L1.  (64 bands to a block, with the rows of a block 1 MB apart at
- * lmax 1000, made this step 5–10 % of a transform.) */
+ * it is in L1.  It stays latency-bound all the same: perf at lmax 1023 gave
+ * this step 12 % of a synthesis with 64-band blocks and 10–11 % with these
+ * and the prefetch. */
 #define LBLK 8
 #define LPF 8 /* m ahead whose runs are prefetched */
 
