@@ -698,8 +698,9 @@ int sh__sht_analysis_cb(sh_sht *p, sh_convention conv, sht_get_fn get, void *ctx
         }
         p->seeded = ch + 1;
         if (err.st) break;
-        /* (2) Legendre sums, m by m (runs of MRUN m to a thread, so that the
-         * rows of coeffs one m writes are written by one thread) */
+        /* (2) Legendre sums, m by m, in runs of MRUN m to a thread: a cache line
+         * of coeffs holds neighbouring m of one band, and put_m of one run
+         * writes most of its lines from one thread */
 #pragma omp parallel for schedule(dynamic, MRUN) num_threads(p->nthreads)
         for (int m = 0; m <= L; m++) {
             const int t = thread_id();
