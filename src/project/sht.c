@@ -77,6 +77,8 @@ struct sh_sht {
     double *cx, *cmant, *cscl;  /* cx[chunk]; cmant, cscl: [m][chunk_alloc lanes] (m-major: a
                                    kernel job reads one run; they are written once per chunk) */
     double *cdata;              /* [m][group][nchan·4][SHT_GRP] (sht_internal.h) */
+    unsigned char *cdead;       /* [m][group]: 1 once a kernel found that no lane of the group
+                                   lives at this m (sht_kjob.dead); cleared with the seeds */
     double *alm;                /* coefficients m-major: m at alm + moff[m]·nchan, then
                                    [(l−m)·nchan + c]·2 + {0, 1} for c_l^{m}, c_l^{−m} */
     /* per-thread scratch */
@@ -131,6 +133,7 @@ int sh__sht_set_isa(sh_sht *p, sht_isa isa)
         return sh_error(SH_ENOTSUP, "kernels for %s are not built in or not supported by this CPU",
                         sh__sht_isa_name(isa));
     p->isa = isa;
+    p->seeded = 0; /* the dead flags (sht_kjob.dead) came from another set's rounding */
     switch (isa) {
 #if defined(SHLAB_SHT_X86)
     case SHT_ISA_AVX512: p->ana = sh__sht_analysis_avx512; p->syn = sh__sht_synthesis_avx512; break;
@@ -152,6 +155,13 @@ int sh__sht_set_chunk(sh_sht *p, int pairs)
     p->seeded = 0;
     p->nchunks = (p->npairs + pairs - 1) / pairs;
     return SH_OK;
+}
+
+int sh__sht_dead_groups(const sh_sht *p)
+{
+    int n = 0;
+    for (size_t i = 0; p->seeded && i < (size_t)(p->lmax + 1) * (p->chunk_alloc / GRP); i++) n += p->cdead[i];
+    return n;
 }
 
 /* ------------------------------------------------------------------ grids */
@@ -241,7 +251,7 @@ size_t sh_sht_bytes(int order, const sh_grid *g, int nchan, int nthreads)
     const double ch = chunk_pairs(order - 1, nchan, (int)np);
     double b = np * (2 * sizeof(int) + 2 * sizeof(double)) + g->nrings * sizeof(double);
     b += L1 * (L1 + 1) * sizeof(double) + L1 * (sizeof(size_t) + 3 * sizeof(double));
-    b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan));
+    b += ch * sizeof(double) * (1 + L1 * (2 + 4 * nchan)) + ch / GRP * L1;
     b += T * sizeof(double) *
          ((double)(nchan + 1) * g->nphi + 2 * (g->nphi / 2 + 1) + (g->nphi <= 2 * (order - 1) ? 2.0 * g->nphi : 0) +
           L1 * nchan * 2 * 8 + L1 * nchan * 2 + 8 + 2.0 * 8 * nchan * gsp_slot(order - 1, g->nphi) * 2);
@@ -273,7 +283,7 @@ void sh_sht_destroy(sh_sht *p)
     free(p->ring), free(p->fbuf), free(p->spec), free(p->fold), free(p->gsp), free(p->acc), free(p->mout);
     free(p->pn), free(p->ps), free(p->px), free(p->psin), free(p->w), free(p->rc), free(p->moff);
     free(p->pal), free(p->poff);
-    free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->alm);
+    free(p->fm), free(p->cph), free(p->sph), free(p->cx), free(p->cmant), free(p->cscl), free(p->cdata), free(p->cdead), free(p->alm);
     free(p);
 }
 
@@ -322,6 +332,7 @@ static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
     p->cmant = malloc(sizeof(double) * (size_t)(L + 1) * p->chunk);
     p->cscl = malloc(sizeof(double) * (size_t)(L + 1) * p->chunk);
     p->cdata = aligned_alloc(64, sizeof(double) * (size_t)(L + 1) * nchan * 4 * p->chunk);
+    p->cdead = malloc((size_t)(L + 1) * (p->chunk / GRP));
     p->alm = malloc(sizeof(double) * 2 * nl_all * nchan);
     p->ring = calloc(T, sizeof *p->ring);
     p->fbuf = calloc(T, sizeof *p->fbuf);
@@ -331,7 +342,7 @@ static int sht_alloc(sh_sht *p, const sh_grid *g, int pm)
     p->acc = calloc(T, sizeof *p->acc);
     p->mout = calloc(T, sizeof *p->mout);
     int bad = !p->pn || !p->ps || !p->px || !p->psin || (g->weight && !p->w) || !p->rc || !p->moff ||
-              !p->fm || (pm && (!p->pal || !p->poff)) || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata ||
+              !p->fm || (pm && (!p->pal || !p->poff)) || !p->cph || !p->sph || !p->cx || !p->cmant || !p->cscl || !p->cdata || !p->cdead ||
               !p->ring || !p->fbuf || !p->spec || !p->fold || !p->gsp || !p->acc || !p->mout || !p->alm;
     const size_t accn = (size_t)(L + 1) * nchan * 2 * 8;
     for (int t = 0; t < T && !bad; t++) {
@@ -476,7 +487,8 @@ static inline size_t data_stride(const sh_sht *p) { return (size_t)p->nchan * 4 
 /* Sectoral seeds of lanes [i0, i0+GRP) (one group) of the chunk starting at
  * pair q0 (n pairs): Q_m^m(x) = mant·2^(800·k) by the product of legendre.c,
  * Q_m^m = −sqrt((2m+1)/(2m))·s·Q_{m−1}^{m−1}, renormalised whenever the
- * mantissa falls below 2^−400.  Padding lanes get 0. */
+ * mantissa falls below 2^−400.  Padding lanes get 0.  The group's dead flags
+ * (sht_kjob.dead) are cleared. */
 static void seeds_group(sh_sht *p, int q0, int n, int i0)
 {
     typedef double v8 __attribute__((vector_size(GRP * sizeof(double))));
@@ -501,6 +513,7 @@ static void seeds_group(sh_sht *p, int q0, int n, int i0)
         }
         memcpy(mant + m * ms, &P, sizeof P);
         memcpy(scl + m * ms, &k, sizeof k);
+        p->cdead[(size_t)m * (ms / GRP) + i0 / GRP] = 0;
         if (m < p->pol.pm) /* the polar path does these lanes: the kernels see zero */
             for (int g = 0; g < GRP; g++)
                 if (sht_polar_lane(&p->pol, p->cx[i0 + g])) mant[m * ms + g] = 0.0;
@@ -513,7 +526,7 @@ static sht_kjob job_for(const sh_sht *p, int m, int npad)
     sht_kjob j = {m, p->lmax, p->nchan, npad, p->cx, p->cmant + (size_t)m * p->chunk_alloc,
                   p->cscl + (size_t)m * p->chunk_alloc,
                   GRP, data_stride(p), p->rc + p->moff[m], p->rc + p->moff[m] + nl,
-                  NULL, NULL, NULL};
+                  p->cdead + (size_t)m * (p->chunk_alloc / GRP), NULL, NULL, NULL};
     return j;
 }
 
@@ -622,7 +635,16 @@ static void scatter_group(sh_sht *p, int t, int i0, int n, const double (*w)[2])
     const int L = p->lmax, N = p->nphi, nc = p->nchan;
     const size_t M = (size_t)p->gslot;
     const double *X = p->gsp[t];
-    for (int m = 0; m <= L; m++) {
+    int m1 = 0; /* m below m1 done by a SIMD kernel */
+#if defined(SHLAB_SHT_X86)
+    if (p->isa == SHT_ISA_AVX512 && N >= 2 * L) { /* no aliasing: bin m */
+        const sht_sjob j = {(L + 1) / 4 * 4, nc, X, M, p->cph, p->sph, w, data_at(p, i0, 0, 0, 0),
+                            (size_t)p->chunk_alloc * nc * 4};
+        sh__sht_scatter_avx512(&j);
+        m1 = j.m1;
+    }
+#endif
+    for (int m = m1; m <= L; m++) {
         /* F_m = Σ_j f_j e^{−2πijm/N}: bin k, conjugated above N/2 (aliasing) */
         int k = m % N, cj = 0;
         if (2 * k > N) k = N - k, cj = 1;

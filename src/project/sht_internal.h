@@ -37,6 +37,13 @@ typedef struct {
     const double *mant, *scl;   /* Q_m^m(x) = mant · 2^(SHT_SCALE·scl), group stride sstride */
     size_t sstride, dstride;    /* group strides of the seeds and of in/out */
     const double *alpha, *g;    /* scaled recursion of this m (sht_kern.c), indexed by l − m */
+    unsigned char *dead;        /* per group of lanes: 1 = no lane of the group lives at any
+                                   check of the recursion up to lmax (so the group adds nothing
+                                   and, in the synthesis, writes zeros).  A kernel sets it for
+                                   the groups of a block it found so, and skips blocks whose
+                                   groups all have it: the flags hold while the seeds do
+                                   (sht.c clears them with the seeds), so a plan that keeps its
+                                   seeds does this part of the recursion once. */
     /* analysis: in  = rows (4c + k)·SHT_GRP, k = S_re, S_im, D_re, D_im (north ± south),
      *           out[(l−m)·nchan·2 + 2c + k] = g_{l−m} Σ_lanes Q_l^m · (S or D)_k, k = re, im
      *           (the polar path then adds its lanes' sums);
@@ -48,6 +55,23 @@ typedef struct {
 } sht_kjob;
 
 typedef void (*sht_kern_fn)(const sht_kjob *);
+
+/* The analysis's ring stage for one group of SHT_GRP lanes (sht.c, scatter_group):
+ * the spectra of its rings, weighted and turned by e^{−imφ0}, into the chunk's
+ * rows of m = 0..m1−1 as S = north + south, D = north − south.  No aliasing
+ * (bin k = m).  Spectrum s = 2g + side (side 1: south) of channel c is
+ * X + ((s·nchan + c)·M + m)·2 (re, im); w[g][side] = 0 where there is no ring
+ * (its spectrum is not read).  Rows of m: d + m·mstride + (4c + k)·SHT_GRP,
+ * k = S_re, S_im, D_re, D_im. */
+typedef struct {
+    int m1, nchan;
+    const double *X;
+    size_t M;
+    const double *cph, *sph;    /* cos mφ0, sin mφ0 */
+    const double (*w)[2];
+    double *d;
+    size_t mstride;
+} sht_sjob;
 
 /* Offset of lane i in an array of groups with group stride `stride`. */
 static inline size_t sht_lane_off(int i, size_t stride) { return (size_t)(i / SHT_GRP) * stride + i % SHT_GRP; }
@@ -96,6 +120,8 @@ int sh__sht_set_isa(sh_sht *p, sht_isa isa);
 /* Use chunks of `pairs` ring pairs (a multiple of SHT_LANES, at most what the
  * plan was sized for): tests run several chunks on small grids. */
 int sh__sht_set_chunk(sh_sht *p, int pairs);
+/* Groups of lanes flagged dead (sht_kjob.dead) in the chunk the plan holds. */
+int sh__sht_dead_groups(const sh_sht *p);
 
 void sh__sht_analysis_base(const sht_kjob *j);
 void sh__sht_synthesis_base(const sht_kjob *j);
@@ -104,6 +130,8 @@ void sh__sht_analysis_avx2(const sht_kjob *j);
 void sh__sht_synthesis_avx2(const sht_kjob *j);
 void sh__sht_analysis_avx512(const sht_kjob *j);
 void sh__sht_synthesis_avx512(const sht_kjob *j);
+/* The ring stage above, m1 a multiple of 4 (4 m to a block of 8×8 transposes). */
+void sh__sht_scatter_avx512(const sht_sjob *j);
 #endif
 
 /* Transforms with the map streamed ring by ring (sht.c): get fills buf with

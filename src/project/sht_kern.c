@@ -147,14 +147,28 @@ typedef struct {
 } blk_t;
 
 
-/* Returns 0 if every seed of the block is zero (padding, poles), 1 if no lane
- * lives yet, 2 if some do, 3 if all do. */
+/* The groups of lanes of block b (nv vectors): all flagged dead (sht_kjob.dead)?
+ * And flagging them. */
+AI int blk_dead(const sht_kjob *j, int b, const int nv)
+{
+    int all = 1;
+    for (int g = b / SHT_GRP; g < (b + nv * VL) / SHT_GRP; g++) all &= j->dead[g];
+    return all;
+}
+AI void blk_set_dead(const sht_kjob *j, int b, const int nv)
+{
+    for (int g = b / SHT_GRP; g < (b + nv * VL) / SHT_GRP; g++) j->dead[g] = 1;
+}
+
+/* Returns 0 if the block adds nothing: every seed is zero (padding, poles) or
+ * every group is flagged dead; 1 if no lane lives yet, 2 if some do, 3 if all do. */
 AI int blk_load(blk_t *B, const sht_kjob *j, int b, const int nv)
 {
     vm nz = {0}, live = (vm){0} - 1, some = {0};
+    for (int v = 0; v < nv; v++) B->doff[v] = sht_lane_off(b + v * VL, j->dstride);
+    if (blk_dead(j, b, nv)) return 0;
     for (int v = 0; v < nv; v++) {
         const size_t so = sht_lane_off(b + v * VL, j->sstride);
-        B->doff[v] = sht_lane_off(b + v * VL, j->dstride);
         B->x[v] = vload(j->x + b + v * VL);
         B->p1[v] = vload(j->mant + so);
         B->sc[v] = vload(j->scl + so);
@@ -216,8 +230,12 @@ AI int blk_any_live(const vm *live, const int nv)
 }
 
 /* Steps while no lane lives: nothing to accumulate.  Returns the first step
- * after the check that found a live lane (or nl). */
-AI int run_dead(blk_t *B, const double *al, int i, int nl, const int nv)
+ * after the check that found a live lane, or nl, and then (nothing to add:
+ * no step is left) flags the block's groups dead.  The checks fall on the
+ * same steps whatever the block's width, and each lane's state is its own, so
+ * the flag is a fact about each lane, which a block of another width (another
+ * instruction set) may use. */
+AI int run_dead(blk_t *B, const sht_kjob *j, int b, const double *al, int i, int nl, const int nv)
 {
     vm live[NVMAX];
     while (i < nl) {
@@ -226,6 +244,7 @@ AI int run_dead(blk_t *B, const double *al, int i, int nl, const int nv)
         blk_rescale(B, live, nv);
         if (blk_any_live(live, nv)) break;
     }
+    if (i >= nl) blk_set_dead(j, b, nv);
     return i;
 }
 
@@ -282,7 +301,7 @@ AI void analysis_body(const sht_kjob *j, const int nc)
         const int kind = blk_load(&B, j, b, NVA);
         if (!kind) continue;
         vd q[NVMAX];
-        int i = kind == 1 ? run_dead(&B, al, 1, nl, NVA) : 0; /* the first band this block adds to */
+        int i = kind == 1 ? run_dead(&B, j, b, al, 1, nl, NVA) : 0; /* the first band this block adds to */
         if (i < z) { /* zero only the bands some block reaches (near a pole, high m start late) */
             memset(acc + (size_t)i * s, 0, sizeof(vd) * (size_t)(z - i) * s);
             z = i;
@@ -369,7 +388,7 @@ AI void synthesis_body(const sht_kjob *j, const int nc)
         if (kind) {
             vd q[NVMAX];
             int i = 1;
-            if (kind == 1) i = run_dead(&B, al, 1, nl, NVS);
+            if (kind == 1) i = run_dead(&B, j, b, al, 1, nl, NVS);
             else {
                 for (int v = 0; v < NVS; v++) q[v] = sel(B.sc[v] == 0.0, B.p1[v], bc(0.0));
                 acc_synthesis(E, q, cin, nc, NVS); /* l = m */
@@ -409,3 +428,66 @@ void KN(sh__sht_synthesis)(const sht_kjob *j)
     else if (j->nchan == 3) synthesis_body(j, 3);
     else synthesis_body(j, j->nchan);
 }
+
+/* ---------------------------------------------------- analysis ring stage */
+
+#if defined(SHT_KERN_AVX512)
+/* r[j] (8 rows of 8) ← its transpose: three rounds of two-source shuffles. */
+static inline void transpose8(__m512d r[8])
+{
+    __m512d u[8], v[8];
+    for (int k = 0; k < 4; k++) { /* [r2k₀ r2k+1₀ r2k₂ r2k+1₂ …], [… ₁ … ₃ …] */
+        u[2 * k] = _mm512_unpacklo_pd(r[2 * k], r[2 * k + 1]);
+        u[2 * k + 1] = _mm512_unpackhi_pd(r[2 * k], r[2 * k + 1]);
+    }
+    const __m512i lo2 = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), hi2 = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+    for (int h = 0; h < 2; h++) /* rows 4h..4h+3: v[4h + 0..3] hold columns {0,4}, {2,6}, {1,5}, {3,7} */
+        for (int k = 0; k < 2; k++) {
+            v[4 * h + 2 * k] = _mm512_permutex2var_pd(u[4 * h + k], lo2, u[4 * h + 2 + k]);
+            v[4 * h + 2 * k + 1] = _mm512_permutex2var_pd(u[4 * h + k], hi2, u[4 * h + 2 + k]);
+        }
+    static const int col[4] = {0, 2, 1, 3}; /* v[q] holds columns col[q] and col[q] + 4 */
+    for (int q = 0; q < 4; q++) {
+        r[col[q]] = _mm512_shuffle_f64x2(v[q], v[4 + q], 0x44);
+        r[col[q] + 4] = _mm512_shuffle_f64x2(v[q], v[4 + q], 0xee);
+    }
+}
+
+/* sht_internal.h: four m at a time, one 64-byte load per ring spectrum gives
+ * (re, im) of the four; the weighted north ± south of the 8 lanes are turned
+ * into rows (lanes across) by a transpose, then turned by e^{−imφ0}:
+ * A = cos·re + sin·im, B = sin·re − cos·im. */
+void sh__sht_scatter_avx512(const sht_sjob *j)
+{
+    const int nc = j->nchan;
+    for (int c = 0; c < nc; c++) {
+        const double *F[2 * SHT_GRP];
+        __mmask8 live[2 * SHT_GRP];
+        __m512d wv[2 * SHT_GRP];
+        for (int s = 0; s < 2 * SHT_GRP; s++) {
+            F[s] = j->X + ((size_t)s * nc + c) * j->M * 2;
+            live[s] = j->w[s / 2][s % 2] != 0.0 ? 0xff : 0;
+            wv[s] = _mm512_set1_pd(j->w[s / 2][s % 2]);
+        }
+        for (int m0 = 0; m0 < j->m1; m0 += 4) {
+            __m512d S[SHT_GRP], D[SHT_GRP];
+            for (int g = 0; g < SHT_GRP; g++) {
+                const __m512d n = _mm512_mul_pd(wv[2 * g], _mm512_maskz_loadu_pd(live[2 * g], F[2 * g] + 2 * m0));
+                const __m512d s = _mm512_maskz_loadu_pd(live[2 * g + 1], F[2 * g + 1] + 2 * m0);
+                S[g] = _mm512_fmadd_pd(wv[2 * g + 1], s, n);
+                D[g] = _mm512_fnmadd_pd(wv[2 * g + 1], s, n);
+            }
+            transpose8(S); /* S[2i], S[2i+1]: re, im of m0 + i, lanes across */
+            transpose8(D);
+            for (int i = 0; i < 4; i++) {
+                const __m512d cp = _mm512_set1_pd(j->cph[m0 + i]), sp = _mm512_set1_pd(j->sph[m0 + i]);
+                double *row = j->d + (size_t)(m0 + i) * j->mstride + (size_t)c * 4 * SHT_GRP;
+                _mm512_storeu_pd(row, _mm512_fmadd_pd(cp, S[2 * i], _mm512_mul_pd(sp, S[2 * i + 1])));
+                _mm512_storeu_pd(row + SHT_GRP, _mm512_fmsub_pd(sp, S[2 * i], _mm512_mul_pd(cp, S[2 * i + 1])));
+                _mm512_storeu_pd(row + 2 * SHT_GRP, _mm512_fmadd_pd(cp, D[2 * i], _mm512_mul_pd(sp, D[2 * i + 1])));
+                _mm512_storeu_pd(row + 3 * SHT_GRP, _mm512_fmsub_pd(sp, D[2 * i], _mm512_mul_pd(cp, D[2 * i + 1])));
+            }
+        }
+    }
+}
+#endif
