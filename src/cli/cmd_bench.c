@@ -180,7 +180,8 @@ static const cli_opt bench_opts[] = {
                "taylor2, or\n"
                "'all' (default: every method built in except\n"
                "reference, which is MPFR, and those limited below the\n"
-               "largest --order, e.g. direct beyond 3)"),
+               "largest --order, e.g. direct beyond 3).  A method\n"
+               "named here is timed at the orders it reaches"),
     CLI_CUSTOM(bench_args, modes, "mode", "LIST", parse_modes, "both",
                "per-rotation | batched | both | k-rotations | all (the\n"
                "three before) | oneshot; several: comma separated"),
@@ -543,7 +544,8 @@ typedef struct {
     int base;
 } bench_slot;
 
-/* What a run times and what it measured, entry i of order q at x = q·ne + i. */
+/* What a run times and what it measured, entry i of order q at x = q·ne + i
+ * (absent where the order is beyond the entry's method: no row). */
 typedef struct {
     bench_args *a;
     sh_bench_opts bo;
@@ -558,6 +560,12 @@ typedef struct {
     double offcpu, load, setup;
     const char *cg_out; /* --instructions: the callgrind file, under valgrind */
 } bench_run;
+
+/* Entry i exists at order q: its method reaches that order. */
+static int present(const bench_run *R, int q, int i)
+{
+    return R->a->orders.v[q] <= sh_rot_method_max_order(R->a->methods.v[R->slot[i].k]);
+}
 
 static void run_free(bench_run *R)
 {
@@ -583,11 +591,17 @@ static int validate(bench_args *a, const cli_parsed *seen, sh_bench_opts *bo)
     for (int m = 0; by_default && m < SH_ROT_NMETHODS; m++)
         if (m != SH_ROT_REFERENCE && sh_rot_method_max_order((sh_rot_method)m) >= top) ms->v[ms->n++] = (sh_rot_method)m;
     if (!ms->n) return cli_fail("bench: no method reaches order %d", top);
-    for (int k = 0; k < ms->n; k++)
-        for (int q = 0; q < a->orders.n; q++)
-            if (a->orders.v[q] > sh_rot_method_max_order(ms->v[k]))
-                return cli_fail("bench: method %s is limited to order %d", sh_rot_method_name(ms->v[k]),
-                                sh_rot_method_max_order(ms->v[k]));
+    /* a method limited below some orders asked for is timed at the others (a
+     * sweep of low-order methods beside general ones); none at all is an error */
+    for (int k = 0; k < ms->n; k++) {
+        const int lim = sh_rot_method_max_order(ms->v[k]);
+        int reached = 0;
+        for (int q = 0; q < a->orders.n; q++) reached += a->orders.v[q] <= lim;
+        if (!reached) return cli_fail("bench: method %s is limited to order %d", sh_rot_method_name(ms->v[k]), lim);
+        if (reached < a->orders.n && !a->quiet)
+            fprintf(stderr, "bench: method %s is limited to order %d: not timed above it\n",
+                    sh_rot_method_name(ms->v[k]), lim);
+    }
     if (!cli_given(seen, "baseline")) a->base.m = ms->v[0];
     return 0;
 }
@@ -662,6 +676,7 @@ static int check_memory(const bench_run *R)
     for (int q = 0; q < a->orders.n; q++) {
         double need = 0;
         for (int i = 0; i < R->ne; i++) {
+            if (!present(R, q, i)) continue;
             const bench_slot *s = &R->slot[i];
             const sh_bench_opts eo = entry_opts(R, s);
             const int order = a->orders.v[q];
@@ -686,11 +701,12 @@ static int check_plans(bench_run *R)
     const int no = a->orders.n;
     for (int k = 0; k < a->methods.n; k++)
         for (int q = 0; q < no; q++)
-            if (sh_rot_plan_check(a->orders.v[q], a->methods.v[k], a->prec))
+            if (a->orders.v[q] <= sh_rot_method_max_order(a->methods.v[k]) &&
+                sh_rot_plan_check(a->orders.v[q], a->methods.v[k], a->prec))
                 return cli_fail("bench: %s", sh_last_error());
     for (int q = 0; q < no; q++)
         for (int i = 0; i < R->ne; i++)
-            R->used[q * R->ne + i] = sh_rot_plan_kernel_for(a->orders.v[q], a->methods.v[R->slot[i].k],
+            if (present(R, q, i)) R->used[q * R->ne + i] = sh_rot_plan_kernel_for(a->orders.v[q], a->methods.v[R->slot[i].k],
                                                             a->kernels.v[R->slot[i].kk]);
     return 0;
 }
@@ -704,40 +720,54 @@ static void on_round(void *ctx, int done, int total, const char *what)
     cli_progress_step(r->p, r->base + done, r->total, what);
 }
 
-/* The entries of order q, made (progress per entry). */
-static int make_entries(bench_run *R, int q, sh_bench_entry *ent, cli_progress *prog)
+/* The entries present at order q, made (progress per entry): ent[j] is slot
+ * idx[j], *n of them. */
+static int make_entries(bench_run *R, int q, sh_bench_entry *ent, int *idx, int *n, cli_progress *prog)
 {
     const bench_args *a = R->a;
     int rc = SH_OK;
     char what[64];
     snprintf(what, sizeof what, "entries of order %d set up", a->orders.v[q]);
+    *n = 0;
     for (int i = 0; i < R->ne && !rc; i++) {
+        if (!present(R, q, i)) continue;
+        idx[*n] = i;
         const bench_slot *s = &R->slot[i];
         const sh_bench_opts eo = entry_opts(R, s);
         const int order = a->orders.v[q];
         const sh_rot_method m = a->methods.v[s->k];
-        rc = s->md == MD_ONESHOT ? oneshot_entry(order, m, a->prec, &eo, &ent[i])
-                                 : sh_rot_bench_entry(order, m, a->prec, mode_of[s->md], &eo, &ent[i]);
-        R->mults[q * R->ne + i] = ent[i].mults;
+        sh_bench_entry *e = &ent[(*n)++];
+        rc = s->md == MD_ONESHOT ? oneshot_entry(order, m, a->prec, &eo, e)
+                                 : sh_rot_bench_entry(order, m, a->prec, mode_of[s->md], &eo, e);
+        R->mults[q * R->ne + i] = e->mults;
         cli_progress_step(prog, i + 1, R->ne, what);
     }
     return rc;
 }
 
-/* Order q timed: the entries interleaved, each paired with its baseline
- * round by round, and the noise of the order. */
-static int time_order(bench_run *R, int q, const sh_bench_entry *ent, const sh_bench_cfg *cfg, double *smp)
+/* Order q timed: its n entries (ent[j] is slot idx[j]) interleaved, each
+ * paired with its baseline round by round where the baseline is present too,
+ * and the noise of the order. */
+static int time_order(bench_run *R, int q, const sh_bench_entry *ent, const int *idx, int n,
+                      const sh_bench_cfg *cfg, double *smp, sh_bench_stats *st)
 {
     const int S = cfg->samples, ne = R->ne;
     sh_bench_noise nz;
-    int rc = sh_bench_interleaved(ent, ne, cfg, smp, R->st + (size_t)q * ne, &nz);
-    for (int i = 0; i < ne && !rc; i++) {
-        const int b = R->slot[i].base;
-        sh_bench_ratio *r = &R->rat[q * ne + i];
-        rc = sh_bench_paired_ratio(smp + (size_t)i * S, smp + (size_t)b * S, S, cfg->noise_spread, r);
+    int rc = sh_bench_interleaved(ent, n, cfg, smp, st, &nz);
+    for (int j = 0; j < n && !rc; j++) {
+        R->st[q * ne + idx[j]] = st[j];
+        int b = -1; /* the baseline's place among the present entries */
+        for (int k = 0; k < n; k++)
+            if (idx[k] == R->slot[idx[j]].base) b = k;
+        sh_bench_ratio *r = &R->rat[q * ne + idx[j]];
+        if (b < 0) { /* the baseline's method does not reach this order: no ratio */
+            r->median = NAN;
+            continue;
+        }
+        rc = sh_bench_paired_ratio(smp + (size_t)j * S, smp + (size_t)b * S, S, cfg->noise_spread, r);
         if (!rc && r->noisy && !nz.noisy) {
             nz.noisy = 1;
-            snprintf(nz.why, sizeof nz.why, "ratio %s / %s spread %.1f%% > %.1f%%", ent[i].name, ent[b].name,
+            snprintf(nz.why, sizeof nz.why, "ratio %s / %s spread %.1f%% > %.1f%%", ent[j].name, ent[b].name,
                      100 * r->spread, 100 * cfg->noise_spread);
         }
     }
@@ -757,10 +787,11 @@ static int measure(bench_run *R)
     const bench_args *a = R->a;
     const int no = a->orders.n, ne = R->ne, S = R->bo.repeat;
     sh_bench_entry *ent = calloc((size_t)ne, sizeof *ent);
-    double *smp = malloc((size_t)ne * S * sizeof *smp);
-    if (!ent || !smp) {
-        free(ent);
-        free(smp);
+    double *smp = malloc((size_t)ne * S * sizeof *smp), *ins = malloc((size_t)ne * sizeof *ins);
+    int *idx = malloc((size_t)ne * sizeof *idx);
+    sh_bench_stats *st = malloc((size_t)ne * sizeof *st);
+    if (!ent || !smp || !ins || !idx || !st) {
+        free(ent), free(smp), free(ins), free(idx), free(st);
         return sh_error(SH_ENOMEM, "bench: out of memory");
     }
     cli_progress prog;
@@ -774,14 +805,18 @@ static int measure(bench_run *R)
     cfg.progress_ctx = &rp;
     int rc = SH_OK;
     for (int q = 0; q < no && !rc; q++) {
-        rc = make_entries(R, q, ent, &prog);
+        int n = 0;
+        rc = make_entries(R, q, ent, idx, &n, &prog);
         rp.base = q * S;
-        if (!rc && a->instructions) rc = sh_bench_instructions(ent, ne, R->bo.count, R->cg_out, R->ins + (size_t)q * ne);
-        else if (!rc) rc = time_order(R, q, ent, &cfg, smp);
+        if (!rc && a->instructions) {
+            rc = sh_bench_instructions(ent, n, R->bo.count, R->cg_out, ins);
+            for (int j = 0; j < n; j++) R->ins[(size_t)q * ne + idx[j]] = ins[j];
+        } else if (!rc)
+            rc = time_order(R, q, ent, idx, n, &cfg, smp, st);
         for (int i = 0; i < ne; i++) sh_bench_entry_free(&ent[i]);
+        memset(ent, 0, (size_t)ne * sizeof *ent);
     }
-    free(ent);
-    free(smp);
+    free(ent), free(smp), free(ins), free(idx), free(st);
     if (!rc && !a->instructions) R->setup = sh_rot_bench_setup_ns(&R->bo);
     return rc;
 }
@@ -805,6 +840,7 @@ static json_t *row_json(const bench_run *R, int q, int i)
         return cli_put(row, "batch", json_integer(batch));
     }
     const sh_bench_stats *t = &R->st[x];
+    const int has_ratio = !isnan(R->rat[x].median); /* its baseline reaches this order */
     char rto[96];
     slot_name(R, &R->slot[s->base], R->used[q * R->ne + s->base], rto, sizeof rto);
     row = cli_put(row, "ns_per_rotation", json_real(t->ns_median));
@@ -821,10 +857,10 @@ static json_t *row_json(const bench_run *R, int q, int i)
     row = cli_put(row, "ns_q3", json_real(t->ns_q3));
     row = cli_put(row, "spread", json_real(t->spread));
     row = cli_put(row, "sample_ms", json_real(t->sample_ms));
-    row = cli_put(row, "ratio_to", json_string(rto));
-    row = cli_put(row, "ratio", json_real(R->rat[x].median));
-    row = cli_put(row, "ratio_q1", json_real(R->rat[x].q1));
-    row = cli_put(row, "ratio_q3", json_real(R->rat[x].q3));
+    row = cli_put(row, "ratio_to", has_ratio ? json_string(rto) : json_null());
+    row = cli_put(row, "ratio", has_ratio ? json_real(R->rat[x].median) : json_null());
+    row = cli_put(row, "ratio_q1", has_ratio ? json_real(R->rat[x].q1) : json_null());
+    row = cli_put(row, "ratio_q3", has_ratio ? json_real(R->rat[x].q3) : json_null());
     return cli_put(row, "noisy_order", json_boolean(R->noisy_order[q]));
 }
 
@@ -837,7 +873,7 @@ static json_t *result(const bench_run *R)
     for (int k = 0; k < a->methods.n && rows; k++)
         for (int q = 0; q < a->orders.n && rows; q++)
             for (int i = 0; i < R->ne && rows; i++) {
-                if (R->slot[i].k != k) continue;
+                if (R->slot[i].k != k || !present(R, q, i)) continue;
                 json_t *row = row_json(R, q, i);
                 if (!row || json_array_append_new(rows, row)) {
                     json_decref(rows);

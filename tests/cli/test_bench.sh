@@ -58,6 +58,14 @@ expect_success "bench --baseline" bench --methods zxzxz,ivanic --baseline ivanic
 bad=$(awk -F, "NR > 1 && !($(col ratio_to) ~ /^ivanic\// && ($(col method) != \"ivanic\" || $(col ratio) == 1)) { print }" "$TMP/out")
 [ -z "$bad" ] && ok "bench --baseline ivanic: ratios to ivanic" || notok "bench --baseline: $bad"
 expect_usage_error "bench baseline not timed" bench --methods zxzxz --baseline ivanic --order 3
+# a method limited below some orders (direct: n <= 3) is timed at the others,
+# with one note; rows without their baseline have no ratio; none at all is an error
+"$SHLAB" bench --methods direct,zxzxz --order 3,4 --precision float --input matrix --mode per-rotation \
+    --count 10 --repeat 2 --format csv >"$TMP/out" 2>"$TMP/err"; rc=$?
+got=$(awk -F, "NR > 1 { printf \"%s%s:%s \", \$0 ~ /,,,,[a-z]+$/ ? \"-\" : \"\", $(col method), $(col order) }" "$TMP/out")
+[ $rc = 0 ] && [ "$got" = "direct:3 zxzxz:3 -zxzxz:4 " ] && grep -q "^bench: method direct is limited to order 3: not timed above it$" "$TMP/err" \
+    && ok "bench: direct timed at order 3 only, zxzxz at 4 without a ratio, one note" || notok "bench limited method (exit $rc, rows '$got'): $(head -c 300 "$TMP/err")"
+expect_usage_error "bench method limited below every order" bench --methods direct --order 4
 expect_usage_error "bench bad baseline" bench --methods zxzxz --baseline nope --order 3
 # a baseline fixed in kernel, input and mode: every row divides by that one
 # entry, which is 1 against itself; the other rows keep their own kernel
