@@ -23,7 +23,9 @@
  *   lmax 100, 300, 1000; shlab / libsharp (analysis, synthesis; thread CPU
  *   clock) at lmax 255, 511, 1023 on Gauss grids and on a 1024 × 512 lat-long map
  *   of 3 channels; the peak RSS of a process doing one one-shot rotation;
- *   shlab's speed-up from 1 to 2 threads (interleaved).  A speed claim is
+ *   shlab's speed-up from 1 to 2 threads (interleaved); the two high-band
+ *   kernels' flop rates as a fraction of this core's measured peak (flops.dat,
+ *   fma_peak below).  A speed claim is
  *   judged only when its run meets the noise criterion (the paired ratio's
  *   (q3 − q1)/median ≤ 0.05 and other processes using ≤ 0.25 CPUs during the
  *   peer program's run, /proc/stat minus the children's own CPU time), and
@@ -34,6 +36,9 @@
 #include "exp.h"
 
 #include <jansson.h>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -219,6 +224,89 @@ static run_noise noise_since(run_mark m)
     if (m.b >= 0 && e.b >= 0 && m.c >= 0 && e.c >= 0 && z.seconds > 0.25)
         z.load = fmax(0, ((e.b - m.b) - (e.c - m.c)) / z.seconds);
     return z;
+}
+
+/* ---- the core's peak flop rate ---------------------------------------------
+ * 16 independent chains a ← a·m + c of fused multiply-adds on the widest
+ * vectors the CPU runs (two flops a lane; 16 chains cover 2 pipes × a latency
+ * of up to 8), thread CPU clock, best of 5: what the FMA units deliver, the
+ * limit the kernels' flop rates are compared with. */
+static double thread_cpu_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+#define FMA_CHAINS 16
+#if defined(__x86_64__)
+#define FMA_LOOP(T, SET1, FMADD, ADD, lanes)                                                 \
+    T a[FMA_CHAINS], m = SET1(0.999999999), c = SET1(1e-9);                                  \
+    for (int k = 0; k < FMA_CHAINS; k++) a[k] = SET1(1.0 + k);                               \
+    for (long i = 0; i < iters; i++)                                                         \
+        _Pragma("GCC unroll 16") /* the chains in registers */                               \
+        for (int k = 0; k < FMA_CHAINS; k++) a[k] = FMADD(a[k], m, c);                      \
+    for (int k = 1; k < FMA_CHAINS; k++) a[0] = ADD(a[0], a[k]);                             \
+    double r[lanes];                                                                         \
+    memcpy(r, &a[0], sizeof r);                                                              \
+    return r[0]
+__attribute__((target("avx512f"))) static double fma_run_avx512(long iters)
+{
+    FMA_LOOP(__m512d, _mm512_set1_pd, _mm512_fmadd_pd, _mm512_add_pd, 8);
+}
+__attribute__((target("avx2,fma"))) static double fma_run_avx2(long iters)
+{
+    FMA_LOOP(__m256d, _mm256_set1_pd, _mm256_fmadd_pd, _mm256_add_pd, 4);
+}
+#endif
+/* GFlop/s and the instruction set in *isa ("avx512f", "avx2+fma"; 0 where
+ * neither runs: no peak is claimed then). */
+static double fma_peak(const char **isa)
+{
+    double (*run)(long) = NULL;
+    int lanes = 0;
+    *isa = "none";
+#if defined(__x86_64__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) run = fma_run_avx512, lanes = 8, *isa = "avx512f";
+    else if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) run = fma_run_avx2, lanes = 4, *isa = "avx2+fma";
+#endif
+    if (!run) return 0;
+    const long iters = 4000000; /* 1 Gflop at 8 lanes: ~10 ms at 100 GFlop/s */
+    double best = 0, sink = 0;
+    for (int r = 0; r < 5; r++) {
+        const double t0 = thread_cpu_s();
+        sink += run(iters);
+        const double t = thread_cpu_s() - t0;
+        if (t > 0) best = fmax(best, 2.0 * lanes * FMA_CHAINS * (double)iters / t * 1e-9);
+    }
+    if (!isfinite(sink)) return 0;
+    return best;
+}
+
+/* Nominal flops of the two high-band kernels:
+ *   transform (one channel, npairs ring pairs): 7 a pair and (l, m) — the
+ *     recursion's multiply and fused multiply-subtract (3), two fused
+ *     multiply-adds into the sums or from the coefficients (4) — summed over
+ *     0 ≤ m ≤ l ≤ lmax;
+ *   all-band rotation (rot_halfpi.c): 2(l+1)² multiply-adds a band and
+ *     vector (4 flops each) and 3(l+1)² flops for the two generations of Δ. */
+static double flops_sht(int lmax, int npairs) { return 7.0 * npairs * (lmax + 1.0) * (lmax + 2.0) / 2; }
+static double flops_rotation(int lmax)
+{
+    double f = 0;
+    for (int l = 0; l <= lmax; l++) f += 7.0 * (l + 1.0) * (l + 1.0);
+    return f;
+}
+
+/* "0.48", or "-" without a peak */
+typedef struct {
+    char s[16];
+} frac_text;
+static frac_text of_peak(double rate, double peak)
+{
+    frac_text t = {"-"};
+    if (peak > 0) snprintf(t.s, sizeof t.s, "%.2f", rate / peak);
+    return t;
 }
 
 /* peer_healpix_bench --tsv, parsed */
@@ -481,6 +569,7 @@ static void speed_claim(const char *id, const char *statement, const char *print
 static void timing_part(const hp_result *hp, const sharp_result *sr)
 {
     exp_part("timing");
+    const int k1000 = 2;
     const int noisy_load_hp = !(hp->noise.load >= 0 && hp->noise.load <= LOAD_MAX);
     const int noisy_load_sh = !(sr->noise.load >= 0 && sr->noise.load <= LOAD_MAX);
     /* HEALPix ratios: blocks one-shot, reuse, batch */
@@ -537,6 +626,35 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
                  "lmax peak_rss_MiB");
     for (int k = 0; k < NL; k++) fprintf(f, "%d %.1f\n", HP_LMAX[k], hp->rss[k]);
     fclose(f);
+    /* flop rates against the measured peak */
+    const char *pisa;
+    const double peak = fma_peak(&pisa);
+    f = exp_data("flops.dat",
+                 "nominal flops of the two high-band kernels (transform: 7 a ring pair and (l, m), one channel, Gauss "
+                 "grid of lmax + 1 rings; rotation: 7 (l+1)^2 a band) over the median times above, against this "
+                 "core's peak (16 chains of fused multiply-adds on the widest vectors, best of 5)",
+                 "kernel lmax gflop ms gflop_per_s peak_gflop_per_s fraction_of_peak peak_isa");
+    char ftab[2048];
+    size_t fl = (size_t)snprintf(ftab, sizeof ftab,
+                                 "| work | lmax | nominal GFlop | ms | GFlop/s | fraction of peak |\n|---|---|---|---|---|---|\n");
+    for (int k = 1; k < NSL; k++)
+        for (int syn = 0; syn < 2; syn++) {
+            const sharp_row *q = sharp_find(sr, SH_LMAX[k], 0, syn);
+            const double g = 1e-9 * flops_sht(q->lmax, (q->lmax + 2) / 2), r = g / (1e-3 * q->shlab_ms);
+            fprintf(f, "%s %d %.4g %.4g %.4g %.4g %.3f %s\n", syn ? "synthesis" : "analysis", q->lmax, g, q->shlab_ms, r,
+                    peak, peak > 0 ? r / peak : NAN, pisa);
+            fl += (size_t)snprintf(ftab + fl, sizeof ftab - fl, "| %s (Gauss grid) | %d | %.3g | %.3g | %.1f | %s |\n",
+                                   syn ? "synthesis" : "analysis", q->lmax, g, q->shlab_ms, r, of_peak(r, peak).s);
+        }
+    for (int q = 0; q < 2; q++) { /* one-shot, stream kept */
+        const double g = 1e-9 * flops_rotation(HP_LMAX[k1000]), ms = 1e3 * median_of(q ? hp->u[k1000] : hp->o[k1000], hp->nrep[k1000]);
+        const double r = g / (1e-3 * ms);
+        fprintf(f, "%s %d %.4g %.4g %.4g %.4g %.3f %s\n", q ? "rotation_kept" : "rotation_oneshot", HP_LMAX[k1000], g, ms, r,
+                peak, peak > 0 ? r / peak : NAN, pisa);
+        fl += (size_t)snprintf(ftab + fl, sizeof ftab - fl, "| all-band rotation (%s) | %d | %.3g | %.3g | %.1f | %s |\n",
+                               q ? "stream kept" : "one-shot", HP_LMAX[k1000], g, ms, r, of_peak(r, peak).s);
+    }
+    fclose(f);
     f = exp_data("noise.dat", "load of the machine while each peer program ran (CPUs used by other processes: "
                               "/proc/stat busy time minus the program's own CPU time)",
                  "program seconds load_cpus noisy_load");
@@ -545,7 +663,6 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
     fclose(f);
 
     /* claims */
-    const int k1000 = 2;
     char meas[1024];
     snprintf(meas, sizeof meas, "at lmax 1000 (%.3f at 300, %.3f at 100)", R[1][0].median, R[0][0].median);
     speed_claim("highband-rotate-oneshot-1000",
@@ -631,8 +748,14 @@ static void timing_part(const hp_result *hp, const sharp_result *sr)
               "[sharp.dat](sharp.dat)):\n\n%s\n"
               "![ratios against the peers](highband_peers_ratios.png)\n\n"
               "%s ([noise.dat](noise.dat)). Goals: one-shot ≤ 0.05, kept ≤ 0.1 at lmax 1000; ≤ 0.9 against "
-              "libsharp at lmax 511 and 1023 (Gauss grid); ≥ 1.8 on 2 threads; peak RSS ≤ 64 MB.",
-              hp->nrep[0], hp->nrep[1], hp->nrep[2], tab, sr->kernel, tab2, noise_text);
+              "libsharp at lmax 511 and 1023 (Gauss grid); ≥ 1.8 on 2 threads; peak RSS ≤ 64 MB.\n\n"
+              "How close the two high-band kernels come to the core's limit ([flops.dat](flops.dat)): their nominal "
+              "flops (a transform: 7 a ring pair and (l, m), the recursion's multiply and fused multiply-subtract "
+              "and two fused multiply-adds; the rotation: 7 (l+1)² a band, rot_halfpi.c) over the median times "
+              "above, against this core's peak as measured here, %.1f GFlop/s (%s: 16 independent chains of fused "
+              "multiply-adds, best of 5). Nominal: both kernels skip work that adds nothing (rings and rows below "
+              "their thresholds), and the times include the FFTs and reordering.\n\n%s",
+              hp->nrep[0], hp->nrep[1], hp->nrep[2], tab, sr->kernel, tab2, noise_text, peak, pisa, ftab);
     exp_part(NULL);
 }
 
