@@ -638,7 +638,7 @@ static void scatter_group(sh_sht *p, int t, int i0, int n, const double (*w)[2])
     int m1 = 0; /* m below m1 done by a SIMD kernel */
 #if defined(SHLAB_SHT_X86)
     if (p->isa == SHT_ISA_AVX512 && N >= 2 * L) { /* no aliasing: bin m */
-        const sht_sjob j = {(L + 1) / 4 * 4, nc, X, M, p->cph, p->sph, w, data_at(p, i0, 0, 0, 0),
+        const sht_sjob j = {(L + 1) / 4 * 4, nc, p->gsp[t], M, p->cph, p->sph, w, data_at(p, i0, 0, 0, 0),
                             (size_t)p->chunk_alloc * nc * 4};
         sh__sht_scatter_avx512(&j);
         m1 = j.m1;
@@ -754,7 +754,16 @@ static void spectra_group(sh_sht *p, int t, int i0)
     const int L = p->lmax, nc = p->nchan;
     const size_t M = (size_t)L + 1;
     double *Z = p->gsp[t];
-    for (int m = 0; m <= L; m++) {
+    int m1 = 0; /* m below m1 done by a SIMD kernel */
+#if defined(SHLAB_SHT_X86)
+    if (p->isa == SHT_ISA_AVX512) {
+        const sht_sjob j = {(L + 1) / 4 * 4, nc, Z, M, p->cph, p->sph, NULL, data_at(p, i0, 0, 0, 0),
+                            (size_t)p->chunk_alloc * nc * 4};
+        sh__sht_spectra_avx512(&j);
+        m1 = j.m1;
+    }
+#endif
+    for (int m = m1; m <= L; m++) {
         const double cp = p->cph[m], sp = p->sph[m];
         for (int c = 0; c < nc; c++) {
             const double *d = data_at(p, i0, m, c, 0);

@@ -56,16 +56,19 @@ typedef struct {
 
 typedef void (*sht_kern_fn)(const sht_kjob *);
 
-/* The analysis's ring stage for one group of SHT_GRP lanes (sht.c, scatter_group):
- * the spectra of its rings, weighted and turned by e^{−imφ0}, into the chunk's
- * rows of m = 0..m1−1 as S = north + south, D = north − south.  No aliasing
- * (bin k = m).  Spectrum s = 2g + side (side 1: south) of channel c is
- * X + ((s·nchan + c)·M + m)·2 (re, im); w[g][side] = 0 where there is no ring
- * (its spectrum is not read).  Rows of m: d + m·mstride + (4c + k)·SHT_GRP,
- * k = S_re, S_im, D_re, D_im. */
+/* The ring stages of one group of SHT_GRP lanes (sht.c), between the ring
+ * spectra and the chunk's rows of m = 0..m1−1, turned by e^{∓imφ0}:
+ * analysis (scatter_group): the spectra, weighted, into the rows as
+ *   S = north + south, D = north − south (k = S_re, S_im, D_re, D_im), no
+ *   aliasing (bin k = m), w[g][side] = 0 where there is no ring (its spectrum
+ *   is not read);
+ * synthesis (spectra_group): the rows (k = north re, north im, south re,
+ *   south im, as the kernel wrote them) into the spectra (w unused).
+ * Spectrum s = 2g + side (side 1: south) of channel c is X + ((s·nchan + c)·M
+ * + m)·2 (re, im); the rows of m are d + m·mstride + (4c + k)·SHT_GRP. */
 typedef struct {
     int m1, nchan;
-    const double *X;
+    double *X;
     size_t M;
     const double *cph, *sph;    /* cos mφ0, sin mφ0 */
     const double (*w)[2];
@@ -130,8 +133,9 @@ void sh__sht_analysis_avx2(const sht_kjob *j);
 void sh__sht_synthesis_avx2(const sht_kjob *j);
 void sh__sht_analysis_avx512(const sht_kjob *j);
 void sh__sht_synthesis_avx512(const sht_kjob *j);
-/* The ring stage above, m1 a multiple of 4 (4 m to a block of 8×8 transposes). */
+/* The ring stages above, m1 a multiple of 4 (4 m to a block of 8×8 transposes). */
 void sh__sht_scatter_avx512(const sht_sjob *j);
+void sh__sht_spectra_avx512(const sht_sjob *j);
 #endif
 
 /* Transforms with the map streamed ring by ring (sht.c): get fills buf with

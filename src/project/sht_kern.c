@@ -490,4 +490,37 @@ void sh__sht_scatter_avx512(const sht_sjob *j)
         }
     }
 }
+
+/* The synthesis's way back (sht_internal.h): per m the four rows of the
+ * group turned by e^{imφ0} — z = (a cos + b sin, a sin − b cos) for
+ * (a, b) = (re, im) of the north and of the south row — then the 8 × 8 of
+ * four m transposed, so that one 64-byte store writes (re, im) of the four m
+ * of one ring's spectrum. */
+void sh__sht_spectra_avx512(const sht_sjob *j)
+{
+    const int nc = j->nchan;
+    for (int c = 0; c < nc; c++) {
+        double *Z[2 * SHT_GRP];
+        for (int s = 0; s < 2 * SHT_GRP; s++) Z[s] = j->X + ((size_t)s * nc + c) * j->M * 2;
+        for (int m0 = 0; m0 < j->m1; m0 += 4) {
+            __m512d Nr[SHT_GRP], Sr[SHT_GRP]; /* rows 2i, 2i+1: re, im of m0 + i, lanes across */
+            for (int i = 0; i < 4; i++) {
+                const __m512d cp = _mm512_set1_pd(j->cph[m0 + i]), sp = _mm512_set1_pd(j->sph[m0 + i]);
+                const double *row = j->d + (size_t)(m0 + i) * j->mstride + (size_t)c * 4 * SHT_GRP;
+                const __m512d an = _mm512_loadu_pd(row), bn = _mm512_loadu_pd(row + SHT_GRP);
+                const __m512d as = _mm512_loadu_pd(row + 2 * SHT_GRP), bs = _mm512_loadu_pd(row + 3 * SHT_GRP);
+                Nr[2 * i] = _mm512_fmadd_pd(an, cp, _mm512_mul_pd(bn, sp));
+                Nr[2 * i + 1] = _mm512_fmsub_pd(an, sp, _mm512_mul_pd(bn, cp));
+                Sr[2 * i] = _mm512_fmadd_pd(as, cp, _mm512_mul_pd(bs, sp));
+                Sr[2 * i + 1] = _mm512_fmsub_pd(as, sp, _mm512_mul_pd(bs, cp));
+            }
+            transpose8(Nr); /* Nr[g]: (re, im) of m0..m0+3 of ring 2g */
+            transpose8(Sr);
+            for (int g = 0; g < SHT_GRP; g++) {
+                _mm512_storeu_pd(Z[2 * g] + 2 * m0, Nr[g]);
+                _mm512_storeu_pd(Z[2 * g + 1] + 2 * m0, Sr[g]);
+            }
+        }
+    }
+}
 #endif
