@@ -75,6 +75,12 @@ const char *sh__bytes_str(double bytes, char *buf, size_t n);
 #define SH__MEM_CHECK_FROM (64.0 * 1024 * 1024) /* smaller requests are not checked */
 int sh__mem_check(double bytes, const char *what);
 
+/* rotator.c: 1 if a rotator of this order, method, precision and kernel
+ * (SH_KERNEL_AUTO: the one auto picks) applies one rotation to one vector
+ * with the method's own one-vector kernel, else 0.  The cost model
+ * (lab/cost_model.c) calibrates those rows apart from the method's others. */
+int sh__rot_one_vector(int order, sh_rot_method method, sh_precision prec, sh_rot_kernel kernel);
+
 #ifdef __cplusplus
 }
 #endif

@@ -16,8 +16,14 @@
  * so the model needs no file at run time.
  *
  * The model.  cost(row) = instructions(row) × c(group), where the group is
- * (method, precision, input, mode, kernel) and c(group) the median over its
- * rows (the orders the kernel serves) of ns / instructions: instructions
+ * (method, precision, input, mode, kernel, one-vector) and c(group) the
+ * median over its rows (the orders the kernel serves) of ns / instructions
+ * ("one-vector": a per-rotation row at an order where the method runs its own
+ * one-vector kernel, sh__rot_one_vector — zxzxz's AVX-512 kernel of orders
+ * 3..6 runs about twice as many instructions a nanosecond as its unrolled
+ * kernels of the other orders, so one c for both was 2× off at order 6;
+ * its instructions are counted on the AVX2 path, which valgrind runs):
+ * instructions
  * carry how the work grows with the order; c carries the kernel's speed per
  * instruction on that path (its IPC on the calibration machine; the input
  * forms differ: Euler angles cost trigonometric calls), taken over many
@@ -58,6 +64,7 @@ typedef struct {
     sh_bench_input input;
     sh_bench_mode mode;
     sh_rot_kernel kernel;
+    int one; /* the method's one-vector kernel (the model's header) */
     double instructions, mults, ns;
 } cost_row;
 
@@ -78,6 +85,13 @@ static int parse_input(const char *s, sh_bench_input *in)
     return -1;
 }
 
+/* A per-rotation path on the method's one-vector kernel (the batches and
+ * k rotations run the others). */
+static int one_vector(int order, sh_rot_method m, sh_precision p, sh_bench_mode md, sh_rot_kernel k)
+{
+    return md == SH_BENCH_PER_ROTATION && sh__rot_one_vector(order, m, p, k);
+}
+
 /* The table parsed once; rows this build does not know (a method or kernel
  * renamed since the calibration) are left out. */
 static void rows_load(void)
@@ -93,6 +107,7 @@ static void rows_load(void)
             parse_input(s->input, &r.input) || parse_mode(s->mode, &r.mode) ||
             sh_rot_kernel_parse(s->kernel, &r.kernel) || !(r.instructions > 0) || !(r.ns > 0))
             continue;
+        r.one = one_vector(r.order, r.method, r.prec, r.mode, r.kernel);
         rows[nrows++] = r;
     }
 }
@@ -109,13 +124,14 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* c(group): the median of ns / instructions over the rows of (method,
- * precision, input, mode, kernel); 0 when the group has no row. */
-static double calibration(sh_rot_method m, sh_precision p, sh_bench_input in, sh_bench_mode md, sh_rot_kernel k)
+ * precision, input, mode, kernel, one-vector); 0 when the group has no row. */
+static double calibration(sh_rot_method m, sh_precision p, sh_bench_input in, sh_bench_mode md, sh_rot_kernel k,
+                          int one)
 {
     double *q = malloc(sizeof *q * (size_t)(nrows ? nrows : 1));
     int n = 0;
     for (int i = 0; q && i < nrows; i++)
-        if (same_path(&rows[i], m, p, in, md) && rows[i].kernel == k)
+        if (same_path(&rows[i], m, p, in, md) && rows[i].kernel == k && rows[i].one == one)
             q[n++] = rows[i].ns / rows[i].instructions;
     double c = 0;
     if (n > 0) {
@@ -169,8 +185,8 @@ int sh_cost_model(int order, sh_rot_method m, sh_precision p, sh_bench_input in,
         out->kernel = sh_rot_plan_kernel_for(order, m, SH_KERNEL_AUTO);
         out->interpolated = 1;
     }
-    double c = calibration(m, p, in, md, out->kernel);
-    if (!(c > 0)) c = calibration(m, p, in, md, above->kernel);
+    double c = calibration(m, p, in, md, out->kernel, one_vector(order, m, p, md, out->kernel));
+    if (!(c > 0)) c = calibration(m, p, in, md, above->kernel, above->one);
     out->ns_per_instruction = c;
     out->ns = out->instructions * c;
     return SH_OK;

@@ -149,6 +149,36 @@ static void choose_kernel(sh_rotator *r, sh_rot_kernel kernel)
     }
 }
 
+/* The method's own one-vector kernel, if it has one for r's order, precision
+ * and kernel (after choose_kernel). */
+static void choose_one_vector(sh_rotator *r)
+{
+    if (!r->ops) return;
+    if (!r->stream && r->fmeth < 0) {
+        if (r->prec == SH_PREC_FLOAT && r->ops->one_f)
+            r->one_f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
+        else if (r->prec == SH_PREC_DOUBLE && r->ops->one_d)
+            r->one_d = r->ops->one_d(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
+    } else if (r->fmeth == SH__FAST_ZXZXZ && r->prec == SH_PREC_FLOAT && r->ops->one_f) {
+        /* zxzxz's one-vector kernel (zxzxz_one.c), where it has one for this
+         * order and kernel, in place of the unrolled one: it reads R */
+        uint64_t m = 0;
+        const sh__rot_one_fn_f f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &m);
+        if (f) r->one_f = f, r->one_mults = m, r->one_mat = 1, r->fn_f = NULL;
+    }
+}
+
+int sh__rot_one_vector(int order, sh_rot_method method, sh_precision prec, sh_rot_kernel kernel)
+{
+    if (kernel < 0 || kernel >= SH_KERNEL_N || order < 1 || method < 0 || method >= SH_ROT_NMETHODS ||
+        order > sh_rot_method_max_order(method) || (prec != SH_PREC_FLOAT && prec != SH_PREC_DOUBLE))
+        return 0;
+    sh_rotator r = {.order = order, .method = method, .prec = prec, .conv = SH_CS, .ops = sh__rot_ops_of(method)};
+    choose_kernel(&r, kernel);
+    choose_one_vector(&r);
+    return r.one_f || r.one_d;
+}
+
 sh_rot_kernel sh_rot_plan_kernel_for(int order, sh_rot_method method, sh_rot_kernel kernel)
 {
     if (kernel < 0 || kernel >= SH_KERNEL_N || order < 1 || method < 0 || method >= SH_ROT_NMETHODS)
@@ -182,18 +212,7 @@ static int rotator_new(const sh_rotator_opts *o, int stream, sh_rotator **out)
     r->progress = o->progress;
     r->progress_ctx = o->progress_ctx;
     choose_kernel(r, o->kernel);
-    if (!r->stream && r->fmeth < 0) { /* the method's own one-vector kernel, if any */
-        if (r->prec == SH_PREC_FLOAT && r->ops->one_f)
-            r->one_f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
-        else if (r->prec == SH_PREC_DOUBLE && r->ops->one_d)
-            r->one_d = r->ops->one_d(r->order, r->conv == SH_NOCS, r->kernel, &r->one_mults);
-    } else if (r->fmeth == SH__FAST_ZXZXZ && r->prec == SH_PREC_FLOAT && r->ops->one_f) {
-        /* zxzxz's one-vector kernel (zxzxz_one.c), where it has one for this
-         * order and kernel, in place of the unrolled one: it reads R */
-        uint64_t m = 0;
-        const sh__rot_one_fn_f f = r->ops->one_f(r->order, r->conv == SH_NOCS, r->kernel, &m);
-        if (f) r->one_f = f, r->one_mults = m, r->one_mat = 1, r->fn_f = NULL;
-    }
+    choose_one_vector(r);
     if ((st = mem_check(r->order, method, r->prec, sh__rot_plan_state_bytes(r) +
                                                          sh__rot_tables_bytes(r->order, r->ops, r->prec)))) {
         free(r);

@@ -1,8 +1,9 @@
 /* zxzxz_one.c — zxzxz's kernel of ONE rotation applied to ONE vector, in
  * float, vectorised across the coefficients (AVX-512: 16 float lanes), for
- * orders n = 4..6 (bands 0..n−1; at n = 3 a first version of this kernel
- * measured 20.7 ns per rotation against the unrolled scalar kernel's 19.0,
- * so n ≤ 3 keeps that, and `direct` is faster still there).  Float
+ * orders n = 3..6 (bands 0..n−1; n = 3 runs the packed kernel of n = 4 with
+ * band 3 zero, which measured 16.9 against the unrolled scalar kernel's
+ * 19.6 ns per rotation, where a first split-layout version had measured
+ * 20.7 against 19.0; `direct` is faster still at n = 3).  Float
  * only (not a rot_*.c: compiled once).  The plan reaches it through
  * sh__rot_zxzxz_ops.one_f: rotator.c resolves it once (rotator one_mat),
  * and rotation_plan.c's sh_rot_plan_set_matrix_f only checks the matrix
@@ -52,7 +53,9 @@
  * (swap: the single-source permute exchanging (l, m) and (l, −m)), and each
  * X term is a single-source permute of v; the index vectors stay in
  * registers across the three Z and two X.  Measured 0.81× the split layout
- * at n = 4 (kernel alone).  n = 5 keeps the split layout; n = 6 ("n = 6")
+ * at n = 4 (kernel alone).  n = 3 is the same kernel on 9 coefficients
+ * (masked load and store): band 3's lanes hold zeros, which Z and X (block
+ * diagonal by band) keep at zero, and v3 is not formed.  n = 5 keeps the split layout; n = 6 ("n = 6")
  * keeps it for bands 0..4 and packs band 5 (11 coefficients) into one
  * register the same way (P lanes 0..5, N lanes 6..10; its X with J = 3
  * single-source permutes instead of 2 × 3 two-source ones): 0.91× the split
@@ -82,7 +85,7 @@
  * 2n² (three Z: 6n²); per X, J per live lane, J·n² (two X: 2Jn²);
  * Chebyshev 6(n−2) (per m, 4 live lanes in the β, γ run and 2 in the α
  * run; the step-2 factor 2cos 2θ adds 6 at n ≥ 5), and 24 for the angles
- * from R (zo_angles): n = 4, 5, 6: 196, 348, 486.  (The generated scalar kernel counts fewer, 120, 216, 344
+ * from R (zo_angles): n = 3, 4, 5, 6: 120, 196, 348, 486.  (The generated scalar kernel counts fewer, 120, 216, 344
  * at these orders plus 12 in the set, as it skips the zeros; it runs them
  * one instruction each.)
  */
@@ -98,7 +101,7 @@ int sh__rot_zxzxz_xplus_band(int l, double *X); /* rot_zxzxz.c */
 sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, uint64_t *mults);
 
 #define ZO_MAXO 6
-#define ZO_MINO 4 /* below: the unrolled kernel is faster (header) */
+#define ZO_MINO 3 /* below: the unrolled kernel (header) */
 #define ZO_J 3 /* terms per output lane, at most (header) */
 #define ZO_ANGLE_MULTS 24u /* zo_angles */
 
@@ -495,16 +498,19 @@ static inline __attribute__((always_inline)) void zo_kernel(int N, int J, int no
     (void)a5;
 }
 
-/* n = 4, packed: the 16 coefficients in one register (header "n = 4") */
-static inline __attribute__((always_inline)) void zo4_kernel(int nocs, const float *R, const float *in, float *out)
+/* n = 4, packed: the 16 coefficients in one register (header "n = 4"); n = 3
+ * the same with band 3 zero */
+static inline __attribute__((always_inline)) void zo4_kernel(int N, int nocs, const float *R, const float *in,
+                                                             float *out)
 {
     const zo4_tab *t = &zo4;
-    __m512 v = _mm512_permutexvar_ps(ZO_LDI(t->in), _mm512_loadu_ps(in));
+    const __mmask16 live = N == 4 ? 0xffff : 0x1ff;
+    __m512 v = _mm512_permutexvar_ps(ZO_LDI(t->in), _mm512_maskz_loadu_ps(live, in));
     __m256 g1, tg, a1, ta;
     zo_angles(R, nocs, &g1, &tg, &a1, &ta);
     __m512 g12, g34, g5, a12, a34, a5;
-    zo_multiple(4, g1, tg, &g12, &g34, &g5);
-    zo_multiple(4, a1, ta, &a12, &a34, &a5);
+    zo_multiple(N, g1, tg, &g12, &g34, &g5);
+    zo_multiple(N, a1, ta, &a12, &a34, &a5);
     const __m512i sw = ZO_LDI(t->swap), x0 = ZO_LDI(t->xi[0]), x1 = ZO_LDI(t->xi[1]);
     const __m512i sg = ZO_LDI(t->sgn); /* xor by integer ops: _mm512_xor_ps is AVX512DQ */
 #define ZO4_Z(A12, A34, a)                                                                         \
@@ -524,11 +530,13 @@ static inline __attribute__((always_inline)) void zo4_kernel(int nocs, const flo
     ZO4_Z(a12, a34, 0); /* Z(α) */
 #undef ZO4_Z
 #undef ZO4_X
-    _mm512_storeu_ps(out, _mm512_permutexvar_ps(ZO_LDI(t->out), v));
+    _mm512_mask_storeu_ps(out, live, _mm512_permutexvar_ps(ZO_LDI(t->out), v));
     (void)g5, (void)a5;
 }
-static void zo4_avx512_c(const float *R, const float *in, float *out) { zo4_kernel(0, R, in, out); }
-static void zo4_avx512_n(const float *R, const float *in, float *out) { zo4_kernel(1, R, in, out); }
+static void zo4_avx512_c(const float *R, const float *in, float *out) { zo4_kernel(4, 0, R, in, out); }
+static void zo4_avx512_n(const float *R, const float *in, float *out) { zo4_kernel(4, 1, R, in, out); }
+static void zo3_avx512_c(const float *R, const float *in, float *out) { zo4_kernel(3, 0, R, in, out); }
+static void zo3_avx512_n(const float *R, const float *in, float *out) { zo4_kernel(3, 1, R, in, out); }
 
 #define ZO_FN(o, J, nocs, sfx)                                                                     \
     static void zo_avx512_##o##sfx(const float *R, const float *in, float *out)                    \
@@ -547,8 +555,8 @@ ZO_FNS(6, 3)
 #endif
 
 static const sh__rot_one_fn_f zo_avx512[2][ZO_MAXO + 1] = {
-    {NULL, NULL, NULL, NULL, zo4_avx512_c, zo_avx512_5c, zo_avx512_6c},
-    {NULL, NULL, NULL, NULL, zo4_avx512_n, zo_avx512_5n, zo_avx512_6n}};
+    {NULL, NULL, NULL, zo3_avx512_c, zo4_avx512_c, zo_avx512_5c, zo_avx512_6c},
+    {NULL, NULL, NULL, zo3_avx512_n, zo4_avx512_n, zo_avx512_5n, zo_avx512_6n}};
 static const int zo_J[ZO_MAXO + 1] = {0, 0, 1, 2, 2, 3, 3}; /* compiled: at most */
 #endif
 
@@ -560,7 +568,7 @@ sh__rot_one_fn_f sh__rot_zxzxz_one_f(int order, int nocs, sh_rot_kernel kernel, 
 #ifdef ZO_HAVE_AVX512
     if (kernel != SH_KERNEL_AVX512) return NULL;
     pthread_once(&zo_once, zo_init);
-    const int ok = order == 4 ? zo4_ok : zo_ok[order] && zo_tabs[order].J <= zo_J[order] && (order < 6 || zoh_ok);
+    const int ok = order <= 4 ? zo4_ok : zo_ok[order] && zo_tabs[order].J <= zo_J[order] && (order < 6 || zoh_ok);
     if (!ok) return NULL;
     *mults = zo_mults(order, zo_J[order]);
     return zo_avx512[nocs != 0][order];

@@ -8,6 +8,7 @@
  * the extent of an answer in β against one step further. */
 #include "testutil.h"
 
+#include "core/shlab_internal.h"
 #include "lab/lab.h"
 
 #include <stdlib.h>
@@ -48,7 +49,9 @@ static int cmpd(const void *a, const void *b)
 }
 
 /* every row of the table: cost = instructions × median(ns/ins of its
- * group), the group being (method, precision, input, mode, kernel) */
+ * group), the group being (method, precision, input, mode, kernel,
+ * one-vector: a per-rotation row where the rotator runs the method's own
+ * one-vector kernel, sh__rot_one_vector) */
 START_TEST(test_model_rows)
 {
     int n;
@@ -56,12 +59,21 @@ START_TEST(test_model_rows)
     ck_assert_msg(t && n > 500, "data/cost_model.tsv has %d rows", n);
     ck_assert_msg(sh_cost_model_source()[0] != 0, "the build has no cost model");
     double *q = malloc(sizeof *q * (size_t)n);
-    int checked = 0;
+    int *one = malloc(sizeof *one * (size_t)n), checked = 0, ones = 0;
+    for (int j = 0; j < n; j++) {
+        sh_rot_method m;
+        sh_precision p;
+        sh_rot_kernel k;
+        one[j] = !strcmp(t[j].mode, "per-rotation") && !sh_rot_method_parse(t[j].method, &m) &&
+                 !sh_precision_parse(t[j].prec, &p) && !sh_rot_kernel_parse(t[j].kernel, &k) &&
+                 sh__rot_one_vector(t[j].order, m, p, k);
+        ones += one[j];
+    }
     for (int i = 0; i < n; i += 7) { /* a spread-out seventh of the rows */
         int g = 0;
         for (int j = 0; j < n; j++)
             if (!strcmp(t[j].method, t[i].method) && !strcmp(t[j].prec, t[i].prec) && !strcmp(t[j].mode, t[i].mode) &&
-                !strcmp(t[j].input, t[i].input) && !strcmp(t[j].kernel, t[i].kernel))
+                !strcmp(t[j].input, t[i].input) && !strcmp(t[j].kernel, t[i].kernel) && one[j] == one[i])
                 q[g++] = t[j].ns / t[j].ins;
         qsort(q, (size_t)g, sizeof *q, cmpd);
         const double c = g % 2 ? q[g / 2] : 0.5 * (q[g / 2 - 1] + q[g / 2]);
@@ -82,7 +94,10 @@ START_TEST(test_model_rows)
         checked++;
     }
     ck_assert(checked > 50);
+    /* zxzxz float per-rotation at orders 3..6 and direct's at n ≤ 3 on AVX-512 */
+    ck_assert_msg(!sh_rot_kernel_available(SH_KERNEL_AVX512) || ones > 0, "no one-vector row");
     free(q);
+    free(one);
     free(t);
 }
 END_TEST

@@ -1,5 +1,5 @@
 /* test_rot_zxzxz_one.c — zxzxz's one-vector kernel in float
- * (src/rotate/zxzxz_one.c: vectorised across the coefficients, orders 4..6,
+ * (src/rotate/zxzxz_one.c: vectorised across the coefficients, orders 3..6,
  * the AVX-512 kernel; the plan uses it for float plans of those orders on
  * that kernel, and the unrolled scalar kernel otherwise).
  *
@@ -11,7 +11,7 @@
  * (β = 10^−u, u uniform in [1, 7], and π minus that, α and γ random).
  * The multiplication count is the header's formula (24 for the angles,
  * 2n² per z rotation, J·n² per X product, 6(n−2) for the Chebyshev
- * recurrence and 6 more for its step-2 factor at n ≥ 5; J = 2 at n = 4, 3
+ * recurrence and 6 more for its step-2 factor at n ≥ 5; J = 2 at n = 3, 4, 3
  * at n = 5, 6), not read from a run. */
 #include "rottest.h"
 
@@ -84,7 +84,7 @@ START_TEST(test_vs_reference)
     if (!zo_have()) return;
     double worst = 0, worst_g = 0, worst_3 = 0, worst_u = 0;
     for (int conv = 0; conv < 2; conv++)
-        for (int n = 4; n <= 6; n++) {
+        for (int n = 3; n <= 6; n++) {
             sh_rot_plan *p = NULL, *u = NULL;
             ck_assert_int_eq(sh_rot_plan_create_kernel(n, SH_ROT_ZXZXZ, SH_PREC_FLOAT, conv, SH_KERNEL_AVX512, &p),
                              SH_OK);
@@ -134,7 +134,7 @@ START_TEST(test_vs_reference)
             sh_rot_plan_free(u);
         }
     fprintf(stderr,
-            "zxzxz one-vector kernel vs reference, n 4..6, %d rotations: %.3g (near gimbal %.3g), tol %.3g (%.3g); "
+            "zxzxz one-vector kernel vs reference, n 3..6, %d rotations: %.3g (near gimbal %.3g), tol %.3g (%.3g); "
             "from float matrices %.3g, the unrolled kernel from the same %.3g\n",
             ZO_NCASES, worst, worst_g, ROT_TOL_F, ZO_TOL_GIMBAL, worst_3, worst_u);
 }
@@ -150,7 +150,7 @@ START_TEST(test_vs_batches)
     enum { K = 64 };
     double worst = 0;
     for (int conv = 0; conv < 2; conv++)
-        for (int n = 4; n <= 6; n++) {
+        for (int n = 3; n <= 6; n++) {
             const int nc = n * n;
             sh_rot_plan *p = NULL;
             sh_rotator *rr = NULL;
@@ -213,7 +213,7 @@ START_TEST(test_nonfinite)
     sh_rotation r;
     sh_rotation_from_euler(0.3, 1.1, -2.0, &r);
     const float bads[3] = {INFINITY, -INFINITY, NAN};
-    for (int n = 4; n <= 6; n++) {
+    for (int n = 3; n <= 6; n++) {
         const int nc = n * n;
         sh_rot_plan *p = NULL;
         sh_rotator *rr = NULL;
@@ -258,7 +258,7 @@ START_TEST(test_where_used)
             ck_assert_int_eq(sh_rot_plan_apply_f(p, x, y), SH_OK);
             uint64_t ms, ma;
             sh_rot_plan_mults(p, &ms, &ma);
-            const int one = sh_rot_plan_kernel(p) == SH_KERNEL_AVX512 && n >= 4 && n <= 6;
+            const int one = sh_rot_plan_kernel(p) == SH_KERNEL_AVX512 && n >= 3 && n <= 6;
             if (one) ck_assert_uint_eq(ma, zo_mults(n));
             else ck_assert_uint_ne(ma, n >= 2 ? zo_mults(n) : 1u);
             sh_rot_plan_free(p);
