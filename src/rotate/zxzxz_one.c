@@ -1,9 +1,11 @@
 /* zxzxz_one.c — zxzxz's kernel of ONE rotation applied to ONE vector, in
  * float, vectorised across the coefficients (AVX-512: 16 float lanes), for
  * orders n = 3..6 (bands 0..n−1; n = 3 runs the packed kernel of n = 4 with
- * band 3 zero, which measured 16.9 against the unrolled scalar kernel's
- * 19.6 ns per rotation, where a first split-layout version had measured
- * 20.7 against 19.0; `direct` is faster still at n = 3).  Float
+ * band 3 zero: 1.72× `direct`'s time per rotation against the unrolled
+ * scalar kernel's 2.00×, bench per-rotation, three alternated runs of each
+ * build (14.7–15.0 against 17.3–18.0 ns), where a first split-layout
+ * version had measured 20.7 against 19.0 ns; `direct` stays the faster at
+ * n = 3).  Float
  * only (not a rot_*.c: compiled once).  The plan reaches it through
  * sh__rot_zxzxz_ops.one_f: rotator.c resolves it once (rotator one_mat),
  * and rotation_plan.c's sh_rot_plan_set_matrix_f only checks the matrix
