@@ -16,14 +16,15 @@
  * so the model needs no file at run time.
  *
  * The model.  cost(row) = instructions(row) × c(group), where the group is
- * (method, precision, input, mode, kernel, one-vector) and c(group) the
- * median over its rows (the orders the kernel serves) of ns / instructions
- * ("one-vector": a per-rotation row at an order where the method runs its own
- * one-vector kernel, sh__rot_one_vector — zxzxz's AVX-512 kernel of orders
- * 3..6 runs about twice as many instructions a nanosecond as its unrolled
- * kernels of the other orders, so one c for both was 2× off at order 6;
- * its instructions are counted on the AVX2 path, which valgrind runs):
- * instructions
+ * (method, precision, input, mode, kernel) and c(group) the median over
+ * its rows (the orders the kernel serves) of ns / instructions — except a
+ * per-rotation row at an order where the method runs its own one-vector
+ * kernel (sh__rot_one_vector), which is its own group: valgrind counts the
+ * AVX2 path, not the AVX-512 kernel timed, and zxzxz's kernel of orders
+ * 3..6 grows more slowly with the order than those counts (ns / instruction
+ * 0.098 at order 3, 0.044 at 6 in one calibration), so one c for the method's
+ * rows was 2× off at order 6, and one for the four orders still 1.6×; there
+ * the cost is the calibration's time of that order.  Otherwise: instructions
  * carry how the work grows with the order; c carries the kernel's speed per
  * instruction on that path (its IPC on the calibration machine; the input
  * forms differ: Euler angles cost trigonometric calls), taken over many
@@ -124,14 +125,16 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* c(group): the median of ns / instructions over the rows of (method,
- * precision, input, mode, kernel, one-vector); 0 when the group has no row. */
+ * precision, input, mode, kernel), or of the one row of that order on a
+ * one-vector kernel (order > 0; header); 0 when the group has no row. */
 static double calibration(sh_rot_method m, sh_precision p, sh_bench_input in, sh_bench_mode md, sh_rot_kernel k,
-                          int one)
+                          int one_order)
 {
     double *q = malloc(sizeof *q * (size_t)(nrows ? nrows : 1));
     int n = 0;
     for (int i = 0; q && i < nrows; i++)
-        if (same_path(&rows[i], m, p, in, md) && rows[i].kernel == k && rows[i].one == one)
+        if (same_path(&rows[i], m, p, in, md) && rows[i].kernel == k &&
+            (one_order ? rows[i].one && rows[i].order == one_order : !rows[i].one))
             q[n++] = rows[i].ns / rows[i].instructions;
     double c = 0;
     if (n > 0) {
@@ -185,8 +188,8 @@ int sh_cost_model(int order, sh_rot_method m, sh_precision p, sh_bench_input in,
         out->kernel = sh_rot_plan_kernel_for(order, m, SH_KERNEL_AUTO);
         out->interpolated = 1;
     }
-    double c = calibration(m, p, in, md, out->kernel, one_vector(order, m, p, md, out->kernel));
-    if (!(c > 0)) c = calibration(m, p, in, md, above->kernel, above->one);
+    double c = calibration(m, p, in, md, out->kernel, one_vector(order, m, p, md, out->kernel) ? order : 0);
+    if (!(c > 0)) c = calibration(m, p, in, md, above->kernel, above->one ? above->order : 0);
     out->ns_per_instruction = c;
     out->ns = out->instructions * c;
     return SH_OK;

@@ -49,9 +49,9 @@ static int cmpd(const void *a, const void *b)
 }
 
 /* every row of the table: cost = instructions × median(ns/ins of its
- * group), the group being (method, precision, input, mode, kernel,
- * one-vector: a per-rotation row where the rotator runs the method's own
- * one-vector kernel, sh__rot_one_vector) */
+ * group), the group being (method, precision, input, mode, kernel), but a
+ * per-rotation row where the rotator runs the method's own one-vector kernel
+ * (sh__rot_one_vector) alone: its cost is its own ns */
 START_TEST(test_model_rows)
 {
     int n;
@@ -73,7 +73,8 @@ START_TEST(test_model_rows)
         int g = 0;
         for (int j = 0; j < n; j++)
             if (!strcmp(t[j].method, t[i].method) && !strcmp(t[j].prec, t[i].prec) && !strcmp(t[j].mode, t[i].mode) &&
-                !strcmp(t[j].input, t[i].input) && !strcmp(t[j].kernel, t[i].kernel) && one[j] == one[i])
+                !strcmp(t[j].input, t[i].input) && !strcmp(t[j].kernel, t[i].kernel) && one[j] == one[i] &&
+                (!one[i] || t[j].order == t[i].order))
                 q[g++] = t[j].ns / t[j].ins;
         qsort(q, (size_t)g, sizeof *q, cmpd);
         const double c = g % 2 ? q[g / 2] : 0.5 * (q[g / 2 - 1] + q[g / 2]);
@@ -94,8 +95,19 @@ START_TEST(test_model_rows)
         checked++;
     }
     ck_assert(checked > 50);
-    /* zxzxz float per-rotation at orders 3..6 and direct's at n ≤ 3 on AVX-512 */
+    /* zxzxz float per-rotation at orders 3..6 and direct's at n ≤ 3 on AVX-512:
+     * each costs its own calibration time */
     ck_assert_msg(!sh_rot_kernel_available(SH_KERNEL_AVX512) || ones > 0, "no one-vector row");
+    for (int j = 0; j < n; j++) {
+        if (!one[j] || strcmp(t[j].input, "matrix")) continue;
+        sh_rot_method m;
+        sh_precision p;
+        sh_cost mc;
+        ck_assert_int_eq(sh_rot_method_parse(t[j].method, &m), SH_OK);
+        ck_assert_int_eq(sh_precision_parse(t[j].prec, &p), SH_OK);
+        ck_assert_int_eq(sh_cost_model(t[j].order, m, p, SH_BENCH_INPUT_MATRIX, SH_BENCH_PER_ROTATION, &mc), SH_OK);
+        ck_close(mc.ns, t[j].ns, 1e-5, 0, "%s %d %s one-vector ns", t[j].method, t[j].order, t[j].prec);
+    }
     free(q);
     free(one);
     free(t);
