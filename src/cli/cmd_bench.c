@@ -561,10 +561,12 @@ typedef struct {
     const char *cg_out; /* --instructions: the callgrind file, under valgrind */
 } bench_run;
 
+static int reaches(sh_rot_method m, int order) { return order <= sh_rot_method_max_order(m); }
+
 /* Entry i exists at order q: its method reaches that order. */
 static int present(const bench_run *R, int q, int i)
 {
-    return R->a->orders.v[q] <= sh_rot_method_max_order(R->a->methods.v[R->slot[i].k]);
+    return reaches(R->a->methods.v[R->slot[i].k], R->a->orders.v[q]);
 }
 
 static void run_free(bench_run *R)
@@ -589,14 +591,14 @@ static int validate(bench_args *a, const cli_parsed *seen, sh_bench_opts *bo)
     int top = 0;
     for (int q = 0; q < a->orders.n; q++) top = a->orders.v[q] > top ? a->orders.v[q] : top;
     for (int m = 0; by_default && m < SH_ROT_NMETHODS; m++)
-        if (m != SH_ROT_REFERENCE && sh_rot_method_max_order((sh_rot_method)m) >= top) ms->v[ms->n++] = (sh_rot_method)m;
+        if (m != SH_ROT_REFERENCE && reaches((sh_rot_method)m, top)) ms->v[ms->n++] = (sh_rot_method)m;
     if (!ms->n) return cli_fail("bench: no method reaches order %d", top);
     /* a method limited below some orders asked for is timed at the others (a
      * sweep of low-order methods beside general ones); none at all is an error */
     for (int k = 0; k < ms->n; k++) {
         const int lim = sh_rot_method_max_order(ms->v[k]);
         int reached = 0;
-        for (int q = 0; q < a->orders.n; q++) reached += a->orders.v[q] <= lim;
+        for (int q = 0; q < a->orders.n; q++) reached += reaches(ms->v[k], a->orders.v[q]);
         if (!reached) return cli_fail("bench: method %s is limited to order %d", sh_rot_method_name(ms->v[k]), lim);
         const char *cg = getenv("SHLAB_CALLGRIND_OUT"); /* set: the run under callgrind, whose parent said it */
         if (reached < a->orders.n && !a->quiet && !(a->instructions && cg && *cg))
@@ -702,8 +704,7 @@ static int check_plans(bench_run *R)
     const int no = a->orders.n;
     for (int k = 0; k < a->methods.n; k++)
         for (int q = 0; q < no; q++)
-            if (a->orders.v[q] <= sh_rot_method_max_order(a->methods.v[k]) &&
-                sh_rot_plan_check(a->orders.v[q], a->methods.v[k], a->prec))
+            if (reaches(a->methods.v[k], a->orders.v[q]) && sh_rot_plan_check(a->orders.v[q], a->methods.v[k], a->prec))
                 return cli_fail("bench: %s", sh_last_error());
     for (int q = 0; q < no; q++)
         for (int i = 0; i < R->ne; i++)

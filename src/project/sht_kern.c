@@ -429,7 +429,7 @@ void KN(sh__sht_synthesis)(const sht_kjob *j)
     else synthesis_body(j, j->nchan);
 }
 
-/* ---------------------------------------------------- analysis ring stage */
+/* ---------------------------------------------------------- ring stages */
 
 #if defined(SHT_KERN_AVX512)
 /* r[j] (8 rows of 8) ← its transpose: three rounds of two-source shuffles. */
@@ -453,10 +453,17 @@ static inline void transpose8(__m512d r[8])
     }
 }
 
+/* (a, b) turned by the phase (c, s) = (cos mφ0, sin mφ0) as both ring stages
+ * turn it: re = a·c + b·s, im = a·s − b·c. */
+static inline void turn(__m512d a, __m512d b, __m512d c, __m512d s, __m512d *re, __m512d *im)
+{
+    *re = _mm512_fmadd_pd(a, c, _mm512_mul_pd(b, s));
+    *im = _mm512_fmsub_pd(a, s, _mm512_mul_pd(b, c));
+}
+
 /* sht_internal.h: four m at a time, one 64-byte load per ring spectrum gives
  * (re, im) of the four; the weighted north ± south of the 8 lanes are turned
- * into rows (lanes across) by a transpose, then turned by e^{−imφ0}:
- * A = cos·re + sin·im, B = sin·re − cos·im. */
+ * into rows (lanes across) by a transpose, then turned by e^{−imφ0} (turn). */
 void sh__sht_scatter_avx512(const sht_sjob *j)
 {
     const int nc = j->nchan;
@@ -482,10 +489,10 @@ void sh__sht_scatter_avx512(const sht_sjob *j)
             for (int i = 0; i < 4; i++) {
                 const __m512d cp = _mm512_set1_pd(j->cph[m0 + i]), sp = _mm512_set1_pd(j->sph[m0 + i]);
                 double *row = j->d + (size_t)(m0 + i) * j->mstride + (size_t)c * 4 * SHT_GRP;
-                _mm512_storeu_pd(row, _mm512_fmadd_pd(cp, S[2 * i], _mm512_mul_pd(sp, S[2 * i + 1])));
-                _mm512_storeu_pd(row + SHT_GRP, _mm512_fmsub_pd(sp, S[2 * i], _mm512_mul_pd(cp, S[2 * i + 1])));
-                _mm512_storeu_pd(row + 2 * SHT_GRP, _mm512_fmadd_pd(cp, D[2 * i], _mm512_mul_pd(sp, D[2 * i + 1])));
-                _mm512_storeu_pd(row + 3 * SHT_GRP, _mm512_fmsub_pd(sp, D[2 * i], _mm512_mul_pd(cp, D[2 * i + 1])));
+                __m512d r[4];
+                turn(S[2 * i], S[2 * i + 1], cp, sp, &r[0], &r[1]);
+                turn(D[2 * i], D[2 * i + 1], cp, sp, &r[2], &r[3]);
+                for (int k = 0; k < 4; k++) _mm512_storeu_pd(row + k * SHT_GRP, r[k]);
             }
         }
     }
@@ -493,7 +500,7 @@ void sh__sht_scatter_avx512(const sht_sjob *j)
 
 /* The synthesis's way back (sht_internal.h): per m the four rows of the
  * group turned by e^{imφ0} — z = (a cos + b sin, a sin − b cos) for
- * (a, b) = (re, im) of the north and of the south row — then the 8 × 8 of
+ * (a, b) = (re, im) of the north and of the south row (turn) — then the 8 × 8 of
  * four m transposed, so that one 64-byte store writes (re, im) of the four m
  * of one ring's spectrum. */
 void sh__sht_spectra_avx512(const sht_sjob *j)
@@ -509,10 +516,8 @@ void sh__sht_spectra_avx512(const sht_sjob *j)
                 const double *row = j->d + (size_t)(m0 + i) * j->mstride + (size_t)c * 4 * SHT_GRP;
                 const __m512d an = _mm512_loadu_pd(row), bn = _mm512_loadu_pd(row + SHT_GRP);
                 const __m512d as = _mm512_loadu_pd(row + 2 * SHT_GRP), bs = _mm512_loadu_pd(row + 3 * SHT_GRP);
-                Nr[2 * i] = _mm512_fmadd_pd(an, cp, _mm512_mul_pd(bn, sp));
-                Nr[2 * i + 1] = _mm512_fmsub_pd(an, sp, _mm512_mul_pd(bn, cp));
-                Sr[2 * i] = _mm512_fmadd_pd(as, cp, _mm512_mul_pd(bs, sp));
-                Sr[2 * i + 1] = _mm512_fmsub_pd(as, sp, _mm512_mul_pd(bs, cp));
+                turn(an, bn, cp, sp, &Nr[2 * i], &Nr[2 * i + 1]);
+                turn(as, bs, cp, sp, &Sr[2 * i], &Sr[2 * i + 1]);
             }
             transpose8(Nr); /* Nr[g]: (re, im) of m0..m0+3 of ring 2g */
             transpose8(Sr);
