@@ -456,6 +456,41 @@ START_TEST(dead_groups_skipped)
 }
 END_TEST
 
+/* The same on the full Gauss grid of lmax 1023 (1024 × 2048, one channel:
+ * the largest one-chunk plan the transforms are timed on, docs/high-bands.md),
+ * on the kernels this CPU picks: a kept plan's second synthesis and analysis
+ * skip groups and give the same bytes as the first (flags cleared by a
+ * change of set), and the round trip returns the coefficients to 1e-12
+ * normwise — Gauss quadrature with lmax + 1 rings is exact on band-limited
+ * maps.  (test_sht_highband checks the same sizes against the truth; this
+ * is the check that a kept plan's skips change nothing there.) */
+START_TEST(dead_groups_full_grid)
+{
+    rcase k = case_make(1024, 1024, 2048, 37);
+    const int nn = k.nn, nm = k.nr * k.np;
+    double *a0 = malloc(sizeof(double) * nn), *a1 = malloc(sizeof(double) * nn);
+    double *s1 = malloc(sizeof(double) * nm);
+    sh_sht *p;
+    ck_assert_int_eq(sh_sht_create(k.order, &k.g, 1, 1, &p), SH_OK);
+    ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, k.c, k.f), SH_OK); /* no skips: k.f is the map */
+    const int dead = sh__sht_dead_groups(p);
+    ck_assert_msg(dead > 0, "no group flagged at lmax 1023");
+    ck_assert_int_eq(sh_sht_synthesis(p, SH_CS, k.c, s1), SH_OK);
+    ck_assert_msg(!memcmp(k.f, s1, sizeof(double) * nm), "synthesis with skips");
+    ck_assert_int_eq(sh_sht_analysis(p, SH_CS, k.f, a1), SH_OK);
+    ck_assert_int_eq(sh__sht_set_isa(p, SHT_ISA_AUTO), SH_OK); /* the flags dropped */
+    ck_assert_int_eq(sh__sht_dead_groups(p), 0);
+    ck_assert_int_eq(sh_sht_analysis(p, SH_CS, k.f, a0), SH_OK);
+    ck_assert_msg(!memcmp(a0, a1, sizeof(double) * nn), "analysis with skips");
+    const double e = rel_l2(a1, k.c, (size_t)nn); /* normwise, the bound of test_sht_highband */
+    printf("test_sht: lmax 1023 Gauss grid, %d dead groups; round trip with skips %.3g (relative L2)\n", dead, e);
+    ck_assert_msg(e <= 1e-12, "round trip at lmax 1023: %.3g", e);
+    sh_sht_destroy(p);
+    free(a0), free(a1), free(s1);
+    case_free(&k);
+}
+END_TEST
+
 /* Every instruction set compiled in and usable here against the baseline
  * kernels (they differ by FMA rounding only). */
 START_TEST(isa_kernels_agree)
@@ -578,6 +613,7 @@ static Suite *suite(void)
     tcase_add_test(tc, partial_last_chunk);
     tcase_add_test(tc, seeds_kept_and_dropped);
     tcase_add_test(tc, dead_groups_skipped);
+    tcase_add_test(tc, dead_groups_full_grid);
     tcase_add_test(tc, isa_kernels_agree);
     tcase_add_test(tc, high_order_near_poles);
     tcase_add_test(tc, errors);
